@@ -1,0 +1,1 @@
+//! noether-analysis (under construction).

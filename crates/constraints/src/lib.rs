@@ -1,0 +1,1 @@
+//! noether-constraints (under construction).

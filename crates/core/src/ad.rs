@@ -1,0 +1,316 @@
+//! Automatic-differentiation kernels: exact first and second derivatives of a scalar function
+//! f(t, x, y) of time and two blocks of variables, by stack-allocated dual numbers of `num-dual`.
+//!
+//! Every derivative the library needs is one of four kernels:
+//! - [`gradient`]: ∇_x f or ∇_y f (`DualSVec64<W>`, one evaluation per chunk of W variables);
+//! - [`partial_t`]: ∂f/∂t (`Dual64`);
+//! - [`hessian`]: a block ∂²f/∂a∂b with a, b ∈ {x, y} (`Dual2SVec64<W>` for a diagonal block that fits
+//!   one chunk, `HyperDualSVec64<W, W>` per pair of chunks otherwise);
+//! - [`directional_gradient`]: ∇_b (∂_t f·δt + ∇_x f·δx + ∇_y f·δy), a Hessian-vector product by one
+//!   `HyperDualSVec64<1, W>` evaluation per chunk — never forming the Hessian.
+//!
+//! The chunk width W is chosen at run time from the block length n: W = n for n ≤ 12 (one evaluation,
+//! everything on the stack), W = 8 with ⌈n/8⌉ chunks beyond. Models of any size therefore use `Copy`
+//! duals and no allocation per arithmetic operation.
+
+use crate::Scalar;
+use nalgebra::{Const, DMatrix, SVector, U1};
+use num_dual::{Derivative, Dual2Vec, Dual64, DualNum, DualVec, HyperDualVec};
+
+/// A scalar function f(t, x, y), generic over the scalar type: the shape shared by Lagrangians
+/// L(t, q, q̇), Hamiltonians H(t, q, p), discrete Lagrangians L_d(q₀, q₁) and potentials V(q).
+pub trait Field {
+    /// Evaluates f.
+    fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D]) -> D;
+}
+
+/// Which block of variables a derivative is taken with respect to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Block {
+    /// The first block (q for L and H, q₀ for L_d).
+    X,
+    /// The second block (q̇ for L, p for H, q₁ for L_d).
+    Y,
+}
+
+/// Largest block length differentiated in a single evaluation.
+pub const MAX_FIXED: usize = 12;
+const CHUNK: usize = 8;
+
+/// Calls `$f::<…, W>` with the chunk width W for a block of length `$n`.
+macro_rules! with_width {
+    ($n:expr, $f:ident :: <$($g:ty),*> ($($a:expr),*)) => {
+        match $n {
+            0 | 1 => $f::<$($g,)* 1>($($a),*),
+            2 => $f::<$($g,)* 2>($($a),*),
+            3 => $f::<$($g,)* 3>($($a),*),
+            4 => $f::<$($g,)* 4>($($a),*),
+            5 => $f::<$($g,)* 5>($($a),*),
+            6 => $f::<$($g,)* 6>($($a),*),
+            7 => $f::<$($g,)* 7>($($a),*),
+            8 => $f::<$($g,)* 8>($($a),*),
+            9 => $f::<$($g,)* 9>($($a),*),
+            10 => $f::<$($g,)* 10>($($a),*),
+            11 => $f::<$($g,)* 11>($($a),*),
+            12 => $f::<$($g,)* 12>($($a),*),
+            _ => $f::<$($g,)* CHUNK>($($a),*),
+        }
+    };
+}
+
+/// A buffer of lifted variables: on the stack when it fits `W`, on the heap otherwise.
+pub(crate) enum Buf<D, const W: usize> {
+    Stack([D; W], usize),
+    Heap(Vec<D>),
+}
+
+impl<D: Scalar, const W: usize> Buf<D, W> {
+    #[inline]
+    pub(crate) fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
+        if n <= W {
+            Buf::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
+        } else {
+            Buf::Heap((0..n).map(f).collect())
+        }
+    }
+}
+
+impl<D, const W: usize> std::ops::Deref for Buf<D, W> {
+    type Target = [D];
+    #[inline]
+    fn deref(&self) -> &[D] {
+        match self {
+            Buf::Stack(a, n) => &a[..*n],
+            Buf::Heap(v) => v,
+        }
+    }
+}
+
+/// Value of f at real arguments.
+#[inline]
+pub fn value<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> f64 {
+    f.eval(t, x, y)
+}
+
+/// ∂f/∂t by one `Dual64` evaluation.
+pub fn partial_t<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> f64 {
+    with_width!(x.len().max(y.len()), partial_t_w::<F>(f, t, x, y))
+}
+
+fn partial_t_w<F: Field, const W: usize>(f: &F, t: f64, x: &[f64], y: &[f64]) -> f64 {
+    let xs = Buf::<Dual64, W>::new(x.len(), |i| Dual64::from(x[i]));
+    let ys = Buf::<Dual64, W>::new(y.len(), |i| Dual64::from(y[i]));
+    f.eval(Dual64::new(t, 1.0), &xs, &ys).eps
+}
+
+/// Gradient of f with respect to `block`, written into `out`; returns the value of f.
+pub fn gradient<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
+    let n = match block {
+        Block::X => x.len(),
+        Block::Y => y.len(),
+    };
+    debug_assert_eq!(out.len(), n);
+    if n == 0 {
+        return f.eval(t, x, y);
+    }
+    with_width!(n, gradient_w::<F>(f, t, x, y, block, out))
+}
+
+fn gradient_w<F: Field, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    block: Block,
+    out: &mut [f64],
+) -> f64 {
+    type D<const W: usize> = DualVec<f64, f64, Const<W>>;
+    let n = out.len();
+    let mut val = 0.0;
+    for c0 in (0..n).step_by(W) {
+        let seed = |b: Block, vals: &[f64], i: usize| {
+            let d = D::<W>::from_re(vals[i]);
+            if b == block && i >= c0 && i < c0 + W {
+                d.derivative(i - c0)
+            } else {
+                d
+            }
+        };
+        let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
+        let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+        let r = f.eval(D::<W>::from_re(t), &xs, &ys);
+        val = r.re;
+        let g = r.eps.unwrap_generic(Const::<W>, U1);
+        let m = W.min(n - c0);
+        out[c0..c0 + m].copy_from_slice(&g.as_slice()[..m]);
+    }
+    val
+}
+
+/// Hessian block ∂²f/∂a∂b (rows: block `a`, columns: block `b`) written into `out`.
+pub fn hessian<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, b: Block, out: &mut DMatrix<f64>) {
+    let len = |blk| match blk {
+        Block::X => x.len(),
+        Block::Y => y.len(),
+    };
+    let (na, nb) = (len(a), len(b));
+    debug_assert_eq!(out.shape(), (na, nb));
+    if na == 0 || nb == 0 {
+        return;
+    }
+    if a == b && na <= MAX_FIXED {
+        with_width!(na, hessian_diag_w::<F>(f, t, x, y, a, out))
+    } else {
+        hessian_blocks::<F, CHUNK>(f, t, x, y, a, b, out)
+    }
+}
+
+fn hessian_diag_w<F: Field, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    a: Block,
+    out: &mut DMatrix<f64>,
+) {
+    type D<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
+    let seed = |b: Block, vals: &[f64], i: usize| {
+        let d = D::<W>::from_re(vals[i]);
+        if b == a {
+            d.derivative(i)
+        } else {
+            d
+        }
+    };
+    let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
+    let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+    let r = f.eval(D::<W>::from_re(t), &xs, &ys);
+    let h = r.v2.unwrap_generic(Const::<W>, Const::<W>);
+    let n = out.nrows();
+    for j in 0..n {
+        for i in 0..n {
+            out[(i, j)] = h[(i, j)];
+        }
+    }
+}
+
+fn hessian_blocks<F: Field, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    a: Block,
+    b: Block,
+    out: &mut DMatrix<f64>,
+) {
+    type D<const W: usize> = HyperDualVec<f64, f64, Const<W>, Const<W>>;
+    let (na, nb) = out.shape();
+    for ca in (0..na).step_by(W) {
+        for cb in (0..nb).step_by(W) {
+            if a == b && cb < ca {
+                continue; // symmetric: mirrored below
+            }
+            let seed = |blk: Block, vals: &[f64], i: usize| {
+                let mut d = D::<W>::from_re(vals[i]);
+                if blk == a && i >= ca && i < ca + W {
+                    d = d.derivative1(i - ca);
+                }
+                if blk == b && i >= cb && i < cb + W {
+                    d = d.derivative2(i - cb);
+                }
+                d
+            };
+            let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
+            let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+            let r = f.eval(D::<W>::from_re(t), &xs, &ys);
+            let h = r.eps1eps2.unwrap_generic(Const::<W>, Const::<W>);
+            for i in 0..W.min(na - ca) {
+                for j in 0..W.min(nb - cb) {
+                    out[(ca + i, cb + j)] = h[(i, j)];
+                    if a == b {
+                        out[(cb + j, ca + i)] = h[(i, j)];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Directional gradient: `out_j = ∂/∂b_j [∂_t f·δt + ∇_x f·δx + ∇_y f·δy]` (a Hessian-vector product
+/// without the Hessian). Pass an empty slice for δx or δy to mean zero. Returns ∇_b f in `grad_b` if
+/// given (it comes for free).
+#[allow(clippy::too_many_arguments)]
+pub fn directional_gradient<F: Field>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    b: Block,
+    out: &mut [f64],
+    grad_b: Option<&mut [f64]>,
+) {
+    let n = out.len();
+    if n == 0 {
+        return;
+    }
+    with_width!(n, directional_gradient_w::<F>(f, t, x, y, dir, b, out, grad_b))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn directional_gradient_w<F: Field, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    b: Block,
+    out: &mut [f64],
+    mut grad_b: Option<&mut [f64]>,
+) {
+    type D<const W: usize> = HyperDualVec<f64, f64, Const<1>, Const<W>>;
+    let lift = |v: f64, d: f64| {
+        if d == 0.0 {
+            D::<W>::from_re(v)
+        } else {
+            D::<W>::new(
+                v,
+                Derivative::some(SVector::from([d])),
+                Derivative::none(),
+                Derivative::none(),
+            )
+        }
+    };
+    let n = out.len();
+    let (dt, dx, dy) = dir;
+    for c0 in (0..n).step_by(W) {
+        let seed = |blk: Block, vals: &[f64], dirs: &[f64], i: usize| {
+            let d = lift(vals[i], dirs.get(i).copied().unwrap_or(0.0));
+            if blk == b && i >= c0 && i < c0 + W {
+                d.derivative2(i - c0)
+            } else {
+                d
+            }
+        };
+        let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, dx, i));
+        let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, dy, i));
+        let r = f.eval(lift(t, dt), &xs, &ys);
+        let m = W.min(n - c0);
+        let h = r.eps1eps2.unwrap_generic(Const::<1>, Const::<W>);
+        for j in 0..m {
+            out[c0 + j] = h[(0, j)];
+        }
+        if let Some(g) = grad_b.as_deref_mut() {
+            let e = r.eps2.unwrap_generic(U1, Const::<W>);
+            for j in 0..m {
+                g[c0 + j] = e[(0, j)];
+            }
+        }
+    }
+}
+
+/// The real part of any scalar (for models that branch on values).
+#[inline]
+pub fn re<D: DualNum<f64>>(x: &D) -> f64 {
+    x.re()
+}

@@ -1,0 +1,127 @@
+//! Errors of noether-core: every failure a user can meet, with the data needed to act on it.
+
+use thiserror::Error;
+
+/// Result alias used throughout noether.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What went wrong, with the numbers that say how.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Error {
+    /// A vector had the wrong length.
+    #[error("dimension mismatch in {what}: expected {expected}, got {got}")]
+    Dimension {
+        /// Which argument.
+        what: &'static str,
+        /// Length expected by the model.
+        expected: usize,
+        /// Length supplied.
+        got: usize,
+    },
+    /// A NaN or infinite value was supplied where a finite one is required.
+    #[error("{what} is not finite (NaN or infinite) at component {index}")]
+    NonFinite {
+        /// Which argument.
+        what: &'static str,
+        /// First offending component.
+        index: usize,
+    },
+    /// A time step that is zero, negative or not finite.
+    #[error("invalid step size h = {h}: it must be finite and positive")]
+    InvalidStep {
+        /// The step supplied.
+        h: f64,
+    },
+    /// An invalid parameter of a model, a method or a solver.
+    #[error("invalid parameter {name} = {value}: {reason}")]
+    InvalidParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// The mass matrix ∂²L/∂q̇² is singular: the Lagrangian is degenerate and q̈ is not determined.
+    #[error("singular mass matrix ∂²L/∂q̇² (degenerate Lagrangian) at t = {t}: smallest pivot {pivot:e} relative to largest")]
+    SingularMassMatrix {
+        /// Time at which it was found.
+        t: f64,
+        /// Smallest relative pivot.
+        pivot: f64,
+    },
+    /// A linear system (Newton Jacobian, constraint matrix) is singular.
+    #[error("singular matrix in {what}")]
+    SingularMatrix {
+        /// Which system.
+        what: &'static str,
+    },
+    /// Newton's method did not converge.
+    #[error("Newton did not converge after {iterations} iterations: residual norm {residual:e} (tolerance {tolerance:e})")]
+    NewtonDiverged {
+        /// Iterations performed.
+        iterations: usize,
+        /// Last residual norm (max-norm).
+        residual: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    /// The model produced NaN or infinity during a run.
+    #[error("the model produced a non-finite value at step {step}, t = {t}")]
+    NonFiniteState {
+        /// Step index (0 for the first step of a stepper call or driver).
+        step: usize,
+        /// Time at the start of the failing step.
+        t: f64,
+    },
+    /// Adaptive step-size control gave up.
+    #[error("step size underflow at t = {t}: h = {h:e} (error estimate {error:e})")]
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// Step size that became too small.
+        h: f64,
+        /// Last normalised error estimate.
+        error: f64,
+    },
+    /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
+    #[error("unsupported: {0}")]
+    Unsupported(&'static str),
+    /// A coordinate chart became singular (e.g. Euler angles near θ = 0 or π).
+    #[error("coordinate singularity: {what} at t = {t}")]
+    CoordinateSingularity {
+        /// Description.
+        what: String,
+        /// Time.
+        t: f64,
+    },
+}
+
+/// Checks that `x` has length `n`.
+pub fn check_len(what: &'static str, x: &[f64], n: usize) -> Result<()> {
+    if x.len() != n {
+        return Err(Error::Dimension {
+            what,
+            expected: n,
+            got: x.len(),
+        });
+    }
+    Ok(())
+}
+
+/// Checks that every component of `x` is finite.
+pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
+    match x.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Error::NonFinite { what, index }),
+        None => Ok(()),
+    }
+}
+
+/// Checks that a step size is finite and positive.
+pub fn check_step(h: f64) -> Result<()> {
+    if h.is_finite() && h > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidStep { h })
+    }
+}

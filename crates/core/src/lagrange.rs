@@ -1,0 +1,261 @@
+//! Lagrange's equations by dual numbers.
+//!
+//! For L(t, q, q̇) with mass matrix M = ∂²L/∂q̇² and generalized forces Q, Lagrange's equations
+//! `d/dt(∂L/∂q̇) − ∂L/∂q = Q` expand to
+//!
+//! ```text
+//! M q̈ = ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q
+//! ```
+//!
+//! [`EulerLagrange`] evaluates the right-hand side with three AD kernels: ∇_q L (a gradient), the
+//! term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t as one directional derivative (a Hessian-vector product, never the
+//! full mixed Hessian), and M (a Hessian in q̇ only), then solves with a Cholesky factor (LU when M is
+//! not positive definite). A mass matrix declared constant is factored once.
+
+use crate::ad::{self, Block, Field};
+use crate::error::{check_finite, check_len};
+use crate::newton::{DenseProblem, Newton};
+use crate::{Error, Lagrangian, Result, Scalar};
+use nalgebra::{DMatrix, DVector};
+use std::sync::OnceLock;
+
+/// A Lagrangian seen as the AD field f(t, x = q, y = q̇).
+pub(crate) struct LagrangianField<'a, L: ?Sized>(pub &'a L);
+
+impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
+    #[inline]
+    fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D]) -> D {
+        self.0.lagrangian(t, x, y)
+    }
+}
+
+/// A factored mass matrix.
+#[derive(Debug, Clone)]
+pub enum MassFactor {
+    /// M = L Lᵀ (symmetric positive definite: the usual case).
+    Cholesky(nalgebra::Cholesky<f64, nalgebra::Dyn>),
+    /// M = P L U (regular but indefinite).
+    Lu(nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>),
+}
+
+/// Relative pivot below which a mass matrix is reported as singular.
+pub const SINGULAR_PIVOT: f64 = 1e-13;
+
+impl MassFactor {
+    /// Factors `m`, reporting a singular (degenerate) mass matrix at time `t` as an error.
+    pub fn new(m: DMatrix<f64>, t: f64) -> Result<Self> {
+        if m.iter().any(|v| !v.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        let scale = m
+            .diagonal()
+            .iter()
+            .fold(0.0_f64, |a, v| a.max(v.abs()))
+            .max(m.amax());
+        if scale == 0.0 {
+            return Err(Error::SingularMassMatrix { t, pivot: 0.0 });
+        }
+        if let Some(ch) = m.clone().cholesky() {
+            let d = ch.l_dirty().diagonal();
+            let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+                (lo.min(v * v), hi.max(v * v))
+            });
+            if lo / hi < SINGULAR_PIVOT {
+                return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
+            }
+            return Ok(MassFactor::Cholesky(ch));
+        }
+        let lu = m.lu();
+        let u = lu.u();
+        let d = u.diagonal();
+        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+            (lo.min(v.abs()), hi.max(v.abs()))
+        });
+        if hi == 0.0 || lo / hi < SINGULAR_PIVOT {
+            return Err(Error::SingularMassMatrix {
+                t,
+                pivot: if hi == 0.0 { 0.0 } else { lo / hi },
+            });
+        }
+        Ok(MassFactor::Lu(lu))
+    }
+
+    /// Overwrites `b` with M⁻¹ b.
+    pub fn solve_in_place(&self, b: &mut [f64]) {
+        let n = b.len();
+        let mut v = nalgebra::DVectorViewMut::from_slice(b, n);
+        match self {
+            MassFactor::Cholesky(c) => c.solve_mut(&mut v),
+            MassFactor::Lu(l) => {
+                l.solve_mut(&mut v);
+            }
+        }
+    }
+}
+
+/// The Euler-Lagrange equations of a [`Lagrangian`]: accelerations, momenta, energy, Legendre maps.
+pub struct EulerLagrange<L> {
+    lagrangian: L,
+    constant_mass: OnceLock<std::result::Result<MassFactor, Error>>,
+}
+
+impl<L: Lagrangian> EulerLagrange<L> {
+    /// Wraps a Lagrangian.
+    pub fn new(lagrangian: L) -> Self {
+        EulerLagrange {
+            lagrangian,
+            constant_mass: OnceLock::new(),
+        }
+    }
+
+    /// The wrapped Lagrangian.
+    pub fn lagrangian(&self) -> &L {
+        &self.lagrangian
+    }
+
+    /// Number of degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.lagrangian.dof()
+    }
+
+    fn check(&self, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_len("q̇", v, n)?;
+        check_finite("t", &[t])?;
+        check_finite("q", q)?;
+        check_finite("q̇", v)
+    }
+
+    /// The value of L.
+    pub fn value(&self, t: f64, q: &[f64], v: &[f64]) -> f64 {
+        self.lagrangian.lagrangian(t, q, v)
+    }
+
+    /// Mass matrix M = ∂²L/∂q̇².
+    pub fn mass_matrix(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DMatrix<f64>> {
+        self.check(t, q, v)?;
+        let n = self.dof();
+        let mut m = DMatrix::zeros(n, n);
+        ad::hessian(
+            &LagrangianField(&self.lagrangian),
+            t,
+            q,
+            v,
+            Block::Y,
+            Block::Y,
+            &mut m,
+        );
+        Ok(m)
+    }
+
+    /// The factored mass matrix at (t, q, q̇); computed once when the Lagrangian declares it constant.
+    pub fn mass_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<MassFactor> {
+        if self.lagrangian.constant_mass_matrix() {
+            return self.constant_factor(t, q, v).cloned();
+        }
+        MassFactor::new(self.mass_matrix(t, q, v)?, t)
+    }
+
+    fn constant_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<&MassFactor> {
+        self.constant_mass
+            .get_or_init(|| MassFactor::new(self.mass_matrix(t, q, v)?, t))
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
+    /// Overwrites `b` with M(t, q, q̇)⁻¹ b (no copy of a constant factor).
+    pub fn solve_mass(&self, t: f64, q: &[f64], v: &[f64], b: &mut [f64]) -> Result<()> {
+        if self.lagrangian.constant_mass_matrix() {
+            self.constant_factor(t, q, v)?.solve_in_place(b);
+        } else {
+            MassFactor::new(self.mass_matrix(t, q, v)?, t)?.solve_in_place(b);
+        }
+        Ok(())
+    }
+
+    /// Accelerations q̈ = M⁻¹ (∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q), written into `a`.
+    pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
+        self.check(t, q, v)?;
+        check_len("q̈ (output)", a, self.dof())?;
+        let f = LagrangianField(&self.lagrangian);
+        let n = self.dof();
+        ad::gradient(&f, t, q, v, Block::X, a);
+        let mut mixed = vec![0.0; n];
+        ad::directional_gradient(&f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+        for (ai, mi) in a.iter_mut().zip(&mixed) {
+            *ai -= mi;
+        }
+        if self.lagrangian.has_generalized_force() {
+            let mut qf = vec![0.0; n];
+            self.lagrangian.generalized_force(t, q, v, &mut qf);
+            for (ai, qi) in a.iter_mut().zip(&qf) {
+                *ai += qi;
+            }
+        }
+        self.solve_mass(t, q, v, a)?;
+        if a.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        Ok(())
+    }
+
+    /// Generalized momenta p = ∂L/∂q̇ (the Legendre map), written into `p`.
+    pub fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
+        self.check(t, q, v)?;
+        check_len("p (output)", p, self.dof())?;
+        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, p);
+        Ok(())
+    }
+
+    /// The energy function h = q̇·∂L/∂q̇ − L (conserved when L does not depend on t explicitly and Q = 0).
+    pub fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        self.check(t, q, v)?;
+        let mut p = vec![0.0; self.dof()];
+        let l = ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, &mut p);
+        Ok(p.iter().zip(v).map(|(pi, vi)| pi * vi).sum::<f64>() - l)
+    }
+
+    /// ∂L/∂q (the generalized force of the potential part).
+    pub fn gradient_q(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) -> Result<()> {
+        self.check(t, q, v)?;
+        check_len("∂L/∂q (output)", out, self.dof())?;
+        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::X, out);
+        Ok(())
+    }
+
+    /// Inverse Legendre map: the velocities q̇ with ∂L/∂q̇(t, q, q̇) = p, by Newton's method with the
+    /// mass matrix as Jacobian, started from q̇ = M(t, q, 0)⁻¹ p (exact when L is quadratic in q̇).
+    pub fn velocities(&self, t: f64, q: &[f64], p: &[f64]) -> Result<DVector<f64>> {
+        let n = self.dof();
+        check_len("p", p, n)?;
+        check_finite("p", p)?;
+        let zero = vec![0.0; n];
+        let mut v0 = p.to_vec();
+        self.solve_mass(t, q, &zero, &mut v0)?;
+        struct InverseLegendre<'a, L> {
+            el: &'a EulerLagrange<L>,
+            t: f64,
+            q: &'a [f64],
+            p: &'a [f64],
+        }
+        impl<L: Lagrangian> DenseProblem for InverseLegendre<'_, L> {
+            fn dim(&self) -> usize {
+                self.p.len()
+            }
+            fn residual(&mut self, v: &[f64], r: &mut [f64]) -> Result<()> {
+                self.el.momenta(self.t, self.q, v, r)?;
+                r.iter_mut().zip(self.p).for_each(|(ri, pi)| *ri -= pi);
+                Ok(())
+            }
+            fn jacobian(&mut self, v: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+                *j = self.el.mass_matrix(self.t, self.q, v)?;
+                Ok(())
+            }
+        }
+        let scale = 1.0 + crate::newton::max_norm(p);
+        let newton = Newton::default().tol_residual(1e-13 * scale);
+        let (v, _) = crate::newton::solve_dense(&newton, InverseLegendre { el: self, t, q, p }, &v0)?;
+        Ok(v)
+    }
+}

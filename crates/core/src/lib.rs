@@ -1,0 +1,59 @@
+//! # noether-core
+//!
+//! Lagrangians L(t, q, q̇) and Hamiltonians H(t, q, p) written once as generic Rust code; their
+//! equations of motion, momenta, energy and Legendre maps by dual numbers (`num-dual`); continuous
+//! integrators; one Newton solver for every implicit equation.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//!
+//! /// Harmonic oscillator, L = ½ m q̇² − ½ k q².
+//! struct Oscillator { m: f64, k: f64 }
+//! impl Lagrangian for Oscillator {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+//!         v[0] * v[0] * (0.5 * self.m) - q[0] * q[0] * (0.5 * self.k)
+//!     }
+//! }
+//!
+//! let el = EulerLagrange::new(Oscillator { m: 2.0, k: 8.0 });
+//! let mut a = [0.0];
+//! el.accelerations(0.0, &[0.5], &[0.0], &mut a).unwrap();
+//! assert!((a[0] - (-8.0 * 0.5 / 2.0)).abs() < 1e-14); // q̈ = −(k/m) q
+//!
+//! // One period 2π sqrt(m/k) = π with RK4 returns to the start.
+//! let mut traj = Trajectory::new(Rk4::new(el), State::new(0.0, [0.5], [0.0]), 1e-3).unwrap();
+//! let end = traj.run_until(std::f64::consts::PI).unwrap();
+//! assert!((end.q[0] - 0.5).abs() < 1e-10);
+//! ```
+
+pub mod ad;
+pub mod dynamics;
+pub mod error;
+pub mod hamilton;
+pub mod integrators;
+pub mod lagrange;
+pub mod model;
+pub mod newton;
+pub mod scalar;
+pub mod state;
+pub mod stepper;
+
+pub use dynamics::Dynamics;
+pub use error::{Error, Result};
+pub use hamilton::HamiltonEquations;
+pub use lagrange::{EulerLagrange, MassFactor};
+pub use model::{Hamiltonian, Lagrangian, Separable, SeparableHamiltonian};
+pub use newton::{Newton, NewtonInfo, NewtonSystem};
+pub use scalar::Scalar;
+pub use state::State;
+pub use stepper::{StepInfo, Stepper, Trajectory};
+
+/// Everything a model and a simulation need, in one import.
+pub mod prelude {
+    pub use crate::integrators::*;
+    pub use crate::{
+        Dynamics, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Result, Scalar,
+        Separable, SeparableHamiltonian, State, StepInfo, Stepper, Trajectory,
+    };
+}

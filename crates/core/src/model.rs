@@ -1,0 +1,122 @@
+//! The user's models: a Lagrangian L(t, q, q̇) or a Hamiltonian H(t, q, p), written once as generic code.
+//!
+//! ```
+//! use noether_core::{Lagrangian, Scalar};
+//!
+//! /// Simple pendulum, L = ½ m l² θ̇² + m g l cos θ.
+//! struct Pendulum { m: f64, l: f64, g: f64 }
+//!
+//! impl Lagrangian for Pendulum {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+//!         v[0] * v[0] * (0.5 * self.m * self.l * self.l) + q[0].cos() * (self.m * self.g * self.l)
+//!     }
+//! }
+//! ```
+
+use crate::Scalar;
+
+/// A Lagrangian L(t, q, q̇) with `dof()` generalized coordinates.
+///
+/// Only [`dof`](Lagrangian::dof) and [`lagrangian`](Lagrangian::lagrangian) are required. The other
+/// methods describe structure that lets noether skip work (a constant mass matrix is factored once) and
+/// non-potential generalized forces Q(t, q, q̇) entering Lagrange's equations
+/// `d/dt(∂L/∂q̇) − ∂L/∂q = Q`.
+pub trait Lagrangian {
+    /// Number of generalized coordinates.
+    fn dof(&self) -> usize;
+
+    /// The value of L at time `t`, coordinates `q` and velocities `v = q̇` (both of length `dof()`).
+    fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D;
+
+    /// `true` when the mass matrix M = ∂²L/∂q̇² depends on neither t, q nor q̇ (then it is computed and
+    /// factored once). Declaring it wrongly gives wrong dynamics; the default `false` is always safe.
+    fn constant_mass_matrix(&self) -> bool {
+        false
+    }
+
+    /// `true` when [`generalized_force`](Lagrangian::generalized_force) is not identically zero.
+    fn has_generalized_force(&self) -> bool {
+        false
+    }
+
+    /// Non-potential generalized forces Q(t, q, q̇) (damping, driving), written into `out`
+    /// (length `dof()`). Only called when [`has_generalized_force`](Lagrangian::has_generalized_force)
+    /// returns `true`.
+    fn generalized_force(&self, _t: f64, _q: &[f64], _v: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|x| *x = 0.0);
+    }
+}
+
+/// A Hamiltonian H(t, q, p) with `dof()` coordinates and as many conjugate momenta.
+pub trait Hamiltonian {
+    /// Number of coordinates (half the phase-space dimension).
+    fn dof(&self) -> usize;
+
+    /// The value of H at time `t`, coordinates `q` and momenta `p`.
+    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D;
+}
+
+/// A separable Hamiltonian H = T(p) + V(q): the split that explicit symplectic methods need.
+///
+/// Every `Separable` is a [`Hamiltonian`] through [`SeparableHamiltonian`].
+pub trait Separable {
+    /// Number of coordinates.
+    fn dof(&self) -> usize;
+    /// Kinetic energy T(p).
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D;
+    /// Potential energy V(q).
+    fn potential<D: Scalar>(&self, q: &[D]) -> D;
+}
+
+/// Adapter: a [`Separable`] viewed as a [`Hamiltonian`] H = T(p) + V(q).
+#[derive(Debug, Clone, Copy)]
+pub struct SeparableHamiltonian<S>(pub S);
+
+impl<S: Separable> Hamiltonian for SeparableHamiltonian<S> {
+    fn dof(&self) -> usize {
+        self.0.dof()
+    }
+    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+        self.0.kinetic(p) + self.0.potential(q)
+    }
+}
+
+impl<L: Lagrangian + ?Sized> Lagrangian for &L {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        (**self).lagrangian(t, q, v)
+    }
+    fn constant_mass_matrix(&self) -> bool {
+        (**self).constant_mass_matrix()
+    }
+    fn has_generalized_force(&self) -> bool {
+        (**self).has_generalized_force()
+    }
+    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+        (**self).generalized_force(t, q, v, out)
+    }
+}
+
+impl<H: Hamiltonian + ?Sized> Hamiltonian for &H {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
+        (**self).hamiltonian(t, q, p)
+    }
+}
+
+impl<S: Separable + ?Sized> Separable for &S {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (**self).kinetic(p)
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        (**self).potential(q)
+    }
+}

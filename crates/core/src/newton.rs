@@ -1,0 +1,231 @@
+//! One Newton solver for every implicit equation in noether: implicit integrators, the discrete
+//! Euler-Lagrange equations, constraint projections, the inverse Legendre map.
+//!
+//! Solves F(x) = 0 by x ← x − J⁻¹F(x). The problem supplies the residual and a way to factor and apply
+//! its Jacobian ([`NewtonSystem`]); [`Dense`] adapts any problem with a dense Jacobian (LU). A factored
+//! Jacobian is reused (modified Newton) while the residual keeps contracting and is refreshed when it
+//! does not. Convergence: ‖F‖∞ ≤ `tol_residual`, or ‖Δx‖∞ ≤ `tol_step`·(1 + ‖x‖∞) after a step.
+
+use crate::{Error, Result};
+use nalgebra::{DMatrix, DVector};
+
+/// A nonlinear system F(x) = 0 with its own Jacobian factorization (dense, banded, sparse, ...).
+pub trait NewtonSystem {
+    /// Number of unknowns (= number of equations).
+    fn dim(&self) -> usize;
+    /// F(x) into `r`.
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()>;
+    /// Evaluates and factors the Jacobian J = ∂F/∂x at `x`, keeping the factor for [`solve`](Self::solve).
+    fn factor_jacobian(&mut self, x: &[f64]) -> Result<()>;
+    /// Overwrites `rhs` with J⁻¹ rhs using the last factor.
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<()>;
+}
+
+/// A nonlinear system with a dense Jacobian; wrap it in [`Dense`] to solve it.
+pub trait DenseProblem {
+    /// Number of unknowns.
+    fn dim(&self) -> usize;
+    /// F(x) into `r`.
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()>;
+    /// J(x) = ∂F/∂x into `j` (dim × dim).
+    fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()>;
+}
+
+/// Adapter giving a [`DenseProblem`] an LU-factored Jacobian.
+pub struct Dense<P> {
+    /// The problem.
+    pub problem: P,
+    jac: DMatrix<f64>,
+    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+}
+
+impl<P: DenseProblem> Dense<P> {
+    /// Wraps `problem`.
+    pub fn new(problem: P) -> Self {
+        let n = problem.dim();
+        Dense {
+            problem,
+            jac: DMatrix::zeros(n, n),
+            lu: None,
+        }
+    }
+}
+
+impl<P: DenseProblem> NewtonSystem for Dense<P> {
+    fn dim(&self) -> usize {
+        self.problem.dim()
+    }
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+        self.problem.residual(x, r)
+    }
+    fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
+        self.problem.jacobian(x, &mut self.jac)?;
+        if self.jac.iter().any(|v| !v.is_finite()) {
+            return Err(Error::SingularMatrix {
+                what: "Newton Jacobian (non-finite entries)",
+            });
+        }
+        let lu = self.jac.clone().lu();
+        if !lu.is_invertible() {
+            return Err(Error::SingularMatrix {
+                what: "Newton Jacobian",
+            });
+        }
+        self.lu = Some(lu);
+        Ok(())
+    }
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let lu = self.lu.as_ref().ok_or(Error::SingularMatrix {
+            what: "Newton Jacobian (not factored)",
+        })?;
+        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
+        if lu.solve_mut(&mut b) {
+            Ok(())
+        } else {
+            Err(Error::SingularMatrix {
+                what: "Newton Jacobian",
+            })
+        }
+    }
+}
+
+/// Newton's method with tolerances, an iteration cap and Jacobian reuse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Newton {
+    /// Converged when ‖F(x)‖∞ ≤ this.
+    pub tol_residual: f64,
+    /// Converged when a step satisfies ‖Δx‖∞ ≤ this · (1 + ‖x‖∞).
+    pub tol_step: f64,
+    /// Iteration cap.
+    pub max_iterations: usize,
+    /// Reuse the last Jacobian factor while ‖F‖ contracts at least by `contraction` per iteration.
+    pub reuse_jacobian: bool,
+    /// Required contraction factor for reusing a Jacobian factor.
+    pub contraction: f64,
+}
+
+impl Default for Newton {
+    fn default() -> Self {
+        Newton {
+            tol_residual: 1e-12,
+            tol_step: 1e-14,
+            max_iterations: 50,
+            reuse_jacobian: true,
+            contraction: 0.25,
+        }
+    }
+}
+
+/// Statistics of a converged Newton solve.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct NewtonInfo {
+    /// Iterations (linear solves) performed.
+    pub iterations: usize,
+    /// Jacobian evaluations (factorizations).
+    pub jacobians: usize,
+    /// Final residual norm ‖F‖∞.
+    pub residual: f64,
+}
+
+impl Newton {
+    /// Sets the residual tolerance.
+    pub fn tol_residual(mut self, tol: f64) -> Self {
+        self.tol_residual = tol;
+        self
+    }
+    /// Sets the step tolerance.
+    pub fn tol_step(mut self, tol: f64) -> Self {
+        self.tol_step = tol;
+        self
+    }
+    /// Sets the iteration cap.
+    pub fn max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+    /// Enables or disables Jacobian reuse.
+    pub fn reuse_jacobian(mut self, reuse: bool) -> Self {
+        self.reuse_jacobian = reuse;
+        self
+    }
+
+    /// Solves `sys` starting from `x` (overwritten by the solution). On failure `x` holds the last
+    /// iterate and the error carries the iteration count and the last residual norm.
+    pub fn solve<S: NewtonSystem + ?Sized>(&self, sys: &mut S, x: &mut [f64]) -> Result<NewtonInfo> {
+        let n = sys.dim();
+        crate::error::check_len("Newton initial guess", x, n)?;
+        let mut r = vec![0.0; n];
+        let mut info = NewtonInfo::default();
+        sys.residual(x, &mut r)?;
+        let mut rnorm = max_norm(&r);
+        let mut fresh = false;
+        let mut factored = false;
+        loop {
+            if !rnorm.is_finite() {
+                return Err(self.diverged(info.iterations, rnorm));
+            }
+            if rnorm <= self.tol_residual {
+                info.residual = rnorm;
+                return Ok(info);
+            }
+            if info.iterations >= self.max_iterations {
+                return Err(self.diverged(info.iterations, rnorm));
+            }
+            if !factored || !self.reuse_jacobian || !fresh {
+                sys.factor_jacobian(x)?;
+                info.jacobians += 1;
+                factored = true;
+            }
+            let mut dx = r.clone();
+            sys.solve(&mut dx)?;
+            for (xi, di) in x.iter_mut().zip(&dx) {
+                *xi -= di;
+            }
+            info.iterations += 1;
+            sys.residual(x, &mut r)?;
+            let new_norm = max_norm(&r);
+            // Keep the factor only while it contracts the residual well.
+            fresh = new_norm <= self.contraction * rnorm;
+            rnorm = new_norm;
+            let step = max_norm(&dx);
+            if step <= self.tol_step * (1.0 + max_norm(x))
+                && rnorm.is_finite()
+                && rnorm <= self.tol_residual.sqrt()
+            {
+                info.residual = rnorm;
+                return Ok(info);
+            }
+        }
+    }
+
+    fn diverged(&self, iterations: usize, residual: f64) -> Error {
+        Error::NewtonDiverged {
+            iterations,
+            residual,
+            tolerance: self.tol_residual,
+        }
+    }
+}
+
+/// ‖x‖∞ (NaN-propagating).
+pub fn max_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| {
+        if v.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v.abs())
+        }
+    })
+}
+
+/// Convenience: solve a dense problem from `x0`, returning the solution and statistics.
+pub fn solve_dense<P: DenseProblem>(
+    newton: &Newton,
+    problem: P,
+    x0: &[f64],
+) -> Result<(DVector<f64>, NewtonInfo)> {
+    let mut sys = Dense::new(problem);
+    let mut x = x0.to_vec();
+    let info = newton.solve(&mut sys, &mut x)?;
+    Ok((DVector::from_vec(x), info))
+}

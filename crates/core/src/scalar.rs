@@ -1,0 +1,15 @@
+//! The scalar bound every user model is generic over.
+//!
+//! A model (Lagrangian, Hamiltonian, potential, constraint) is written once as a generic method over
+//! `D: Scalar`; noether evaluates it with `f64` and with several stack-allocated dual numbers of
+//! `num-dual` to obtain exact first and second derivatives.
+//!
+//! Two traps to remember when writing a model: `f64 * D` does not compile (write `D * f64`), and a
+//! literal that must be a `D` is written `D::from(0.5)`.
+
+pub use num_dual::DualNum;
+
+/// A real number or a dual number over `f64` that is `Copy` (no heap allocation per operation).
+pub trait Scalar: DualNum<f64> + Copy {}
+
+impl<T: DualNum<f64> + Copy> Scalar for T {}

@@ -1,0 +1,1 @@
+//! noether-discrete (under construction).

@@ -1,0 +1,1 @@
+//! noether-particles (under construction).

@@ -1,0 +1,15 @@
+//! # noether
+//!
+//! Lagrangian and Hamiltonian mechanics with automatic differentiation. This facade re-exports the
+//! workspace crates; `use noether::prelude::*` brings in what a model and a simulation need.
+
+pub use noether_analysis as analysis;
+pub use noether_constraints as constraints;
+pub use noether_core as core;
+pub use noether_discrete as discrete;
+pub use noether_particles as particles;
+
+/// Everything a model and a simulation need, in one import.
+pub mod prelude {
+    pub use noether_core::prelude::*;
+}
