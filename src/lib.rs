@@ -13,3 +13,5 @@ pub use noether_particles as particles;
 pub mod prelude {
     pub use noether_core::prelude::*;
 }
+
+pub mod gallery;

@@ -1,0 +1,173 @@
+//! The gallery of worked examples: each example runs a textbook system and returns its checks
+//! against closed forms. `examples/*.rs` print one example's checks; `cargo run --release` runs them all.
+//!
+//! To add an example: write a module here with `pub fn run(opts: &Options) -> Result<Report, Error>`,
+//! and list it in [`all`].
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// How a computed value is compared with the expected one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tolerance {
+    /// |computed − expected| / |expected| ≤ tol.
+    Relative(f64),
+    /// |computed − expected| ≤ tol (for quantities whose expected value is 0, such as a drift).
+    Absolute(f64),
+}
+
+/// One check of a computed quantity against its closed form.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Check {
+    /// Example name, e.g. "pendulum".
+    pub example: &'static str,
+    /// Quantity, e.g. "period(θ0=1)".
+    pub quantity: String,
+    /// Value noether computed.
+    pub computed: f64,
+    /// Closed-form value.
+    pub expected: f64,
+    /// Allowed error.
+    pub tolerance: Tolerance,
+}
+
+impl Check {
+    /// A check with a relative tolerance.
+    pub fn rel(
+        example: &'static str,
+        quantity: impl Into<String>,
+        computed: f64,
+        expected: f64,
+        tol: f64,
+    ) -> Self {
+        Check {
+            example,
+            quantity: quantity.into(),
+            computed,
+            expected,
+            tolerance: Tolerance::Relative(tol),
+        }
+    }
+
+    /// A check with an absolute tolerance.
+    pub fn abs(
+        example: &'static str,
+        quantity: impl Into<String>,
+        computed: f64,
+        expected: f64,
+        tol: f64,
+    ) -> Self {
+        Check {
+            example,
+            quantity: quantity.into(),
+            computed,
+            expected,
+            tolerance: Tolerance::Absolute(tol),
+        }
+    }
+
+    /// The error measured in the check's own norm (relative or absolute).
+    pub fn error(&self) -> f64 {
+        let d = (self.computed - self.expected).abs();
+        match self.tolerance {
+            Tolerance::Relative(_) => d / self.expected.abs(),
+            Tolerance::Absolute(_) => d,
+        }
+    }
+
+    /// The tolerance value.
+    pub fn tol(&self) -> f64 {
+        match self.tolerance {
+            Tolerance::Relative(t) | Tolerance::Absolute(t) => t,
+        }
+    }
+
+    /// `true` when the error is finite and within tolerance.
+    pub fn passed(&self) -> bool {
+        let e = self.error();
+        e.is_finite() && e <= self.tol()
+    }
+}
+
+impl fmt::Display for Check {
+    /// `check <example>/<quantity>: computed=<v> expected=<v> rel_err=<v> tol=<v> PASS|FAIL`
+    /// (`abs_err` in place of `rel_err` for absolute checks).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kind = match self.tolerance {
+            Tolerance::Relative(_) => "rel_err",
+            Tolerance::Absolute(_) => "abs_err",
+        };
+        write!(
+            f,
+            "check {}/{}: computed={:.12e} expected={:.12e} {}={:.3e} tol={:.1e} {}",
+            self.example,
+            self.quantity,
+            self.computed,
+            self.expected,
+            kind,
+            self.error(),
+            self.tol(),
+            if self.passed() { "PASS" } else { "FAIL" }
+        )
+    }
+}
+
+/// Options shared by all examples.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Folder for SVG pictures; `None` writes no pictures.
+    pub out_dir: Option<PathBuf>,
+}
+
+/// What an example produced.
+#[derive(Debug, Clone, Default)]
+pub struct Report {
+    /// Checks against closed forms.
+    pub checks: Vec<Check>,
+    /// Pictures written.
+    pub figures: Vec<PathBuf>,
+}
+
+/// A worked example of the gallery.
+#[derive(Debug, Clone, Copy)]
+pub struct Example {
+    /// Short name (`--only NAME`).
+    pub name: &'static str,
+    /// One line on what it shows.
+    pub about: &'static str,
+    /// Runs it.
+    pub run: fn(&Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>>,
+}
+
+/// Every example of the gallery, in the order a newcomer should read them.
+pub fn all() -> Vec<Example> {
+    vec![]
+}
+
+/// Runs one example and prints its check lines; exits non-zero if a check fails (for `examples/*.rs`).
+pub fn main_for(name: &str) {
+    let Some(ex) = all().into_iter().find(|e| e.name == name) else {
+        eprintln!("no example named {name}");
+        std::process::exit(2);
+    };
+    let opts = Options {
+        out_dir: Some(PathBuf::from("gallery-out")),
+    };
+    match (ex.run)(&opts) {
+        Ok(report) => {
+            for c in &report.checks {
+                println!("{c}");
+            }
+            for f in &report.figures {
+                println!("figure {}", f.display());
+            }
+            if report.checks.iter().any(|c| !c.passed()) {
+                std::process::exit(1);
+            }
+        }
+        Err(e) => {
+            eprintln!("{name} failed: {e}");
+            std::process::exit(1);
+        }
+    }
+}
