@@ -1,0 +1,37 @@
+//! Every gallery example's checks against closed forms must pass (each check states its formula and
+//! tolerance in the example module that makes it).
+
+use noether::gallery::{self, Options};
+
+/// Runs the example `name` without pictures and asserts that all its checks pass.
+fn assert_example_passes(name: &str) {
+    let ex = gallery::all()
+        .into_iter()
+        .find(|e| e.name == name)
+        .unwrap_or_else(|| panic!("no example {name}"));
+    let report = (ex.run)(&Options::default()).unwrap_or_else(|e| panic!("{name} failed: {e}"));
+    assert!(!report.checks.is_empty(), "{name} made no checks");
+    let failed: Vec<String> = report
+        .checks
+        .iter()
+        .filter(|c| !c.passed())
+        .map(|c| c.to_string())
+        .collect();
+    assert!(failed.is_empty(), "failed checks:\n{}", failed.join("\n"));
+}
+
+#[test]
+fn gallery_names_are_unique() {
+    let mut names: Vec<_> = gallery::all().iter().map(|e| e.name).collect();
+    let n = names.len();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), n);
+}
+
+// One test per example (added with each example):
+// #[test] fn closed_form_pendulum() { assert_example_passes("pendulum"); }
+#[allow(dead_code)]
+fn _keep(name: &str) {
+    assert_example_passes(name)
+}
