@@ -1,0 +1,55 @@
+//! Errors of noether-analysis: the core errors plus what can go wrong when looking for equilibria and
+//! small oscillations.
+
+use thiserror::Error;
+
+/// Result alias of noether-analysis.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What went wrong, with the numbers that say how.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Error {
+    /// An error of noether-core (dimensions, non-finite input, singular mass matrix, Newton failure).
+    #[error(transparent)]
+    Core(#[from] noether_core::Error),
+    /// Normal modes or a linearisation were asked about a point where the generalized force does not vanish.
+    #[error(
+        "not an equilibrium: the gradient of the effective potential has max-norm {gradient_norm:e}, \
+         above the tolerance {tolerance:e} (find the equilibrium first, e.g. with `minimize` or `stationary_point`)"
+    )]
+    NotEquilibrium {
+        /// ‖∇U(q)‖∞ at the point supplied.
+        gradient_norm: f64,
+        /// The tolerance it was compared with.
+        tolerance: f64,
+    },
+    /// The minimiser stopped before the gradient became small enough.
+    #[error("minimisation did not converge after {iterations} iterations: ‖∇V‖∞ = {gradient_norm:e} (tolerance {tolerance:e})")]
+    NotConverged {
+        /// Iterations performed.
+        iterations: u64,
+        /// Final ‖∇V‖∞.
+        gradient_norm: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    /// The optimiser (argmin) reported an error.
+    #[error("optimiser failed: {0}")]
+    Optimizer(String),
+    /// The Lagrangian has gyroscopic (velocity-coupling) terms at the equilibrium: the symmetric normal
+    /// mode problem does not apply; use [`linear_stability`](crate::linear_stability).
+    #[error(
+        "gyroscopic terms ∂²L/∂q̇∂q − (∂²L/∂q̇∂q)ᵀ of max-norm {norm:e} at the equilibrium: normal modes of \
+         K x = ω² M x do not describe this system, use linear_stability"
+    )]
+    Gyroscopic {
+        /// Max-norm of the antisymmetric part.
+        norm: f64,
+    },
+    /// An eigenvalue iteration did not converge.
+    #[error("eigenvalue computation did not converge for {what}")]
+    Eigen {
+        /// Which matrix.
+        what: &'static str,
+    },
+}
