@@ -87,6 +87,32 @@ pub enum Error {
     /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
+    /// A state violates the constraints it must satisfy (positions φ(t, q) = 0 or velocities
+    /// A(t, q) q̇ + a(t, q) = 0); project it onto the constraint manifold first.
+    #[error("state violates the {what} constraints at t = {t}: residual {residual:e} > tolerance {tolerance:e} (project the state onto the constraints first)")]
+    ConstraintViolated {
+        /// "position" or "velocity".
+        what: &'static str,
+        /// Time of the state.
+        t: f64,
+        /// Residual norm ‖φ‖∞ (or of the velocity constraints).
+        residual: f64,
+        /// Largest residual accepted.
+        tolerance: f64,
+    },
+    /// The constraint Jacobian has lower rank than the number of constraints: some constraints are
+    /// redundant (or the constraint set is singular at this point) and their multipliers are not determined.
+    #[error("redundant or rank-deficient constraints at t = {t}: Jacobian rank {rank} < {count} constraints (smallest singular value {sigma_ratio:e} relative to largest)")]
+    RankDeficientConstraints {
+        /// Time.
+        t: f64,
+        /// Numerical rank of the constraint Jacobian.
+        rank: usize,
+        /// Number of constraints.
+        count: usize,
+        /// Smallest singular value relative to the largest.
+        sigma_ratio: f64,
+    },
     /// A coordinate chart became singular (e.g. Euler angles near θ = 0 or π).
     #[error("coordinate singularity: {what} at t = {t}")]
     CoordinateSingularity {
