@@ -1,0 +1,294 @@
+//! The constrained equations of motion: accelerations and multipliers from one index-1 system.
+//!
+//! For a Lagrangian L(t, q, q̇) with mass matrix M = ∂²L/∂q̇², forces
+//! f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t + Q, and constraints A(t, q) q̇ + a(t, q) = 0 (for holonomic
+//! constraints A = Φ_q), Lagrange's equations with multipliers are
+//!
+//! ```text
+//! M q̈ = f + Aᵀλ,    A q̈ + c = 0     ⇔     ⎡ M  Aᵀ ⎤ ⎡ q̈ ⎤   ⎡  f ⎤
+//!                                          ⎣ A  0  ⎦ ⎣ −λ ⎦ = ⎣ −c ⎦
+//! ```
+//!
+//! with c the acceleration bias of [`ConstraintSet`] (for holonomic constraints
+//! c = (Φ_q q̇)_q q̇ + 2Φ_qt q̇ + φ_tt). The system is solved as a whole by LU, so M may be singular as
+//! long as it is definite on the velocities the constraints allow (a coordinate without kinetic energy
+//! that the constraints tie to the others, as in the cycloid example). The generalized constraint force
+//! is Aᵀλ.
+//!
+//! [`Constrained`] implements core's [`Dynamics`], so every continuous integrator of core steps it;
+//! wrap the stepper in [`Projected`](crate::Projected) to stay on the constraint manifold.
+
+use crate::forces::ConstraintForces;
+use crate::holonomic::{Holonomic, HolonomicSet};
+use crate::nonholonomic::{Nonholonomic, NonholonomicSet};
+use crate::set::ConstraintSet;
+use nalgebra::{DMatrix, DVector};
+use noether_core::ad::{self, Block, Field};
+use noether_core::error::{check_finite, check_len};
+use noether_core::{Dynamics, Error, EulerLagrange, Lagrangian, Result, Scalar, State};
+use std::sync::OnceLock;
+
+/// Relative pivot of the LU factor of the index-1 matrix below which it is reported as singular.
+pub const SINGULAR_PIVOT: f64 = 1e-13;
+/// Singular values of A below this fraction of the largest count as zero in the rank diagnosis.
+pub const RANK_TOLERANCE: f64 = 1e-10;
+
+/// A Lagrangian seen as core's AD field f(t, x = q, y = q̇).
+pub(crate) struct LagrangianField<'a, L: ?Sized>(pub &'a L);
+
+impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
+    #[inline]
+    fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D]) -> D {
+        self.0.lagrangian(t, x, y)
+    }
+}
+
+/// A Lagrangian system with constraints: the index-1 equations of motion, multipliers, constraint
+/// forces, residuals.
+pub struct Constrained<L, K> {
+    el: EulerLagrange<L>,
+    set: K,
+    constant_mass: OnceLock<DMatrix<f64>>,
+}
+
+impl<L: Lagrangian, C: Holonomic> Constrained<L, HolonomicSet<C>> {
+    /// A Lagrangian with holonomic constraints φ(t, q) = 0.
+    pub fn holonomic(lagrangian: L, constraints: C) -> Result<Self> {
+        Self::new(lagrangian, HolonomicSet(constraints))
+    }
+}
+
+impl<L: Lagrangian, C: Nonholonomic> Constrained<L, NonholonomicSet<C>> {
+    /// A Lagrangian with velocity constraints A(t, q) q̇ + a(t, q) = 0 (Lagrange-d'Alembert).
+    pub fn nonholonomic(lagrangian: L, constraints: C) -> Result<Self> {
+        Self::new(lagrangian, NonholonomicSet(constraints))
+    }
+}
+
+/// The numerical rank of a matrix A and its smallest singular value relative to the largest.
+pub fn rank(a: &DMatrix<f64>) -> (usize, f64) {
+    if a.nrows() == 0 {
+        return (0, 1.0);
+    }
+    // Singular values of A (m ≤ n): those of A Aᵀ would square the condition number.
+    let s = a.clone().svd(false, false).singular_values;
+    let hi = s.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let mut rank = s.iter().filter(|v| **v > RANK_TOLERANCE * hi).count();
+    // More constraints than coordinates: at most n independent ones.
+    rank = rank.min(a.ncols());
+    let lo = if a.nrows() > a.ncols() {
+        0.0
+    } else {
+        s.iter().fold(f64::INFINITY, |m, v| m.min(*v))
+    };
+    (rank, if hi > 0.0 { lo / hi } else { 0.0 })
+}
+
+/// The error for a singular constraint matrix at time `t`: rank deficiency when A has lower rank than
+/// its number of rows, otherwise `None`.
+pub(crate) fn rank_error(a: &DMatrix<f64>, t: f64) -> Option<Error> {
+    let (r, ratio) = rank(a);
+    (r < a.nrows()).then_some(Error::RankDeficientConstraints {
+        t,
+        rank: r,
+        count: a.nrows(),
+        sigma_ratio: ratio,
+    })
+}
+
+impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
+    /// A Lagrangian with any [`ConstraintSet`]; the two must have the same number of coordinates.
+    pub fn new(lagrangian: L, constraints: K) -> Result<Self> {
+        if constraints.dof() != lagrangian.dof() {
+            return Err(Error::Dimension {
+                what: "coordinates of the constraint set",
+                expected: lagrangian.dof(),
+                got: constraints.dof(),
+            });
+        }
+        Ok(Constrained {
+            el: EulerLagrange::new(lagrangian),
+            set: constraints,
+            constant_mass: OnceLock::new(),
+        })
+    }
+
+    /// Number of coordinates n.
+    pub fn dof(&self) -> usize {
+        self.el.dof()
+    }
+
+    /// Number of constraints m.
+    pub fn count(&self) -> usize {
+        self.set.count()
+    }
+
+    /// The unconstrained Euler-Lagrange equations (energy, momenta, mass matrix).
+    pub fn euler_lagrange(&self) -> &EulerLagrange<L> {
+        &self.el
+    }
+
+    /// The constraint set.
+    pub fn constraints(&self) -> &K {
+        &self.set
+    }
+
+    fn check(&self, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_len("q̇", v, n)?;
+        check_finite("t", &[t])?;
+        check_finite("q", q)?;
+        check_finite("q̇", v)
+    }
+
+    fn mass(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DMatrix<f64>> {
+        if self.el.lagrangian().constant_mass_matrix() {
+            if let Some(m) = self.constant_mass.get() {
+                return Ok(m.clone());
+            }
+            let m = self.el.mass_matrix(t, q, v)?;
+            return Ok(self.constant_mass.get_or_init(|| m).clone());
+        }
+        self.el.mass_matrix(t, q, v)
+    }
+
+    /// Forces f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t + Q into `f`.
+    fn forces(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+        let lf = LagrangianField(self.el.lagrangian());
+        let n = self.dof();
+        ad::gradient(&lf, t, q, v, Block::X, f);
+        let mut mixed = vec![0.0; n];
+        ad::directional_gradient(&lf, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+        f.iter_mut().zip(&mixed).for_each(|(fi, mi)| *fi -= mi);
+        if self.el.lagrangian().has_generalized_force() {
+            let mut qf = vec![0.0; n];
+            self.el.lagrangian().generalized_force(t, q, v, &mut qf);
+            f.iter_mut().zip(&qf).for_each(|(fi, qi)| *fi += qi);
+        }
+    }
+
+    /// Solves the index-1 system for the accelerations q̈ and the multipliers λ (written into `qdd`
+    /// and `lambda`); returns the constraint matrix A used.
+    pub fn solve(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        qdd: &mut [f64],
+        lambda: &mut [f64],
+    ) -> Result<DMatrix<f64>> {
+        self.check(t, q, v)?;
+        let (n, m) = (self.dof(), self.count());
+        check_len("q̈ (output)", qdd, n)?;
+        check_len("λ (output)", lambda, m)?;
+        let mut a = DMatrix::zeros(m, n);
+        self.set.matrix(t, q, v, &mut a);
+        let mut kkt = DMatrix::zeros(n + m, n + m);
+        kkt.view_mut((0, 0), (n, n)).copy_from(&self.mass(t, q, v)?);
+        kkt.view_mut((n, 0), (m, n)).copy_from(&a);
+        kkt.view_mut((0, n), (n, m)).copy_from(&a.transpose());
+        let mut rhs = DVector::zeros(n + m);
+        self.forces(t, q, v, &mut rhs.as_mut_slice()[..n]);
+        self.set.bias(t, q, v, &mut rhs.as_mut_slice()[n..]);
+        rhs.rows_mut(n, m).neg_mut();
+        if kkt.iter().chain(rhs.iter()).any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        let lu = kkt.lu();
+        let d = lu.u().diagonal();
+        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| {
+            (lo.min(x.abs()), hi.max(x.abs()))
+        });
+        if hi == 0.0 || lo / hi < SINGULAR_PIVOT || !lu.solve_mut(&mut rhs) {
+            // Say why: redundant constraints, or a mass matrix degenerate on the allowed velocities.
+            return Err(rank_error(&a, t).unwrap_or(Error::SingularMassMatrix {
+                t,
+                pivot: if hi == 0.0 { 0.0 } else { lo / hi },
+            }));
+        }
+        qdd.copy_from_slice(&rhs.as_slice()[..n]);
+        for (l, x) in lambda.iter_mut().zip(&rhs.as_slice()[n..]) {
+            *l = -x;
+        }
+        Ok(a)
+    }
+
+    /// The multipliers λ at (t, q, q̇).
+    pub fn multipliers(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DVector<f64>> {
+        let mut qdd = vec![0.0; self.dof()];
+        let mut lambda = DVector::zeros(self.count());
+        self.solve(t, q, v, &mut qdd, lambda.as_mut_slice())?;
+        Ok(lambda)
+    }
+
+    /// The constraint forces at (t, q, q̇): multipliers, generalized force Aᵀλ, per-constraint and
+    /// (for Cartesian models) per-particle vectors.
+    pub fn constraint_forces(&self, t: f64, q: &[f64], v: &[f64]) -> Result<ConstraintForces> {
+        let mut qdd = vec![0.0; self.dof()];
+        let mut lambda = DVector::zeros(self.count());
+        let a = self.solve(t, q, v, &mut qdd, lambda.as_mut_slice())?;
+        Ok(ConstraintForces::new(a, lambda))
+    }
+
+    /// Residuals of a state: (‖φ(t, q)‖∞ for holonomic sets (`None` otherwise), ‖A q̇ + a‖∞).
+    pub fn residuals(&self, t: f64, q: &[f64], v: &[f64]) -> (Option<f64>, f64) {
+        let m = self.count();
+        let mut r = vec![0.0; m];
+        let pos = self.set.positions(t, q, &mut r).then(|| max_abs(&r));
+        self.set.velocity_residual(t, q, v, &mut r);
+        (pos, max_abs(&r))
+    }
+
+    /// Checks that `state` satisfies the constraints to within `tol` (max-norm, positions and
+    /// velocities) and that they are independent there; the error names the residual.
+    pub fn check_state(&self, state: &State, tol: f64) -> Result<()> {
+        state.validate(self.dof())?;
+        let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
+        let (pos, vel) = self.residuals(t, q, v);
+        if let Some(p) = pos.filter(|p| !(*p <= tol)) {
+            return Err(Error::ConstraintViolated {
+                what: "position",
+                t,
+                residual: p,
+                tolerance: tol,
+            });
+        }
+        if !(vel <= tol) {
+            return Err(Error::ConstraintViolated {
+                what: "velocity",
+                t,
+                residual: vel,
+                tolerance: tol,
+            });
+        }
+        let mut a = DMatrix::zeros(self.count(), self.dof());
+        self.set.matrix(t, q, v, &mut a);
+        match rank_error(&a, t) {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
+/// ‖x‖∞ (NaN-propagating through `max` is not wanted here: NaN gives NaN).
+pub(crate) fn max_abs(x: &[f64]) -> f64 {
+    noether_core::newton::max_norm(x)
+}
+
+impl<L: Lagrangian, K: ConstraintSet> Dynamics for Constrained<L, K> {
+    fn dof(&self) -> usize {
+        Constrained::dof(self)
+    }
+    fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+        let mut lambda = vec![0.0; self.count()];
+        self.solve(t, q, v, dv, &mut lambda)?;
+        dq.copy_from_slice(v);
+        Ok(())
+    }
+    /// The energy function h = q̇·∂L/∂q̇ − L (constraint forces of scleronomic constraints do no work,
+    /// so h is conserved when neither L nor the constraints depend on t).
+    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        self.el.energy(t, q, v)
+    }
+}

@@ -1,0 +1,258 @@
+//! Derivatives of vector-valued constraint functions by dual numbers.
+//!
+//! Core's [`ad`](noether_core::ad) kernels differentiate one scalar f(t, x, y). A set of m constraints
+//! g(t, x, y) ∈ ℝᵐ is one vector-valued function that the user writes once; evaluating it with dual
+//! numbers gives all m rows of a derivative at once, so these kernels lift the same seeding scheme to
+//! vector outputs:
+//!
+//! - [`jacobian`]: ∂g/∂x or ∂g/∂y (m × n), one `DualSVec64<W>` evaluation per chunk of W columns
+//!   (W = n for n ≤ 12, chunks of 8 beyond, as in core);
+//! - [`along`]: the total derivative d/ds g(t + s δt, x + s δx, y + s δy) at s = 0, one `Dual64`
+//!   evaluation (velocity constraints Φ_q q̇ + φ_t, the bias g_t + g_q q̇ of a velocity constraint);
+//! - [`along2`]: the first and second derivatives along a straight line, one `Dual2_64` evaluation.
+//!   With δ = (1, q̇) the second derivative of φ(t, q) is q̇ᵀφ_qq q̇ + 2 φ_qt q̇ + φ_tt = (Φ_q q̇)_q q̇ + …,
+//!   the acceleration term of a holonomic constraint, without forming any Hessian.
+
+use nalgebra::{Const, DMatrix, U1};
+use noether_core::Scalar;
+use num_dual::{Dual2_64, Dual64, DualNum, DualVec};
+
+/// A vector-valued function g(t, x, y) ∈ ℝᵐ, generic over the scalar type.
+pub trait VectorField {
+    /// Number of outputs m.
+    fn outputs(&self) -> usize;
+    /// Writes g(t, x, y) into `out` (length m).
+    fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D], out: &mut [D]);
+}
+
+/// Which block of variables a Jacobian is taken with respect to.
+pub use noether_core::ad::Block;
+
+const CHUNK: usize = 8;
+const STACK: usize = 16;
+
+/// A short buffer of scalars: on the stack up to 16 entries, on the heap beyond.
+enum Buf<D> {
+    Stack([D; STACK], usize),
+    Heap(Vec<D>),
+}
+
+impl<D: Scalar> Buf<D> {
+    #[inline]
+    fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
+        if n <= STACK {
+            Buf::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
+        } else {
+            Buf::Heap((0..n).map(f).collect())
+        }
+    }
+}
+
+impl<D> std::ops::Deref for Buf<D> {
+    type Target = [D];
+    #[inline]
+    fn deref(&self) -> &[D] {
+        match self {
+            Buf::Stack(a, n) => &a[..*n],
+            Buf::Heap(v) => v,
+        }
+    }
+}
+
+impl<D> std::ops::DerefMut for Buf<D> {
+    #[inline]
+    fn deref_mut(&mut self) -> &mut [D] {
+        match self {
+            Buf::Stack(a, n) => &mut a[..*n],
+            Buf::Heap(v) => v,
+        }
+    }
+}
+
+/// g at real arguments.
+#[inline]
+pub fn values<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], out: &mut [f64]) {
+    f.eval(t, x, y, out);
+}
+
+macro_rules! with_width {
+    ($n:expr, $f:ident :: <$($g:ty),*> ($($a:expr),*)) => {
+        match $n {
+            0 | 1 => $f::<$($g,)* 1>($($a),*),
+            2 => $f::<$($g,)* 2>($($a),*),
+            3 => $f::<$($g,)* 3>($($a),*),
+            4 => $f::<$($g,)* 4>($($a),*),
+            5 => $f::<$($g,)* 5>($($a),*),
+            6 => $f::<$($g,)* 6>($($a),*),
+            7 => $f::<$($g,)* 7>($($a),*),
+            8 => $f::<$($g,)* 8>($($a),*),
+            9 => $f::<$($g,)* 9>($($a),*),
+            10 => $f::<$($g,)* 10>($($a),*),
+            11 => $f::<$($g,)* 11>($($a),*),
+            12 => $f::<$($g,)* 12>($($a),*),
+            _ => $f::<$($g,)* CHUNK>($($a),*),
+        }
+    };
+}
+
+/// Jacobian ∂g/∂(block) (rows: outputs, columns: the block's variables) into `out`, which must be
+/// `outputs() × len(block)`.
+pub fn jacobian<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut DMatrix<f64>) {
+    let n = match block {
+        Block::X => x.len(),
+        Block::Y => y.len(),
+    };
+    debug_assert_eq!(out.shape(), (f.outputs(), n));
+    if n == 0 || f.outputs() == 0 {
+        return;
+    }
+    with_width!(n, jacobian_w::<F>(f, t, x, y, block, out))
+}
+
+fn jacobian_w<F: VectorField, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    block: Block,
+    out: &mut DMatrix<f64>,
+) {
+    type D<const W: usize> = DualVec<f64, f64, Const<W>>;
+    let (m, n) = out.shape();
+    let mut g = Buf::<D<W>>::new(m, |_| D::<W>::from_re(0.0));
+    for c0 in (0..n).step_by(W) {
+        let seed = |b: Block, vals: &[f64], i: usize| {
+            let d = D::<W>::from_re(vals[i]);
+            if b == block && i >= c0 && i < c0 + W {
+                d.derivative(i - c0)
+            } else {
+                d
+            }
+        };
+        let xs = Buf::<D<W>>::new(x.len(), |i| seed(Block::X, x, i));
+        let ys = Buf::<D<W>>::new(y.len(), |i| seed(Block::Y, y, i));
+        f.eval(D::<W>::from_re(t), &xs, &ys, &mut g);
+        let w = W.min(n - c0);
+        for (k, gk) in g.iter().enumerate() {
+            let e = gk.eps.clone().unwrap_generic(Const::<W>, U1);
+            for j in 0..w {
+                out[(k, c0 + j)] = e[j];
+            }
+        }
+    }
+}
+
+/// The total derivative d/ds g(t + s δt, x + s δx, y + s δy) at s = 0 into `out`; returns nothing
+/// else. Empty `δx` or `δy` mean zero.
+pub fn along<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], dir: (f64, &[f64], &[f64]), out: &mut [f64]) {
+    let (dt, dx, dy) = dir;
+    let lift = |v: f64, d: Option<&f64>| Dual64::new(v, d.copied().unwrap_or(0.0));
+    let xs = Buf::<Dual64>::new(x.len(), |i| lift(x[i], dx.get(i)));
+    let ys = Buf::<Dual64>::new(y.len(), |i| lift(y[i], dy.get(i)));
+    let mut g = Buf::<Dual64>::new(out.len(), |_| Dual64::from_re(0.0));
+    f.eval(Dual64::new(t, dt), &xs, &ys, &mut g);
+    for (o, gk) in out.iter_mut().zip(g.iter()) {
+        *o = gk.eps;
+    }
+}
+
+/// First and second derivatives d/ds g, d²/ds² g of g(t + s δt, x + s δx, y + s δy) at s = 0.
+pub fn along2<F: VectorField>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    first: &mut [f64],
+    second: &mut [f64],
+) {
+    let (dt, dx, dy) = dir;
+    let lift = |v: f64, d: Option<&f64>| Dual2_64::new(v, d.copied().unwrap_or(0.0), 0.0);
+    let xs = Buf::<Dual2_64>::new(x.len(), |i| lift(x[i], dx.get(i)));
+    let ys = Buf::<Dual2_64>::new(y.len(), |i| lift(y[i], dy.get(i)));
+    let mut g = Buf::<Dual2_64>::new(first.len(), |_| Dual2_64::from_re(0.0));
+    f.eval(Dual2_64::new(t, dt, 0.0), &xs, &ys, &mut g);
+    for ((a, b), gk) in first.iter_mut().zip(second.iter_mut()).zip(g.iter()) {
+        *a = gk.v1;
+        *b = gk.v2;
+    }
+}
+
+/// The real part of any scalar (for constraint functions that branch on values).
+#[inline]
+pub fn re<D: DualNum<f64>>(x: &D) -> f64 {
+    x.re()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// g(t, x) = (x₀² x₁ + sin t, x₀ x₁ t): all derivatives known by hand.
+    struct G;
+    impl VectorField for G {
+        fn outputs(&self) -> usize {
+            2
+        }
+        fn eval<D: Scalar>(&self, t: D, x: &[D], _y: &[D], out: &mut [D]) {
+            out[0] = x[0] * x[0] * x[1] + t.sin();
+            out[1] = x[0] * x[1] * t;
+        }
+    }
+
+    #[test]
+    fn ad_vs_hand_jacobian_and_line_derivatives() {
+        let (t, x) = (0.7, [1.3, -0.4]);
+        let mut j = DMatrix::zeros(2, 2);
+        jacobian(&G, t, &x, &[], Block::X, &mut j);
+        let hand = DMatrix::from_row_slice(2, 2, &[2.0 * x[0] * x[1], x[0] * x[0], x[1] * t, x[0] * t]);
+        assert!((j - hand).amax() < 1e-15);
+        // Along (1, v): d/ds and d²/ds² of g(t+s, x+s v).
+        let v = [0.3, 2.0];
+        let (mut d1, mut d2) = ([0.0; 2], [0.0; 2]);
+        along2(&G, t, &x, &[], (1.0, &v, &[]), &mut d1, &mut d2);
+        let h1 = [
+            2.0 * x[0] * x[1] * v[0] + x[0] * x[0] * v[1] + t.cos(),
+            x[1] * t * v[0] + x[0] * t * v[1] + x[0] * x[1],
+        ];
+        // second: x0² x1 → 2 v0² x1 + 4 x0 v0 v1; sin t → −sin t; x0 x1 t → 2 v0 v1 t + 2 (x0 v1 + v0 x1)
+        let h2 = [
+            2.0 * v[0] * v[0] * x[1] + 4.0 * x[0] * v[0] * v[1] - t.sin(),
+            2.0 * v[0] * v[1] * t + 2.0 * (x[0] * v[1] + v[0] * x[1]),
+        ];
+        let mut d1b = [0.0; 2];
+        along(&G, t, &x, &[], (1.0, &v, &[]), &mut d1b);
+        for k in 0..2 {
+            assert!((d1[k] - h1[k]).abs() < 1e-14);
+            assert!((d1b[k] - h1[k]).abs() < 1e-14);
+            assert!((d2[k] - h2[k]).abs() < 1e-14);
+        }
+    }
+
+    /// A chain of 20 variables differentiated in chunks equals the one-chunk result.
+    struct Chain;
+    impl VectorField for Chain {
+        fn outputs(&self) -> usize {
+            19
+        }
+        fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D], out: &mut [D]) {
+            for k in 0..19 {
+                out[k] = (x[k + 1] - x[k]).powi(2) * x[k];
+            }
+        }
+    }
+
+    #[test]
+    fn ad_vs_hand_chunked_jacobian() {
+        let x: Vec<f64> = (0..20).map(|i| 0.1 * i as f64 + (i as f64).sin()).collect();
+        let mut j = DMatrix::zeros(19, 20);
+        jacobian(&Chain, 0.0, &x, &[], Block::X, &mut j);
+        let mut hand = DMatrix::zeros(19, 20);
+        for k in 0..19 {
+            let d = x[k + 1] - x[k];
+            hand[(k, k)] = -2.0 * d * x[k] + d * d;
+            hand[(k, k + 1)] = 2.0 * d * x[k];
+        }
+        assert!((j - hand).amax() < 1e-14);
+    }
+}
