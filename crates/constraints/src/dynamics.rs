@@ -246,7 +246,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
         state.validate(self.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
         let (pos, vel) = self.residuals(t, q, v);
-        if let Some(p) = pos.filter(|p| !(*p <= tol)) {
+        if let Some(p) = pos.filter(|p| !within(*p, tol)) {
             return Err(Error::ConstraintViolated {
                 what: "position",
                 t,
@@ -254,7 +254,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
                 tolerance: tol,
             });
         }
-        if !(vel <= tol) {
+        if !within(vel, tol) {
             return Err(Error::ConstraintViolated {
                 what: "velocity",
                 t,
@@ -271,7 +271,12 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     }
 }
 
-/// ‖x‖∞ (NaN-propagating through `max` is not wanted here: NaN gives NaN).
+/// `x ≤ tol`, false for NaN.
+pub(crate) fn within(x: f64, tol: f64) -> bool {
+    x <= tol
+}
+
+/// ‖x‖∞ (NaN gives NaN).
 pub(crate) fn max_abs(x: &[f64]) -> f64 {
     noether_core::newton::max_norm(x)
 }

@@ -134,7 +134,7 @@ fn jacobian_w<F: VectorField, const W: usize>(
         f.eval(D::<W>::from_re(t), &xs, &ys, &mut g);
         let w = W.min(n - c0);
         for (k, gk) in g.iter().enumerate() {
-            let e = gk.eps.clone().unwrap_generic(Const::<W>, U1);
+            let e = gk.eps.unwrap_generic(Const::<W>, U1);
             for j in 0..w {
                 out[(k, c0 + j)] = e[j];
             }
@@ -144,7 +144,14 @@ fn jacobian_w<F: VectorField, const W: usize>(
 
 /// The total derivative d/ds g(t + s δt, x + s δx, y + s δy) at s = 0 into `out`; returns nothing
 /// else. Empty `δx` or `δy` mean zero.
-pub fn along<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], dir: (f64, &[f64], &[f64]), out: &mut [f64]) {
+pub fn along<F: VectorField>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    out: &mut [f64],
+) {
     let (dt, dx, dy) = dir;
     let lift = |v: f64, d: Option<&f64>| Dual64::new(v, d.copied().unwrap_or(0.0));
     let xs = Buf::<Dual64>::new(x.len(), |i| lift(x[i], dx.get(i)));

@@ -61,7 +61,7 @@ pub use set::ConstraintSet;
 /// Models, constraints, and the integrators to step them, in one import.
 pub mod prelude {
     pub use crate::{
-        project, ConstraintForces, ConstraintSet, Constrained, Holonomic, HolonomicSet, Nonholonomic,
+        project, Constrained, ConstraintForces, ConstraintSet, Holonomic, HolonomicSet, Nonholonomic,
         NonholonomicSet, Projected, Projection, ProjectionReport,
     };
     pub use noether_core::prelude::*;

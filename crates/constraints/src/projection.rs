@@ -16,7 +16,7 @@
 //! The Euclidean metric needs no mass matrix, so singular mass matrices (coordinates without kinetic
 //! energy) project as well. Each projection reports the correction and the residual it leaves.
 
-use crate::dynamics::{max_abs, rank_error};
+use crate::dynamics::{max_abs, rank_error, within};
 use crate::set::ConstraintSet;
 use nalgebra::{DMatrix, DVector};
 use noether_core::newton::{DenseProblem, Newton};
@@ -147,9 +147,9 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
         })
     })?;
     let l = chol.l_dirty().diagonal();
-    let (lo, hi) = l
-        .iter()
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| (lo.min(x * x), hi.max(x * x)));
+    let (lo, hi) = l.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| {
+        (lo.min(x * x), hi.max(x * x))
+    });
     if m > 0 && lo < 1e-20 * hi {
         if let Some(e) = rank_error(&a, t) {
             return Err(e);
@@ -232,7 +232,7 @@ impl<S: Stepper, K: ConstraintSet> Stepper for Projected<S, K> {
                 true
             };
             let res = max_abs(&r);
-            if has && !(res <= self.options.violation) {
+            if has && !within(res, self.options.violation) {
                 return Err(Error::ConstraintViolated {
                     what,
                     t,

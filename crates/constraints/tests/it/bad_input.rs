@@ -1,0 +1,118 @@
+//! Bad input: clear errors, never a panic or a silent wrong answer.
+
+use crate::models::*;
+use noether_constraints::prelude::*;
+
+fn pendulum(copies: usize) -> Constrained<Masses, HolonomicSet<Rod>> {
+    Constrained::holonomic(
+        Masses {
+            n: 1,
+            d: 2,
+            m: 1.0,
+            g: 9.81,
+        },
+        Rod { d: 2, l: 1.0, copies },
+    )
+    .unwrap()
+}
+
+#[test]
+fn bad_input_initial_state_violating_constraints_names_the_residual() {
+    let sys = pendulum(1);
+    let off = State::new(0.0, [0.0, -1.1], [0.0, 0.0]); // |r| = 1.1: φ = (1.21 − 1)/2 = 0.105
+    let err = sys.check_state(&off, 1e-10).unwrap_err();
+    match err {
+        Error::ConstraintViolated { what, residual, .. } => {
+            assert_eq!(what, "position");
+            assert!((residual - 0.105).abs() < 1e-12);
+        }
+        e => panic!("unexpected {e}"),
+    }
+    let mut run = Trajectory::new(
+        Projected::new(Rk4::new(&sys), sys.constraints()),
+        off.clone(),
+        1e-3,
+    )
+    .unwrap();
+    let e = run.next().unwrap().unwrap_err();
+    assert!(matches!(e, Error::ConstraintViolated { .. }));
+    assert!(e.to_string().contains("1.05"), "{e}");
+    // A velocity with a radial component is a velocity violation.
+    let radial = State::new(0.0, [0.0, -1.0], [0.0, 0.3]);
+    assert!(matches!(
+        sys.check_state(&radial, 1e-10),
+        Err(Error::ConstraintViolated { what: "velocity", .. })
+    ));
+}
+
+#[test]
+fn bad_input_redundant_constraints_reported_with_rank() {
+    let sys = pendulum(2); // the same rod twice
+    let s = pendulum_state(1.0, 0.3, 0.0);
+    let expect = |e: Error| match e {
+        Error::RankDeficientConstraints { rank, count, .. } => assert_eq!((rank, count), (1, 2)),
+        e => panic!("unexpected {e}"),
+    };
+    expect(sys.check_state(&s, 1e-10).unwrap_err());
+    expect(sys.multipliers(0.0, s.q.as_slice(), s.v.as_slice()).unwrap_err());
+    let mut run = Trajectory::new(Rk4::new(&sys), s.clone(), 1e-3).unwrap();
+    expect(run.next().unwrap().unwrap_err());
+    let mut s2 = s.clone();
+    expect(project(sys.constraints(), &mut s2, &Projection::default()).unwrap_err());
+    assert_eq!(s2, s, "a failed projection leaves the state unchanged");
+}
+
+#[test]
+fn bad_input_dimensions_and_non_finite() {
+    let e = Constrained::holonomic(
+        Masses {
+            n: 1,
+            d: 3,
+            m: 1.0,
+            g: 1.0,
+        },
+        Rod {
+            d: 2,
+            l: 1.0,
+            copies: 1,
+        },
+    )
+    .err()
+    .unwrap();
+    assert!(matches!(
+        e,
+        Error::Dimension {
+            expected: 3,
+            got: 2,
+            ..
+        }
+    ));
+    let sys = pendulum(1);
+    assert!(matches!(
+        sys.multipliers(0.0, &[0.0, 1.0, 2.0], &[0.0, 0.0]),
+        Err(Error::Dimension { .. })
+    ));
+    assert!(matches!(
+        sys.multipliers(0.0, &[f64::NAN, 1.0], &[0.0, 0.0]),
+        Err(Error::NonFinite { .. })
+    ));
+    let mut s = State::new(0.0, [f64::INFINITY, 1.0], [0.0, 0.0]);
+    assert!(project(sys.constraints(), &mut s, &Projection::default()).is_err());
+}
+
+/// A projection that cannot converge (a point at the centre, where the rod's normal vanishes) reports
+/// Newton's failure or the singular constraint, not a NaN state.
+#[test]
+fn bad_input_projection_from_a_singular_point() {
+    let sys = pendulum(1);
+    let mut s = State::new(0.0, [0.0, 0.0], [0.0, 0.0]);
+    let e = project(sys.constraints(), &mut s, &Projection::default()).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::RankDeficientConstraints { rank: 0, .. } | Error::NewtonDiverged { .. }
+        ),
+        "{e}"
+    );
+    assert_eq!(s.q.as_slice(), &[0.0, 0.0]);
+}

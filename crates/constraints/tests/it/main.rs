@@ -1,0 +1,5 @@
+//! Integration tests of noether-constraints, one binary with a module per topic.
+
+mod bad_input;
+mod continuous;
+mod models;
