@@ -101,7 +101,13 @@ impl<S: Stepper> Trajectory<S> {
             if remaining <= 1e-14 * t_end.abs().max(1.0) {
                 break;
             }
-            self.advance(h)?;
+            let nominal = self.h;
+            let info = self.advance(h)?;
+            // A final step shortened to land on t_end must not become the nominal step of a fixed-step
+            // method (which echoes h as h_next): later steps would crawl.
+            if h < nominal && info.h_next == info.h {
+                self.h = nominal;
+            }
         }
         Ok(self.state.clone())
     }
@@ -154,5 +160,35 @@ impl<S: Stepper> Iterator for Trajectory<S> {
             return None;
         }
         Some(self.advance(self.h).map(|_| self.state.clone()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::prelude::*;
+
+    struct Free;
+    impl Lagrangian for Free {
+        fn dof(&self) -> usize {
+            1
+        }
+        fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
+            v[0] * v[0] * 0.5
+        }
+    }
+
+    #[test]
+    fn regress_run_until_keeps_the_nominal_step() {
+        let mut traj = Trajectory::new(
+            Rk4::new(EulerLagrange::new(Free)),
+            State::new(0.0, [0.0], [1.0]),
+            0.1,
+        )
+        .unwrap();
+        // 0.25 needs a shortened last step of 0.05; the next step must again be 0.1.
+        let s = traj.run_until(0.25).unwrap();
+        assert!((s.t - 0.25).abs() < 1e-15);
+        let s = traj.next().unwrap().unwrap();
+        assert!((s.t - 0.35).abs() < 1e-14, "t = {}", s.t);
     }
 }
