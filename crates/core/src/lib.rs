@@ -28,6 +28,7 @@
 //! ```
 
 pub mod ad;
+pub mod chart;
 pub mod dynamics;
 pub mod error;
 pub mod hamilton;
@@ -39,6 +40,7 @@ pub mod scalar;
 pub mod state;
 pub mod stepper;
 
+pub use chart::ChartGuard;
 pub use dynamics::Dynamics;
 pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;

@@ -1,0 +1,145 @@
+//! Coordinate charts and their singularities: a stepper wrapper that stops a run with
+//! [`Error::CoordinateSingularity`] when the state leaves the region where the coordinates are valid.
+//!
+//! Generalized coordinates are often a chart that breaks down somewhere: Euler angles and spherical
+//! coordinates at the poles θ = 0, π, where the mass matrix ∂²L/∂q̇² loses rank (det M ∝ sin²θ) and
+//! the equations of motion divide by sin θ. Near such a point the integrator does not fail loudly: it
+//! loses accuracy like 1/sin²θ and returns garbage. [`ChartGuard`] checks every state (before and after
+//! each step) and turns the approach into an error; the last accepted state stays in the chart.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//! use noether_core::ChartGuard;
+//!
+//! // A particle sliding at unit speed toward x = 0, in a chart valid for x > 0.1.
+//! struct Slide;
+//! impl Lagrangian for Slide {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D { v[0] * v[0] * 0.5 }
+//! }
+//! let guarded = ChartGuard::new(Rk4::new(EulerLagrange::new(Slide)), |s: &State| {
+//!     (s.q[0] <= 0.1).then(|| format!("x = {} left the chart x > 0.1", s.q[0]))
+//! });
+//! let mut traj = Trajectory::new(guarded, State::new(0.0, [1.0], [-1.0]), 0.01).unwrap();
+//! let err = traj.run_until(2.0).unwrap_err();
+//! assert!(matches!(err, Error::CoordinateSingularity { .. }));
+//! assert!(traj.state().q[0] > 0.1 && (traj.state().t - 0.9).abs() < 0.011);
+//! ```
+
+use crate::{Error, Result, State, StepInfo, Stepper};
+
+/// A chart test: `None` while the state is inside the chart, `Some(description)` when it has left it.
+pub type ChartCheck = Box<dyn Fn(&State) -> Option<String> + Send + Sync>;
+
+/// A stepper that refuses to step out of (or from outside) a coordinate chart.
+pub struct ChartGuard<S> {
+    stepper: S,
+    check: ChartCheck,
+    saved_q: Vec<f64>,
+    saved_v: Vec<f64>,
+}
+
+impl<S: Stepper> ChartGuard<S> {
+    /// Guards `stepper` with the chart test `check`.
+    pub fn new(stepper: S, check: impl Fn(&State) -> Option<String> + Send + Sync + 'static) -> Self {
+        let n = stepper.dof();
+        ChartGuard {
+            stepper,
+            check: Box::new(check),
+            saved_q: vec![0.0; n],
+            saved_v: vec![0.0; n],
+        }
+    }
+
+    /// The usual chart of a polar angle (Euler angle θ, spherical θ): valid while |sin q[index]| ≥
+    /// `min_sin`. Near θ = 0 or π the Euler-angle mass matrix has det ∝ sin²θ, so relative errors grow
+    /// like 1/sin²θ: `min_sin` = 1e-2 keeps the amplification below 10⁴.
+    pub fn polar_angle(stepper: S, index: usize, name: &'static str, min_sin: f64) -> Self {
+        Self::new(stepper, move |s: &State| {
+            let th = s.q[index];
+            (th.sin().abs() < min_sin).then(|| {
+                format!(
+                    "{name} = {th:.6} is within asin({min_sin:e}) of a pole (θ = 0 or π), where the chart \
+                     is singular (det ∂²L/∂q̇² ∝ sin²θ); use a chart regular there"
+                )
+            })
+        })
+    }
+
+    /// The wrapped stepper.
+    pub fn inner(&self) -> &S {
+        &self.stepper
+    }
+}
+
+impl<S: Stepper> Stepper for ChartGuard<S> {
+    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+        if let Some(what) = (self.check)(state) {
+            return Err(Error::CoordinateSingularity { what, t: state.t });
+        }
+        self.saved_q.copy_from_slice(state.q.as_slice());
+        self.saved_v.copy_from_slice(state.v.as_slice());
+        let t0 = state.t;
+        let info = self.stepper.step(state, h)?;
+        if let Some(what) = (self.check)(state) {
+            let t = state.t;
+            state.q.as_mut_slice().copy_from_slice(&self.saved_q);
+            state.v.as_mut_slice().copy_from_slice(&self.saved_v);
+            state.t = t0;
+            return Err(Error::CoordinateSingularity { what, t });
+        }
+        Ok(info)
+    }
+    fn dof(&self) -> usize {
+        self.stepper.dof()
+    }
+    fn order(&self) -> u32 {
+        self.stepper.order()
+    }
+    fn name(&self) -> &'static str {
+        self.stepper.name()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prelude::*;
+
+    /// Spherical pendulum L = ½ (θ̇² + sin²θ φ̇²) + cos θ (m = l = g = 1), in the chart (θ, φ).
+    struct Spherical;
+    impl Lagrangian for Spherical {
+        fn dof(&self) -> usize {
+            2
+        }
+        fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+            let s = q[0].sin();
+            (v[0] * v[0] + s * s * v[1] * v[1]) * 0.5 + q[0].cos()
+        }
+    }
+
+    #[test]
+    fn bad_input_chart_singularity_is_an_error_and_state_stays_valid() {
+        // Released from θ = 0.5 toward the bottom with no azimuthal momentum: it swings through θ = 0,
+        // the pole of the chart, after t ≈ quarter period ≈ 1.6.
+        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
+        let mut traj = Trajectory::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0]), 1e-3).unwrap();
+        let err = traj.run_until(10.0).unwrap_err();
+        match &err {
+            Error::CoordinateSingularity { what, t } => {
+                assert!(what.contains("θ"), "{what}");
+                assert!(*t > 1.0 && *t < 2.0, "t = {t}");
+            }
+            other => panic!("expected a coordinate singularity, got {other}"),
+        }
+        let s = traj.state();
+        assert!(s.is_finite() && s.q[0].sin().abs() >= 1e-2);
+        // A run started at the pole is refused before any step.
+        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
+        let mut traj = Trajectory::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0]), 1e-3).unwrap();
+        assert!(matches!(
+            traj.run_steps(1),
+            Err(Error::CoordinateSingularity { t, .. }) if t == 0.0
+        ));
+    }
+}
