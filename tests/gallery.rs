@@ -35,3 +35,8 @@ fn gallery_names_are_unique() {
 fn _keep(name: &str) {
     assert_example_passes(name)
 }
+
+#[test]
+fn closed_form_heavy_top() {
+    assert_example_passes("heavy_top");
+}

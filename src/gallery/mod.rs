@@ -4,6 +4,8 @@
 //! To add an example: write a module here with `pub fn run(opts: &Options) -> Result<Report, Error>`,
 //! and list it in [`all`].
 
+pub mod heavy_top;
+
 use std::fmt;
 use std::path::PathBuf;
 
@@ -141,7 +143,11 @@ pub struct Example {
 
 /// Every example of the gallery, in the order a newcomer should read them.
 pub fn all() -> Vec<Example> {
-    vec![]
+    vec![Example {
+        name: "heavy_top",
+        about: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
+        run: heavy_top::run,
+    }]
 }
 
 /// Runs one example and prints its check lines; exits non-zero if a check fails (for `examples/*.rs`).

@@ -1,0 +1,501 @@
+//! The heavy symmetric top in Euler angles (θ, φ, ψ): the user writes only
+//!
+//! ```text
+//! L = ½ I₁ (θ̇² + φ̇² sin²θ) + ½ I₃ (ψ̇ + φ̇ cos θ)² − M g ℓ cos θ
+//! ```
+//!
+//! and noether derives the equations of motion. The checks follow the textbook analysis:
+//! - φ and ψ are cyclic, so p_φ = I₁ φ̇ sin²θ + p_ψ cos θ and p_ψ = I₃ (ψ̇ + φ̇ cos θ) are conserved, and
+//!   so is the energy (L has no explicit t);
+//! - with u = cos θ the three constants give u̇² = f(u) = (1 − u²)(2E′ − 2Mgℓu)/I₁ − ((p_φ − p_ψ u)/I₁)²,
+//!   E′ = E − p_ψ²/(2I₃), a cubic with two roots u₁ < u₂ in [−1, 1]: θ nutates between acos u₂ and acos u₁;
+//! - the precession rate is φ̇ = (p_φ − p_ψ cos θ)/(I₁ sin²θ) all along the run;
+//! - a fast top released at rest precesses on average at M g ℓ/(I₃ ω₃) (and exactly at the rate that
+//!   quadrature of the cubic gives);
+//! - the sleeping (vertical) top is stable when I₃² ω₃² > 4 I₁ M g ℓ and falls below.
+//!
+//! Euler angles are singular at θ = 0, π (det ∂²L/∂q̇² = I₁² I₃ sin²θ). Every Euler-angle run is
+//! wrapped in a [`ChartGuard`] that stops with `Error::CoordinateSingularity` within sin θ < 10⁻²;
+//! the sleeping top, which sits exactly at θ = 0, is simulated in a second chart, Cardan angles
+//! R = R_x(α) R_y(β) R_z(γ), regular at the vertical (singular only when the axis lies along the x axis):
+//!
+//! ```text
+//! L = ½ I₁ (α̇² cos²β + β̇²) + ½ I₃ (γ̇ + α̇ sin β)² − M g ℓ cos α cos β.
+//! ```
+//!
+//! Integrator: RK4 with a fixed step (the only general method for a Lagrangian with a configuration-
+//! dependent mass matrix on main when this was written; the runs are short, a few thousand nutation
+//! steps, and RK4's drift at these steps is ~1e-11 in the conserved quantities, well below the checks).
+
+use super::{Check, Options, Report};
+use noether_core::prelude::*;
+use noether_core::ChartGuard;
+use std::f64::consts::PI;
+
+const NAME: &str = "heavy_top";
+
+/// The heavy symmetric top in Euler angles q = (θ, φ, ψ).
+#[derive(Debug, Clone, Copy)]
+pub struct HeavyTop {
+    /// Moment of inertia about a transverse axis through the pivot.
+    pub i1: f64,
+    /// Moment of inertia about the symmetry axis.
+    pub i3: f64,
+    /// M g ℓ (mass × gravity × pivot-to-centre-of-mass distance).
+    pub mgl: f64,
+}
+
+impl Lagrangian for HeavyTop {
+    fn dof(&self) -> usize {
+        3
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let (th, dth, dphi, dpsi) = (q[0], v[0], v[1], v[2]);
+        let (s, c) = (th.sin(), th.cos());
+        let w3 = dpsi + dphi * c;
+        (dth * dth + dphi * dphi * s * s) * (0.5 * self.i1) + w3 * w3 * (0.5 * self.i3) - c * self.mgl
+    }
+}
+
+/// The same top in Cardan angles q = (α, β, γ), R = R_x(α) R_y(β) R_z(γ): regular at the vertical.
+#[derive(Debug, Clone, Copy)]
+pub struct CardanTop(pub HeavyTop);
+
+impl Lagrangian for CardanTop {
+    fn dof(&self) -> usize {
+        3
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let HeavyTop { i1, i3, mgl } = self.0;
+        let (a, b, da, db, dg) = (q[0], q[1], v[0], v[1], v[2]);
+        let cb = b.cos();
+        let w3 = dg + da * b.sin();
+        (da * da * cb * cb + db * db) * (0.5 * i1) + w3 * w3 * (0.5 * i3) - a.cos() * cb * mgl
+    }
+}
+
+/// The Euler-angle integrator: RK4 guarded against the poles of the chart (sin θ < 10⁻²).
+pub fn euler_angle_stepper(top: HeavyTop) -> ChartGuard<Rk4<EulerLagrange<HeavyTop>>> {
+    ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(top)), 0, "θ", 1e-2)
+}
+
+/// The conserved quantities (p_φ, p_ψ, E) at a state.
+fn constants(el: &EulerLagrange<HeavyTop>, s: &State) -> Result<(f64, f64, f64)> {
+    let mut p = [0.0; 3];
+    el.momenta(s.t, s.q.as_slice(), s.v.as_slice(), &mut p)?;
+    Ok((p[1], p[2], el.energy(s.t, s.q.as_slice(), s.v.as_slice())?))
+}
+
+/// The nutation cubic f(u) = c₃u³ + c₂u² + c₁u + c₀ (u̇² = f(u)) from the three constants.
+fn nutation_cubic(top: &HeavyTop, p_phi: f64, p_psi: f64, e: f64) -> [f64; 4] {
+    let alpha = 2.0 * (e - p_psi * p_psi / (2.0 * top.i3)) / top.i1;
+    let beta = 2.0 * top.mgl / top.i1;
+    let (a, b) = (p_phi / top.i1, p_psi / top.i1);
+    [beta, -alpha - b * b, -beta + 2.0 * a * b, alpha - a * a]
+}
+
+/// The three real roots (ascending) of c₃u³ + c₂u² + c₁u + c₀ by the trigonometric formula, each
+/// polished by two Newton steps; `None` when the cubic has one real root.
+pub fn cubic_roots(c: [f64; 4]) -> Option<[f64; 3]> {
+    let [a, b, cc, d] = c;
+    let (b, cc, d) = (b / a, cc / a, d / a);
+    // u = x − b/3: x³ + p x + q = 0.
+    let p = cc - b * b / 3.0;
+    let q = 2.0 * b * b * b / 27.0 - b * cc / 3.0 + d;
+    if p >= 0.0 {
+        return None;
+    }
+    let m = 2.0 * (-p / 3.0).sqrt();
+    let arg = 3.0 * q / (p * m);
+    if arg.abs() > 1.0 {
+        return None;
+    }
+    let th = arg.acos() / 3.0;
+    let mut r: [f64; 3] = std::array::from_fn(|k| m * (th - 2.0 * PI * k as f64 / 3.0).cos() - b / 3.0);
+    for u in r.iter_mut() {
+        for _ in 0..2 {
+            let f = ((*u + b) * *u + cc) * *u + d;
+            let df = (3.0 * *u + 2.0 * b) * *u + cc;
+            if df != 0.0 {
+                *u -= f / df;
+            }
+        }
+    }
+    r.sort_by(f64::total_cmp);
+    Some(r)
+}
+
+/// Extrema of a sampled curve, each refined by the vertex of the parabola through three samples:
+/// (time, value, is_maximum).
+fn extrema(ts: &[f64], ys: &[f64]) -> Vec<(f64, f64, bool)> {
+    let mut out = Vec::new();
+    for k in 1..ys.len().saturating_sub(1) {
+        let (y0, y1, y2) = (ys[k - 1], ys[k], ys[k + 1]);
+        let is_max = y1 > y0 && y1 >= y2;
+        let is_min = y1 < y0 && y1 <= y2;
+        if is_max || is_min {
+            let h = ts[k + 1] - ts[k];
+            let curv = y0 - 2.0 * y1 + y2;
+            let dt = if curv != 0.0 {
+                0.5 * h * (y0 - y2) / curv
+            } else {
+                0.0
+            };
+            let y = y1 - (y2 - y0).powi(2) / (8.0 * curv);
+            out.push((ts[k] + dt, if curv != 0.0 { y } else { y1 }, is_max));
+        }
+    }
+    out
+}
+
+/// Quadratic interpolation of samples `ys` at time `t` near sample `k` (uniform step).
+fn interp3(ts: &[f64], ys: &[f64], t: f64) -> f64 {
+    let h = ts[1] - ts[0];
+    let k = (((t - ts[0]) / h).round() as usize).clamp(1, ts.len() - 2);
+    let x = (t - ts[k]) / h;
+    let (y0, y1, y2) = (ys[k - 1], ys[k], ys[k + 1]);
+    y1 + 0.5 * x * (y2 - y0) + 0.5 * x * x * (y2 - 2.0 * y1 + y0)
+}
+
+/// A guarded Euler-angle run: times, θ, φ, the states' drift in the constants, and the largest
+/// deviation of φ̇ from (p_φ − p_ψ cos θ)/(I₁ sin²θ).
+struct EulerRun {
+    ts: Vec<f64>,
+    theta: Vec<f64>,
+    phi: Vec<f64>,
+    drift: [f64; 3],
+    precession_dev: f64,
+}
+
+fn run_euler(top: HeavyTop, start: State, h: f64, t_end: f64) -> Result<EulerRun> {
+    let el = EulerLagrange::new(top);
+    let (pf0, pp0, e0) = constants(&el, &start)?;
+    let mut run = EulerRun {
+        ts: vec![start.t],
+        theta: vec![start.q[0]],
+        phi: vec![start.q[1]],
+        drift: [0.0; 3],
+        precession_dev: 0.0,
+    };
+    let steps = (t_end / h).round() as usize;
+    let traj = Trajectory::new(euler_angle_stepper(top), start, h)?;
+    for s in traj.take(steps) {
+        let s = s?;
+        let (pf, pp, e) = constants(&el, &s)?;
+        for (d, x) in run.drift.iter_mut().zip([pf - pf0, pp - pp0, e - e0]) {
+            *d = d.max(x.abs());
+        }
+        let (th, dphi) = (s.q[0], s.v[1]);
+        let predicted = (pf0 - pp0 * th.cos()) / (top.i1 * th.sin().powi(2));
+        run.precession_dev = run.precession_dev.max((dphi - predicted).abs());
+        run.ts.push(s.t);
+        run.theta.push(th);
+        run.phi.push(s.q[1]);
+    }
+    Ok(run)
+}
+
+/// One nutation period and the precession angle advanced in it, by quadrature of the exact solution:
+/// with u = ū − Δ cos s (ū, Δ the centre and half-width of [u₁, u₂]), dt = ds / sqrt(c₃ (u₃ − u)), so
+/// T = 2 ∫₀^π ds / sqrt(c₃(u₃ − u)) and Δφ = 2 ∫₀^π φ̇(u) ds / sqrt(c₃(u₃ − u)) — smooth periodic
+/// integrands, for which the midpoint rule converges geometrically.
+fn nutation_quadrature(
+    top: &HeavyTop,
+    cubic: [f64; 4],
+    roots: [f64; 3],
+    p_phi: f64,
+    p_psi: f64,
+) -> (f64, f64) {
+    let [u1, u2, u3] = roots;
+    let (mid, half) = (0.5 * (u1 + u2), 0.5 * (u2 - u1));
+    let n = 400;
+    let (mut period, mut dphi) = (0.0, 0.0);
+    for k in 0..n {
+        let s = PI * (k as f64 + 0.5) / n as f64;
+        let u = mid - half * s.cos();
+        let w = 1.0 / (cubic[0] * (u3 - u)).sqrt();
+        period += w;
+        dphi += w * (p_phi - p_psi * u) / (top.i1 * (1.0 - u * u));
+    }
+    let ds = PI / n as f64;
+    (2.0 * period * ds, 2.0 * dphi * ds)
+}
+
+/// Runs the heavy-top checks.
+pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>> {
+    let top = HeavyTop {
+        i1: 1.0,
+        i3: 0.5,
+        mgl: 1.0,
+    };
+    let mut checks = Vec::new();
+    let el = EulerLagrange::new(top);
+
+    // 1. A generic nutating top: θ₀ = 0.8, θ̇₀ = 0, φ̇₀ = 0.5, ψ̇₀ = 8; 12 time units, h = 10⁻³.
+    let start = State::new(0.0, [0.8, 0.0, 0.0], [0.0, 0.5, 8.0]);
+    let (pf, pp, e) = constants(&el, &start)?;
+    let run = run_euler(top, start, 1e-3, 12.0)?;
+    // RK4 at h = 10⁻³ (≈ 800 steps per nutation) keeps the constants to ~1e-12 relative; 1e-9 allows
+    // rounding growth over 12 000 steps and fails for any error in the derived equations.
+    let names = ["p_φ drift", "p_ψ drift", "energy drift"];
+    for ((name, d), scale) in names.iter().zip(run.drift).zip([pf.abs(), pp.abs(), e.abs()]) {
+        checks.push(Check::abs(NAME, format!("{name}/|value|"), d / scale, 0.0, 1e-9));
+    }
+    // φ̇ along the run against (p_φ − p_ψ cos θ)/(I₁ sin²θ) with the initial constants: the same
+    // tolerance, relative to the largest |φ̇|.
+    let dphi0: f64 = 0.5;
+    checks.push(Check::abs(
+        NAME,
+        "max |φ̇ − (p_φ − p_ψ cos θ)/(I₁ sin²θ)| / |φ̇(0)|",
+        run.precession_dev / dphi0.abs(),
+        0.0,
+        1e-9,
+    ));
+    // Turning points of θ against the roots u₁ < u₂ of the cubic: the extremes are refined by a
+    // parabola through three samples, whose error is O(h³ θ⃛) ≈ 1e-9 rad here; 1e-7 relative.
+    let cubic = nutation_cubic(&top, pf, pp, e);
+    let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
+    let (theta_min, theta_max) = (roots[1].acos(), roots[0].acos());
+    let ext = extrema(&run.ts, &run.theta);
+    let worst = |want_max: bool, exact: f64| {
+        ext.iter()
+            .filter(|x| x.2 == want_max)
+            .map(|x| x.1)
+            .max_by(|a, b| (a - exact).abs().total_cmp(&(b - exact).abs()))
+    };
+    let n_max = ext.iter().filter(|x| x.2).count();
+    let n_min = ext.len() - n_max;
+    if n_max < 3 || n_min < 3 {
+        return Err(
+            format!("expected several nutations in the run, saw {n_min} minima and {n_max} maxima").into(),
+        );
+    }
+    let (obs_min, obs_max) = (worst(false, theta_min).unwrap(), worst(true, theta_max).unwrap());
+    checks.push(Check::rel(
+        NAME,
+        "θ_min (worst of the nutations) vs acos u₂",
+        obs_min,
+        theta_min,
+        1e-7,
+    ));
+    checks.push(Check::rel(
+        NAME,
+        "θ_max (worst of the nutations) vs acos u₁",
+        obs_max,
+        theta_max,
+        1e-7,
+    ));
+    // The third root lies above 1 (unphysical), the two physical ones in [−1, 1].
+    checks.push(Check::abs(
+        NAME,
+        "u₃ > 1 (unphysical root)",
+        (roots[2] > 1.0) as u8 as f64,
+        1.0,
+        0.0,
+    ));
+    // Nutation period: the time between successive θ maxima vs the quadrature of dt = du/sqrt(f(u)).
+    let (period, _) = nutation_quadrature(&top, cubic, roots, pf, pp);
+    let maxima: Vec<f64> = ext.iter().filter(|x| x.2).map(|x| x.0).collect();
+    let observed = (maxima[maxima.len() - 1] - maxima[0]) / (maxima.len() - 1) as f64;
+    checks.push(Check::rel(
+        NAME,
+        "nutation period vs quadrature of the cubic",
+        observed,
+        period,
+        1e-6,
+    ));
+
+    // 2. A fast top released at rest (θ₀ = 0.5, θ̇ = φ̇ = 0, ω₃ = 80): slow precession.
+    let omega3 = 80.0;
+    let start = State::new(0.0, [0.5, 0.0, 0.0], [0.0, 0.0, omega3]);
+    let (pf, pp, e) = constants(&el, &start)?;
+    let fast = run_euler(top, start, 5e-4, 3.2)?;
+    let ext: Vec<(f64, f64, bool)> = extrema(&fast.ts, &fast.theta)
+        .into_iter()
+        .filter(|x| !x.2)
+        .collect();
+    if ext.len() < 5 {
+        return Err("the fast top made fewer than 5 nutations".into());
+    }
+    let (t0, t1) = (ext[0].0, ext[ext.len() - 1].0);
+    let mean_rate = (interp3(&fast.ts, &fast.phi, t1) - interp3(&fast.ts, &fast.phi, t0)) / (t1 - t0);
+    let cubic = nutation_cubic(&top, pf, pp, e);
+    let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
+    let (period, dphi_cycle_fast) = nutation_quadrature(&top, cubic, roots, pf, pp);
+    // Exact mean precession Δφ/T per nutation from quadrature; the run averages over whole nutations
+    // located by interpolation (error ~1e-8 of the rate): 1e-6.
+    checks.push(Check::rel(
+        NAME,
+        "fast top mean φ̇ vs quadrature Δφ/T",
+        mean_rate,
+        dphi_cycle_fast / period,
+        1e-6,
+    ));
+    // The fast-top formula M g ℓ/(I₃ ω₃) drops terms of relative size I₁ M g ℓ/(I₃ ω₃)² = 6e-4: 3e-3.
+    let approx = top.mgl / (top.i3 * omega3);
+    checks.push(Check::rel(
+        NAME,
+        "fast top mean φ̇ vs M g ℓ/(I₃ ω₃)",
+        mean_rate,
+        approx,
+        3e-3,
+    ));
+
+    // 3. The sleeping top in the Cardan chart.
+    sleeping_top(top, &mut checks)?;
+
+    // 4. A run through the pole of the Euler-angle chart is stopped with a clear error.
+    pole_approach(top, &mut checks)?;
+
+    Ok(Report {
+        checks,
+        figures: vec![],
+    })
+}
+
+/// Tilt of the symmetry axis from the vertical in the Cardan chart: cos(tilt) = cos α cos β.
+fn tilt(s: &State) -> f64 {
+    (s.q[0].cos() * s.q[1].cos()).clamp(-1.0, 1.0).acos()
+}
+
+/// Stability of the sleeping top: start vertical-ish (β = β₀, at rest apart from the spin ω₃) and
+/// watch the tilt. Linearised, the tilt ζ = x + iy obeys I₁ζ̈ − i I₃ω₃ ζ̇ − Mgℓ ζ = 0, ζ ∝ e^{iΩt},
+/// I₁Ω² − I₃ω₃Ω + Mgℓ = 0. With s = I₃²ω₃²/(4I₁Mgℓ):
+/// - s > 1: two real Ω, the tilt stays bounded, max |ζ| = β₀ (Ω₊ + Ω₋)/(Ω₊ − Ω₋) = β₀ / sqrt(1 − 1/s);
+/// - s < 1: Ω complex, the tilt grows like e^{σt}, σ = sqrt(4I₁Mgℓ − I₃²ω₃²)/(2I₁).
+fn sleeping_top(
+    top: HeavyTop,
+    checks: &mut Vec<Check>,
+) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+    let omega_for = |s: f64| (4.0 * top.i1 * top.mgl * s).sqrt() / top.i3;
+    let stepper = |top| {
+        ChartGuard::new(Rk4::new(EulerLagrange::new(CardanTop(top))), |s: &State| {
+            (s.q[1].cos() < 1e-2).then(|| format!("Cardan β = {} at ±π/2 (axis along x)", s.q[1]))
+        })
+    };
+    for s in [2.0, 1.1] {
+        let beta0 = 1e-4;
+        let w3 = omega_for(s);
+        let beat = 2.0 * PI * top.i1 / (top.i3 * top.i3 * w3 * w3 - 4.0 * top.i1 * top.mgl).sqrt();
+        let traj = Trajectory::new(
+            stepper(top),
+            State::new(0.0, [0.0, beta0, 0.0], [0.0, 0.0, w3]),
+            2e-3,
+        )?;
+        let mut max_tilt: f64 = 0.0;
+        for st in traj.take((1.2 * beat / 2e-3) as usize) {
+            max_tilt = max_tilt.max(tilt(&st?));
+        }
+        // Nonlinear corrections are O(tilt²) ≈ 1e-7 and sampling the maximum with h = 2e-3 misses it by
+        // O((h ΔΩ)²) ≈ 1e-6 relative: 1e-4.
+        checks.push(Check::rel(
+            NAME,
+            format!("sleeping top s=I₃²ω₃²/(4I₁Mgℓ)={s}: max tilt/β₀ vs 1/sqrt(1−1/s) (stable)"),
+            max_tilt / beta0,
+            1.0 / (1.0 - 1.0 / s).sqrt(),
+            1e-4,
+        ));
+    }
+    for s in [0.6, 0.9] {
+        let beta0 = 1e-9;
+        let w3 = omega_for(s);
+        let sigma = (4.0 * top.i1 * top.mgl - top.i3 * top.i3 * w3 * w3).sqrt() / (2.0 * top.i1);
+        let mut traj = Trajectory::new(
+            stepper(top),
+            State::new(0.0, [0.0, beta0, 0.0], [0.0, 0.0, w3]),
+            2e-3,
+        )?;
+        // Grow from 1e-9 until the tilt reaches 1e-4 (still linear), then measure ln-growth over the
+        // following stretch up to 1e-3; the decaying mode is then e^{−2σt} < 1e-6 of the growing one.
+        let t_a = traj.run_until(8.0 / sigma)?;
+        let a = tilt(&t_a);
+        let t_b = traj.run_until(10.0 / sigma)?;
+        let b = tilt(&t_b);
+        // |ζ| = |A| e^{σt} (1 + O(e^{−2σt}) + O(ζ²)); with tilt ≤ 1e-4·e² ≈ 1e-3: 1e-4 relative.
+        checks.push(Check::rel(
+            NAME,
+            format!("sleeping top s={s}: tilt growth rate vs sqrt(4I₁Mgℓ − I₃²ω₃²)/(2I₁) (unstable)"),
+            (b / a).ln() / (t_b.t - t_a.t),
+            sigma,
+            1e-4,
+        ));
+        // And it falls, down to the lower root of the cubic: started at the vertical (u = 1, p_φ = p_ψ,
+        // E′ = Mgℓ), f(u) = (1 − u)² [2Mgℓ(1 + u)/I₁ − (I₃ω₃/I₁)²], whose other root is u = 2s − 1.
+        // The largest tilt over the next 12/σ (the rest of the fall and beyond) vs acos(2s − 1): the
+        // β₀ = 1e-9 start changes the constants by O(β₀²) and sampling the maximum at h = 2e-3 costs
+        // O(h²) ≈ 1e-6 relative: 1e-4.
+        let mut max_tilt: f64 = 0.0;
+        for st in traj.by_ref().take((12.0 / sigma / 2e-3) as usize) {
+            max_tilt = max_tilt.max(tilt(&st?));
+        }
+        checks.push(Check::rel(
+            NAME,
+            format!("sleeping top s={s}: largest tilt after the fall vs acos(2s − 1)"),
+            max_tilt,
+            (2.0 * s - 1.0).acos(),
+            1e-4,
+        ));
+    }
+    Ok(())
+}
+
+/// A top heading straight for the pole (p_φ = p_ψ, so the axis passes through the vertical): the
+/// guarded Euler-angle run stops with `CoordinateSingularity` one step after sin θ drops below 10⁻².
+/// The crossing time is the quadrature t = ∫ du/sqrt(f(u)) from u₀ = cos θ₀ to u = cos(asin 10⁻²).
+fn pole_approach(
+    top: HeavyTop,
+    checks: &mut Vec<Check>,
+) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+    let el = EulerLagrange::new(top);
+    let (th0, dth0, w3): (f64, f64, f64) = (0.3, -0.5, 6.0);
+    // p_φ = I₁ φ̇ sin²θ + p_ψ cos θ = p_ψ  ⇒  φ̇ = p_ψ (1 − cos θ)/(I₁ sin²θ) with p_ψ = I₃ ω₃.
+    let p_psi = top.i3 * w3;
+    let dphi0 = p_psi * (1.0 - th0.cos()) / (top.i1 * th0.sin().powi(2));
+    let dpsi0 = w3 - dphi0 * th0.cos();
+    let start = State::new(0.0, [th0, 0.0, 0.0], [dth0, dphi0, dpsi0]);
+    let (pf, pp, e) = constants(&el, &start)?;
+    let h = 1e-3;
+    let mut traj = Trajectory::new(euler_angle_stepper(top), start, h)?;
+    let t_err = match traj.run_until(5.0) {
+        Err(Error::CoordinateSingularity { t, .. }) => t,
+        Ok(_) => return Err("the run through the pole finished without a chart error".into()),
+        Err(other) => return Err(format!("expected a coordinate singularity, got: {other}").into()),
+    };
+    let cubic = nutation_cubic(&top, pf, pp, e);
+    let f = |u: f64| ((cubic[0] * u + cubic[1]) * u + cubic[2]) * u + cubic[3];
+    // In θ: dt = dθ / |θ̇|, θ̇² = f(cos θ)/sin²θ, which stays finite and positive down to θ = 0 when
+    // p_φ = p_ψ; Simpson with 2000 panels on this smooth integrand is accurate far below h.
+    let rate = |th: f64| (f(th.cos()) / th.sin().powi(2)).sqrt();
+    let (a, b) = ((1e-2f64).asin(), th0);
+    let n = 2000;
+    let dth = (b - a) / n as f64;
+    let mut t_exact = 0.0;
+    for k in 0..=n {
+        let w = if k == 0 || k == n {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        t_exact += w / rate(a + k as f64 * dth);
+    }
+    t_exact *= dth / 3.0;
+    // The guard trips at the first step end past the crossing: 0 ≤ t_err − t_exact ≤ h.
+    checks.push(Check::abs(
+        NAME,
+        "Euler chart error time − (crossing time + h/2)",
+        t_err - (t_exact + 0.5 * h),
+        0.0,
+        0.5 * h,
+    ));
+    let last = traj.state();
+    checks.push(Check::abs(
+        NAME,
+        "last accepted state stays in the chart: sin θ ≥ 10⁻²",
+        (last.q[0].sin() >= 1e-2 && last.is_finite()) as u8 as f64,
+        1.0,
+        0.0,
+    ));
+    Ok(())
+}
