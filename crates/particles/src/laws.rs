@@ -1,0 +1,279 @@
+//! Ready-made interactions (force laws of ../shared/SEEDS.md part 1), with r21 = r2 − r1, r = |r21|,
+//! r̂ = r21/r and the force on particle 2 written F21 (the force on particle 1 is −F21).
+//!
+//! Two-body potentials: [`Gravity`], [`Coulomb`], [`ConstantRepulsion`], [`Spring`], [`Billiard`],
+//! [`LennardJones`], [`GaussianCoupling`]. Two-body force: [`CentralForce`] (any scalar law f(r)).
+//! One-body potentials: [`UniformGravity`], [`Trap`], [`FixedEnd`] (a two-body potential with the other
+//! end at a fixed point: the seed's `one_from_two`). One-body force: [`LinearDrag`].
+
+use crate::particle::{Particle, Vec3};
+use crate::potential::{Body, OneBodyForce, OnePotential, PairPotential, TwoBodyForce};
+use noether_core::Scalar;
+
+/// Newton's gravitational constant G in N m²/kg² (the seed's value).
+pub const G_NEWTON: f64 = 6.67408e-11;
+
+#[inline(always)]
+fn r2<D: Scalar>(r: &[D; 3]) -> D {
+    r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
+}
+
+/// Universal gravity U = −G m1 m2 / r, F21 = −G m1 m2 r21 / r³.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gravity {
+    /// Gravitational constant (use [`G_NEWTON`] in SI units, 1 in reduced units).
+    pub g: f64,
+}
+
+impl PairPotential for Gravity {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        r2(&r).sqrt().recip() * (-self.g * p1.mass * p2.mass)
+    }
+}
+
+/// Coulomb U = k e1 e2 / r, F21 = k e1 e2 r21 / r³ (charges from the particles).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coulomb {
+    /// Coulomb constant k = 1/(4π ε0) (8.9875517923e9 N m²/C² in SI units).
+    pub k: f64,
+}
+
+impl PairPotential for Coulomb {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        r2(&r).sqrt().recip() * (self.k * p1.charge * p2.charge)
+    }
+}
+
+/// Constant repulsive force of magnitude F: F21 = F r̂, U = −F r.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConstantRepulsion {
+    /// Magnitude F.
+    pub f: f64,
+}
+
+impl PairPotential for ConstantRepulsion {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+        r2(&r).sqrt() * (-self.f)
+    }
+}
+
+/// Linear spring U = ½ k (r − re)², F21 = −k (r − re) r̂. With re = 0 it is U = ½ k r² (smooth at r = 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// Spring constant k.
+    pub k: f64,
+    /// Equilibrium length re.
+    pub re: f64,
+}
+
+impl PairPotential for Spring {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+        let s = r2(&r);
+        if self.re == 0.0 {
+            s * (0.5 * self.k)
+        } else {
+            let d = s.sqrt() - self.re;
+            d * d * (0.5 * self.k)
+        }
+    }
+}
+
+/// Elastic billiard contact between balls whose radii add up to re: U = ½ k (r − re)² for r < re
+/// (a compressed linear spring), U = 0 for r ≥ re. Conservative, piecewise smooth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Billiard {
+    /// Contact stiffness k.
+    pub k: f64,
+    /// Contact distance re (sum of the two radii).
+    pub re: f64,
+}
+
+impl PairPotential for Billiard {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+        let s = r2(&r);
+        if s.re() >= self.re * self.re {
+            D::zero()
+        } else {
+            let d = s.sqrt() - self.re;
+            d * d * (0.5 * self.k)
+        }
+    }
+    fn cutoff(&self) -> Option<f64> {
+        Some(self.re)
+    }
+}
+
+/// Lennard-Jones U = De [(re/r)¹² − 2 (re/r)⁶] (minimum −De at r = re). With a cutoff rc the potential
+/// is truncated and shifted, U − U(rc) for r < rc and 0 beyond (continuous energy).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LennardJones {
+    /// Dissociation energy De.
+    pub de: f64,
+    /// Equilibrium length re.
+    pub re: f64,
+    rc: Option<f64>,
+    shift: f64,
+}
+
+impl LennardJones {
+    /// Lennard-Jones without cutoff.
+    pub fn new(de: f64, re: f64) -> Self {
+        LennardJones {
+            de,
+            re,
+            rc: None,
+            shift: 0.0,
+        }
+    }
+
+    /// Truncated and shifted at `rc` (use with [`ShortRange`](crate::ShortRange)).
+    pub fn with_cutoff(de: f64, re: f64, rc: f64) -> Self {
+        let s3 = (re * re / (rc * rc)).powi(3);
+        LennardJones {
+            de,
+            re,
+            rc: Some(rc),
+            shift: de * (s3 * s3 - 2.0 * s3),
+        }
+    }
+}
+
+impl PairPotential for LennardJones {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+        let s = r2(&r);
+        if let Some(rc) = self.rc {
+            if s.re() >= rc * rc {
+                return D::zero();
+            }
+        }
+        let s3 = (s.recip() * (self.re * self.re)).powi(3);
+        (s3 * s3 - s3 * 2.0) * self.de - self.shift
+    }
+    fn cutoff(&self) -> Option<f64> {
+        self.rc
+    }
+}
+
+/// The Gaussian coupling of the chains paper, U = k2 exp(−r² / (2σ²)) (repulsive for k2 > 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaussianCoupling {
+    /// Strength k2 (negative: attractive).
+    pub k2: f64,
+    /// Width σ.
+    pub sigma: f64,
+}
+
+impl PairPotential for GaussianCoupling {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+        (r2(&r) * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2
+    }
+}
+
+/// A central force with any scalar law f(r): F21 = f(r) r̂ (f > 0 repulsive). Given as a force, not a
+/// potential, so it enters the Lagrangian as a generalized force.
+#[derive(Debug, Clone, Copy)]
+pub struct CentralForce<F>(pub F);
+
+impl<F: Fn(f64) -> f64 + Sync + Send> TwoBodyForce for CentralForce<F> {
+    #[inline]
+    fn force(&self, _t: f64, by: Body<'_>, on: Body<'_>) -> Vec3 {
+        let r = [on.r[0] - by.r[0], on.r[1] - by.r[1], on.r[2] - by.r[2]];
+        let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+        let s = (self.0)(d) / d;
+        [s * r[0], s * r[1], s * r[2]]
+    }
+}
+
+/// Uniform gravity along −z: V = m g z, F = −m g ẑ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UniformGravity {
+    /// Acceleration of gravity g (9.81 m/s² near the Earth's surface).
+    pub g: f64,
+}
+
+impl OnePotential for UniformGravity {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, _t: f64, r: [D; 3], p: &Particle) -> D {
+        r[2] * (p.mass * self.g)
+    }
+}
+
+/// An on-site potential V = ½ k2 d² + ¼ k4 d⁴ with d = |r − c| (harmonic for k4 = 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Trap {
+    /// Quadratic stiffness k2.
+    pub k2: f64,
+    /// Quartic stiffness k4.
+    pub k4: f64,
+    /// Centre c.
+    pub center: Vec3,
+}
+
+impl OnePotential for Trap {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, _t: f64, r: [D; 3], _p: &Particle) -> D {
+        let d = [
+            r[0] - self.center[0],
+            r[1] - self.center[1],
+            r[2] - self.center[2],
+        ];
+        let s = r2(&d);
+        s * (0.5 * self.k2) + s * s * (0.25 * self.k4)
+    }
+}
+
+/// A two-body potential whose particle 1 is a fixed point (the seed's `one_from_two`): a spring tied to
+/// a wall is `FixedEnd::new(Spring { k, re }, wall)`. V(r) = U(r − anchor; anchor, p).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedEnd<P> {
+    /// The two-body potential.
+    pub potential: P,
+    /// The fixed point (particle 1).
+    pub anchor: Vec3,
+    /// Parameters of the fixed particle (mass of a fixed attracting body, say).
+    pub anchor_particle: Particle,
+}
+
+impl<P> FixedEnd<P> {
+    /// `potential` with particle 1 fixed at `anchor` (unit mass, no charge).
+    pub fn new(potential: P, anchor: Vec3) -> Self {
+        FixedEnd {
+            potential,
+            anchor,
+            anchor_particle: Particle::new(1.0),
+        }
+    }
+}
+
+impl<P: PairPotential> OnePotential for FixedEnd<P> {
+    #[inline(always)]
+    fn energy<D: Scalar>(&self, _t: f64, r: [D; 3], p: &Particle) -> D {
+        let d = [
+            r[0] - self.anchor[0],
+            r[1] - self.anchor[1],
+            r[2] - self.anchor[2],
+        ];
+        self.potential.energy(d, &self.anchor_particle, p)
+    }
+}
+
+/// Linear drag F = −b v (non-conservative: a generalized force).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearDrag {
+    /// Drag coefficient b ≥ 0.
+    pub b: f64,
+}
+
+impl OneBodyForce for LinearDrag {
+    #[inline]
+    fn force(&self, _t: f64, _r: Vec3, v: Vec3, _p: &Particle) -> Vec3 {
+        [-self.b * v[0], -self.b * v[1], -self.b * v[2]]
+    }
+}

@@ -1,0 +1,523 @@
+//! Tests of noether-particles: forces against hand-written laws, the third law, the Lagrangian path
+//! against the term-by-term path, sparse Hessians, cell lists, determinism of the parallel path,
+//! convergence orders, bad input.
+
+use noether_core::ad::{self, Block, Field};
+use noether_core::{EulerLagrange, Lagrangian, Scalar};
+use noether_particles::prelude::*;
+use noether_particles::Error;
+use rand::{rngs::StdRng, Rng, SeedableRng};
+
+fn random_positions(n: usize, box_len: f64, rng: &mut StdRng) -> Vec<Vec3> {
+    (0..n)
+        .map(|_| std::array::from_fn(|_| rng.random_range(0.0..box_len)))
+        .collect()
+}
+
+fn forces_of<I: noether_particles::Interaction>(sys: &System<I>, x: &[Vec3]) -> (f64, Vec<f64>) {
+    let flat = x.concat();
+    let mut f = vec![0.0; flat.len()];
+    let e = sys.potential_forces(0.0, &flat, &mut f).unwrap();
+    (e, f)
+}
+
+/// Force on particle 2 of a pair from the AD path.
+fn f21<P: PairPotential>(pot: P, r: Vec3, m: [f64; 2], q: [f64; 2]) -> Vec3 {
+    let sys = System::new(vec![Particle::charged(m[0], q[0]), Particle::charged(m[1], q[1])])
+        .unwrap()
+        .with(Internal::new(pot, [(0, 1)]))
+        .unwrap();
+    let (_, f) = forces_of(&sys, &[[0.3, -0.2, 0.1], [0.3 + r[0], -0.2 + r[1], 0.1 + r[2]]]);
+    for k in 0..3 {
+        assert_eq!(f[k], -f[3 + k], "third law");
+    }
+    [f[3], f[4], f[5]]
+}
+
+fn close(a: Vec3, b: Vec3, tol: f64) {
+    let scale = b.iter().fold(1e-300_f64, |m, v| m.max(v.abs()));
+    for k in 0..3 {
+        assert!((a[k] - b[k]).abs() <= tol * scale, "{a:?} vs {b:?}");
+    }
+}
+
+/// The seed's force laws written by hand, F21 on particle 2 with r21 = r2 − r1; AD agrees to rounding.
+#[test]
+fn ad_vs_hand_force_laws() {
+    let r: Vec3 = [0.7, -0.4, 1.1];
+    let d: f64 = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+    let u = r.map(|c| c / d);
+    // Gravity: −G m1 m2 r21/r³.
+    let s = -2.0 * 3.0 * 5.0 / (d * d);
+    close(
+        f21(Gravity { g: 2.0 }, r, [3.0, 5.0], [0.0; 2]),
+        u.map(|c| s * c),
+        1e-14,
+    );
+    // Coulomb: k e1 e2 r21 / r³.
+    let s = 4.0 * 1.5 * -2.0 / (d * d);
+    close(
+        f21(Coulomb { k: 4.0 }, r, [1.0; 2], [1.5, -2.0]),
+        u.map(|c| s * c),
+        1e-14,
+    );
+    // Constant repulsion: F r̂.
+    close(
+        f21(ConstantRepulsion { f: 3.0 }, r, [1.0; 2], [0.0; 2]),
+        u.map(|c| 3.0 * c),
+        1e-14,
+    );
+    // Spring: −k (r − re) r̂.
+    let s = -2.5 * (d - 0.8);
+    close(
+        f21(Spring { k: 2.5, re: 0.8 }, r, [1.0; 2], [0.0; 2]),
+        u.map(|c| s * c),
+        1e-14,
+    );
+    // Billiard: a compressed spring inside re, nothing outside.
+    let s = -7.0 * (d - 2.0);
+    close(
+        f21(Billiard { k: 7.0, re: 2.0 }, r, [1.0; 2], [0.0; 2]),
+        u.map(|c| s * c),
+        1e-14,
+    );
+    assert_eq!(f21(Billiard { k: 7.0, re: 1.0 }, r, [1.0; 2], [0.0; 2]), [0.0; 3]);
+    // Lennard-Jones: F21 = −U'(r) r̂, U' = De (−12 re¹²/r¹³ + 12 re⁶/r⁷).
+    let (de, re) = (0.9_f64, 1.2_f64);
+    let du = de * (-12.0 * re.powi(12) / d.powi(13) + 12.0 * re.powi(6) / d.powi(7));
+    close(
+        f21(LennardJones::new(de, re), r, [1.0; 2], [0.0; 2]),
+        u.map(|c| -du * c),
+        1e-13,
+    );
+    // Gaussian coupling: U = k2 exp(−r²/2σ²), F21 = k2 r21/σ² exp(−r²/2σ²).
+    let (k2, sg) = (0.3, 0.9);
+    let s = k2 / (sg * sg) * (-d * d / (2.0 * sg * sg)).exp();
+    close(
+        f21(GaussianCoupling { k2, sigma: sg }, r, [1.0; 2], [0.0; 2]),
+        r.map(|c| s * c),
+        1e-14,
+    );
+}
+
+#[test]
+fn ad_vs_hand_one_body_and_given_forces() {
+    let p = [Particle::new(2.0), Particle::new(3.0)];
+    let x = [[0.1, 0.2, 0.3], [1.0, -1.0, 2.0]];
+    let v = [[1.0, 2.0, 3.0], [-1.0, 0.5, 0.0]];
+    let sys = System::new(p.to_vec())
+        .unwrap()
+        .with(External::new(UniformGravity { g: 9.81 }, [0, 1]))
+        .unwrap()
+        .with(External::new(
+            FixedEnd::new(Spring { k: 4.0, re: 0.0 }, [1.0, 1.0, 1.0]),
+            [1],
+        ))
+        .unwrap()
+        .with(ExternalForce::new(LinearDrag { b: 0.5 }, [0]))
+        .unwrap()
+        .with(InternalForce::new(CentralForce(|r: f64| 1.0 / r), [(0, 1)]))
+        .unwrap();
+    let mut f = vec![0.0; 6];
+    sys.forces(0.0, &x.concat(), &v.concat(), &mut f).unwrap();
+    // Central force 1/r on particle 1 (on) from particle 0 (by): r̂/r; −that on particle 0.
+    let r = [0.9, -1.2, 1.7];
+    let d2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    let c = r.map(|a| a / d2);
+    let want0 = [
+        0.0 - 0.5 * 1.0 - c[0],
+        -0.5 * 2.0 - c[1],
+        -2.0 * 9.81 - 0.5 * 3.0 - c[2],
+    ];
+    let want1 = [
+        -4.0 * (1.0 - 1.0) + c[0],
+        -4.0 * (-1.0 - 1.0) + c[1],
+        -3.0 * 9.81 - 4.0 * (2.0 - 1.0) + c[2],
+    ];
+    close([f[0], f[1], f[2]], want0, 1e-14);
+    close([f[3], f[4], f[5]], want1, 1e-14);
+}
+
+/// A user-defined potential in generic code: U = a r⁴ (forces by duals), F21 = −4 a r² r21.
+#[test]
+fn ad_vs_hand_user_potential() {
+    struct Quartic(f64);
+    impl PairPotential for Quartic {
+        fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
+            let s = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+            s * s * self.0
+        }
+    }
+    let r = [0.5, 1.5, -0.25];
+    let s = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    close(
+        f21(Quartic(0.7), r, [1.0; 2], [0.0; 2]),
+        r.map(|c| -4.0 * 0.7 * s * c),
+        1e-14,
+    );
+}
+
+fn random_system(n: usize, seed: u64) -> (System<impl noether_particles::Interaction>, Vec<Vec3>) {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let ps: Vec<Particle> = (0..n)
+        .map(|_| Particle::new(rng.random_range(0.5..2.0)))
+        .collect();
+    let springs: Vec<(usize, usize)> = (0..2 * n)
+        .map(|_| {
+            let i = rng.random_range(0..n);
+            (i, (i + rng.random_range(1..n)) % n)
+        })
+        .collect();
+    let sys = System::new(ps)
+        .unwrap()
+        .with(Internal::new(Spring { k: 1.3, re: 0.7 }, springs.clone()))
+        .unwrap()
+        .with(Internal::new(GaussianCoupling { k2: 0.2, sigma: 0.5 }, springs))
+        .unwrap()
+        .with(AllPairs::new(Gravity { g: 0.01 }))
+        .unwrap();
+    (sys, random_positions(n, 3.0, &mut rng))
+}
+
+/// Third law: the internal forces of any system add up to zero (to rounding of the sum).
+#[test]
+fn conserves_momentum_forces_sum_to_zero() {
+    let (sys, x) = random_system(30, 1);
+    let (_, f) = forces_of(&sys, &x);
+    let scale: f64 = f.iter().map(|a| a.abs()).sum();
+    for k in 0..3 {
+        let s: f64 = f.iter().skip(k).step_by(3).sum();
+        assert!(s.abs() < 1e-14 * scale, "Σ F_{k} = {s}");
+    }
+}
+
+/// The system as a core Lagrangian (generic AD path through EulerLagrange) gives the same
+/// accelerations as the term-by-term forces, drag included.
+#[test]
+fn ad_vs_ad_lagrangian_path_matches_term_by_term() {
+    let mut rng = StdRng::seed_from_u64(2);
+    let n = 6;
+    let ps: Vec<Particle> = (0..n).map(|i| Particle::new(1.0 + i as f64)).collect();
+    let sys = System::new(ps)
+        .unwrap()
+        .with(Internal::chain(Spring { k: 3.0, re: 0.5 }, n))
+        .unwrap()
+        .with(AllPairs::new(LennardJones::new(0.1, 0.8)))
+        .unwrap()
+        .with(External::new(
+            Trap {
+                k2: 0.5,
+                k4: 0.1,
+                center: [0.0; 3],
+            },
+            0..n,
+        ))
+        .unwrap()
+        .with(ExternalForce::new(LinearDrag { b: 0.3 }, [1, 2]))
+        .unwrap();
+    let x = random_positions(n, 2.0, &mut rng).concat();
+    let v = random_positions(n, 1.0, &mut rng).concat();
+    let mut a1 = vec![0.0; 3 * n];
+    let mut a2 = vec![0.0; 3 * n];
+    EulerLagrange::new(&sys)
+        .accelerations(0.0, &x, &v, &mut a1)
+        .unwrap();
+    sys.accelerations(0.0, &x, &v, &mut a2).unwrap();
+    for k in 0..3 * n {
+        assert!(
+            (a1[k] - a2[k]).abs() < 1e-11 * (1.0 + a2[k].abs()),
+            "{k}: {} {}",
+            a1[k],
+            a2[k]
+        );
+    }
+}
+
+/// V of the system as an AD field, for the dense reference Hessian.
+struct PotentialField<'a, I>(&'a System<I>);
+impl<I: noether_particles::Interaction> Field for PotentialField<'_, I> {
+    fn eval<D: Scalar>(&self, t: D, x: &[D], _y: &[D]) -> D {
+        let zero = vec![D::zero(); x.len()];
+        -self.0.lagrangian(t, x, &zero)
+    }
+}
+
+/// The sparse term-by-term Hessian equals core's dense AD Hessian of V; a chain stores O(N) entries.
+#[test]
+fn ad_vs_ad_sparse_hessian_matches_dense() {
+    let (sys, x) = random_system(8, 3);
+    let x = x.concat();
+    let h = sys.hessian(0.0, &x).unwrap();
+    let mut dense = nalgebra::DMatrix::zeros(24, 24);
+    ad::hessian(
+        &PotentialField(&sys),
+        0.0,
+        &x,
+        &[],
+        Block::X,
+        Block::X,
+        &mut dense,
+    );
+    let d = h.to_dense();
+    assert!((d - &dense).amax() < 1e-10 * dense.amax());
+
+    let n = 1000;
+    let chain = System::new(vec![Particle::new(1.0); n])
+        .unwrap()
+        .with(Internal::chain(Spring { k: 1.0, re: 1.0 }, n))
+        .unwrap();
+    let xs: Vec<f64> = (0..n)
+        .flat_map(|i| [i as f64 * 1.1, 0.01 * i as f64, 0.0])
+        .collect();
+    let h = chain.hessian(0.0, &xs).unwrap();
+    assert_eq!(h.nnz(), 9 * (n + 2 * (n - 1)));
+}
+
+/// The cell list finds exactly the pairs within the cutoff: same energy and forces as all pairs.
+#[test]
+fn regress_cell_list_matches_all_pairs() {
+    let mut rng = StdRng::seed_from_u64(4);
+    let n = 400;
+    let x = random_positions(n, 8.0, &mut rng);
+    let lj = LennardJones::with_cutoff(1.0, 1.0, 2.5);
+    let a = System::new(vec![Particle::new(1.0); n])
+        .unwrap()
+        .with(AllPairs::new(lj))
+        .unwrap()
+        .with_parallel(Parallel::Serial);
+    let b = System::new(vec![Particle::new(1.0); n])
+        .unwrap()
+        .with(ShortRange::new(lj).unwrap())
+        .unwrap();
+    let (ea, fa) = forces_of(&a, &x);
+    let (eb, fb) = forces_of(&b, &x);
+    assert!((ea - eb).abs() < 1e-10 * ea.abs().max(1.0));
+    let scale = fa.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    for k in 0..3 * n {
+        assert!((fa[k] - fb[k]).abs() < 1e-10 * scale);
+    }
+    assert!((b.potential_energy(0.0, &x.concat()).unwrap() - eb).abs() < 1e-10 * eb.abs());
+}
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+/// Serial and parallel force evaluations agree bit for bit, for 1, 2 and 3 threads.
+#[test]
+fn regress_parallel_is_bit_identical() {
+    let mut rng = StdRng::seed_from_u64(5);
+    let n = 6000;
+    let x = random_positions(n, 20.0, &mut rng);
+    let build = |par| {
+        System::new(vec![Particle::new(1.0); n])
+            .unwrap()
+            .with(Internal::chain(Spring { k: 1.0, re: 0.5 }, n))
+            .unwrap()
+            .with(External::new(
+                Trap {
+                    k2: 0.1,
+                    k4: 0.01,
+                    center: [10.0; 3],
+                },
+                0..n,
+            ))
+            .unwrap()
+            .with(ShortRange::new(LennardJones::with_cutoff(0.5, 0.8, 2.0)).unwrap())
+            .unwrap()
+            .with_parallel(par)
+    };
+    let serial = forces_of(&build(Parallel::Serial), &x);
+    for threads in [1, 2, 3] {
+        let par = in_pool(threads, || forces_of(&build(Parallel::Rayon), &x));
+        assert_eq!(serial.0.to_bits(), par.0.to_bits(), "energy, {threads} threads");
+        assert!(serial
+            .1
+            .iter()
+            .zip(&par.1)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
+    }
+    let m = 300;
+    let y = random_positions(m, 5.0, &mut rng);
+    let grav = |par| {
+        System::new(vec![Particle::new(1.0); m])
+            .unwrap()
+            .with(AllPairs::new(Gravity { g: 1.0 }))
+            .unwrap()
+            .with_parallel(par)
+    };
+    let serial = forces_of(&grav(Parallel::Serial), &y);
+    let par = in_pool(3, || forces_of(&grav(Parallel::Rayon), &y));
+    assert_eq!(serial.0.to_bits(), par.0.to_bits());
+    assert!(serial
+        .1
+        .iter()
+        .zip(&par.1)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+}
+
+/// Orders of the methods on a spring pair (reduced mass μ = ½, ω = sqrt(k/μ)): the closed form
+/// r(t) = re + A cos ωt; the error ratio between h and h/2 is 2^order (tolerance: ±0.3 on the order).
+#[test]
+fn order_of_methods_on_spring_pair() {
+    let sys = System::new(vec![Particle::new(1.0); 2])
+        .unwrap()
+        .with(Internal::new(Spring { k: 2.0, re: 1.0 }, [(0, 1)]))
+        .unwrap();
+    let w = 2.0_f64; // sqrt(k/μ) = sqrt(2/0.5)
+    let t_end = 2.0;
+    let exact = 1.0 + 0.2 * (w * t_end).cos();
+    for m in [
+        Method::Euler,
+        Method::EulerCromer,
+        Method::Rk4,
+        Method::VelocityVerlet,
+        Method::Yoshida4,
+    ] {
+        let err = |h: f64| {
+            let s0 = sys.state_1d(0.0, &[0.0, 1.2], &[0.0, 0.0]).unwrap();
+            let n = (t_end / h).round() as usize;
+            let s = sys.run(m, s0, h, n).unwrap();
+            (s.q[3] - s.q[0] - exact).abs()
+        };
+        let h = if m.order() >= 4 { 0.05 } else { 0.01 };
+        let p = (err(h) / err(h / 2.0)).log2();
+        assert!((p - m.order() as f64).abs() < 0.3, "{m:?}: observed order {p}");
+    }
+}
+
+/// The evolver yields the sequence of states; the symplectic method keeps the energy bounded.
+#[test]
+fn conserves_energy_velocity_verlet_evolver() {
+    let sys = System::new(vec![Particle::new(1.0); 3])
+        .unwrap()
+        .with(Internal::chain(Spring { k: 1.0, re: 1.0 }, 3))
+        .unwrap();
+    let s0 = sys
+        .state_2d(
+            0.0,
+            &[[0.0, 0.0], [1.2, 0.1], [2.0, 0.0]],
+            &[[0.0, 0.3], [0.0; 2], [0.1, 0.0]],
+        )
+        .unwrap();
+    let e0 = sys.total_energy(&s0).unwrap();
+    let mut worst = 0.0_f64;
+    for s in sys
+        .evolver(Method::VelocityVerlet, s0, 0.01)
+        .unwrap()
+        .take(20_000)
+    {
+        let s = s.unwrap();
+        worst = worst.max((sys.total_energy(&s).unwrap() - e0).abs());
+        assert_eq!(s.q[2], 0.0); // 2D stays 2D
+    }
+    // Verlet's modified energy: |ΔE| ~ (h ω)² E / 8-ish, far below 1e-4 E here.
+    assert!(worst < 1e-4 * e0, "{worst}");
+}
+
+#[test]
+fn bad_input_unknown_index_self_interaction_mass() {
+    let ps = vec![Particle::new(1.0); 3];
+    let e = System::new(ps.clone())
+        .unwrap()
+        .with(Internal::new(Spring { k: 1.0, re: 1.0 }, [(0, 3)]));
+    assert!(matches!(
+        e.err(),
+        Some(Error::UnknownParticle { index: 3, n: 3, .. })
+    ));
+    let e = System::new(ps.clone())
+        .unwrap()
+        .with(External::new(UniformGravity { g: 1.0 }, [5]));
+    assert!(matches!(e.err(), Some(Error::UnknownParticle { index: 5, .. })));
+    let e = System::new(ps.clone())
+        .unwrap()
+        .with(Internal::new(Gravity { g: 1.0 }, [(0, 1), (2, 2)]));
+    assert!(matches!(
+        e.err(),
+        Some(Error::SelfInteraction {
+            interaction: 1,
+            index: 2
+        })
+    ));
+    for m in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = System::new(vec![Particle::new(1.0), Particle::new(m)]);
+        assert!(
+            matches!(e.err(), Some(Error::InvalidMass { index: 1, .. })),
+            "mass {m}"
+        );
+    }
+    let e = ShortRange::new(LennardJones::new(1.0, 1.0));
+    assert!(matches!(
+        e.err(),
+        Some(Error::Core(noether_core::Error::InvalidParameter { .. }))
+    ));
+}
+
+#[test]
+fn bad_input_coincident_particles_reported_not_nan() {
+    let sys = System::new(vec![Particle::new(1.0); 3])
+        .unwrap()
+        .with(AllPairs::new(Gravity { g: 1.0 }))
+        .unwrap();
+    let x = [[0.0; 3], [1.0, 2.0, 3.0], [1.0, 2.0, 3.0]];
+    let mut f = vec![0.0; 9];
+    let e = sys.potential_forces(0.0, &x.concat(), &mut f);
+    assert_eq!(
+        e,
+        Err(Error::Coincident {
+            a: 1,
+            b: 2,
+            distance: 0.0
+        })
+    );
+    // A step from that state fails and leaves the state unchanged.
+    let mut s = sys.state(0.0, &x, &[[0.0; 3]; 3]).unwrap();
+    let before = s.clone();
+    assert!(sys.step(Method::VelocityVerlet, &mut s, 0.1).is_err());
+    assert_eq!(s, before);
+    // Through core's Dynamics interface too.
+    let mut st = noether_particles::ParticleStepper::new(&sys, Method::Rk4);
+    assert!(noether_core::Stepper::step(&mut st, &mut s, 0.1).is_err());
+    assert_eq!(s, before);
+}
+
+#[test]
+fn bad_input_dimensions_nonfinite_step_and_drag_with_verlet() {
+    let sys = System::new(vec![Particle::new(1.0); 2])
+        .unwrap()
+        .with(Internal::new(Spring { k: 1.0, re: 1.0 }, [(0, 1)]))
+        .unwrap();
+    assert!(matches!(
+        sys.state(0.0, &[[0.0; 3]], &[[0.0; 3]; 2]),
+        Err(Error::Core(noether_core::Error::Dimension { .. }))
+    ));
+    assert!(matches!(
+        sys.state(0.0, &[[0.0; 3], [f64::NAN, 0.0, 0.0]], &[[0.0; 3]; 2]),
+        Err(Error::Core(noether_core::Error::NonFinite { .. }))
+    ));
+    let mut f = vec![0.0; 5];
+    assert!(sys.potential_forces(0.0, &[0.0; 6], &mut f).is_err());
+    let mut s = sys.state_1d(0.0, &[0.0, 1.5], &[0.0, 0.0]).unwrap();
+    for h in [0.0, -0.1, f64::NAN] {
+        assert!(matches!(
+            sys.step(Method::Euler, &mut s, h),
+            Err(Error::Core(noether_core::Error::InvalidStep { .. }))
+        ));
+    }
+    let drag = System::new(vec![Particle::new(1.0)])
+        .unwrap()
+        .with(ExternalForce::new(LinearDrag { b: 1.0 }, [0]))
+        .unwrap();
+    let mut s = drag.state(0.0, &[[0.0; 3]], &[[1.0, 0.0, 0.0]]).unwrap();
+    assert!(matches!(
+        drag.step(Method::Yoshida4, &mut s, 0.1),
+        Err(Error::Core(noether_core::Error::Unsupported(_)))
+    ));
+    // RK4 handles drag: v(t) = v0 e^{−bt/m}.
+    let s = drag.run(Method::Rk4, s, 0.01, 100).unwrap();
+    assert!((s.v[0] - (-1.0_f64).exp()).abs() < 1e-9);
+}
