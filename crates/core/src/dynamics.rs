@@ -15,6 +15,13 @@ pub trait Dynamics {
 
     /// The conserved energy of autonomous systems: h = q̇·∂L/∂q̇ − L, or H.
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64>;
+
+    /// Writes only q̇ into `dq` (used by semi-implicit methods that update v first). The default calls
+    /// [`rates`](Dynamics::rates); systems where q̇ is cheap (q̇ = v, or ∂H/∂p alone) override it.
+    fn position_rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
+        let mut dv = vec![0.0; v.len()];
+        self.rates(t, q, v, dq, &mut dv)
+    }
 }
 
 impl<L: Lagrangian> Dynamics for EulerLagrange<L> {
@@ -29,6 +36,12 @@ impl<L: Lagrangian> Dynamics for EulerLagrange<L> {
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         EulerLagrange::energy(self, t, q, v)
     }
+    fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
+        crate::error::check_len("q̇", v, self.dof())?;
+        crate::error::check_len("q̇ (output)", dq, self.dof())?;
+        dq.copy_from_slice(v);
+        Ok(())
+    }
 }
 
 impl<H: Hamiltonian> Dynamics for HamiltonEquations<H> {
@@ -41,6 +54,9 @@ impl<H: Hamiltonian> Dynamics for HamiltonEquations<H> {
     fn energy(&self, t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
         HamiltonEquations::energy(self, t, q, p)
     }
+    fn position_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64]) -> Result<()> {
+        HamiltonEquations::velocities(self, t, q, p, dq)
+    }
 }
 
 impl<S: Dynamics + ?Sized> Dynamics for &S {
@@ -52,5 +68,8 @@ impl<S: Dynamics + ?Sized> Dynamics for &S {
     }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         (**self).energy(t, q, v)
+    }
+    fn position_rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
+        (**self).position_rates(t, q, v, dq)
     }
 }

@@ -67,6 +67,17 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
         Ok(())
     }
 
+    /// q̇ = ∂H/∂p alone.
+    pub fn velocities(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64]) -> Result<()> {
+        self.check(t, q, p)?;
+        check_len("q̇ (output)", dq, self.dof())?;
+        ad::gradient(&HamiltonianField(&self.hamiltonian), t, q, p, Block::Y, dq);
+        if dq.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        Ok(())
+    }
+
     /// The Hessian of H in (q, p) as a 2n × 2n matrix [[H_qq, H_qp], [H_pq, H_pp]].
     pub fn hessian(&self, t: f64, q: &[f64], p: &[f64]) -> Result<DMatrix<f64>> {
         self.check(t, q, p)?;

@@ -35,6 +35,7 @@ pub mod hamilton;
 pub mod integrators;
 pub mod lagrange;
 pub mod model;
+pub mod natural;
 pub mod newton;
 pub mod scalar;
 pub mod state;
@@ -46,6 +47,7 @@ pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;
 pub use lagrange::{EulerLagrange, MassFactor};
 pub use model::{Hamiltonian, Lagrangian, Separable, SeparableHamiltonian};
+pub use natural::{Natural, Potential};
 pub use newton::{Newton, NewtonInfo, NewtonSystem};
 pub use scalar::Scalar;
 pub use state::State;
@@ -55,7 +57,7 @@ pub use stepper::{StepInfo, Stepper, Trajectory};
 pub mod prelude {
     pub use crate::integrators::*;
     pub use crate::{
-        Dynamics, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Result, Scalar,
-        Separable, SeparableHamiltonian, State, StepInfo, Stepper, Trajectory,
+        Dynamics, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Natural, Potential,
+        Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper, Trajectory,
     };
 }

@@ -1,0 +1,352 @@
+//! Natural mechanical systems: L = ½ q̇ᵀ M q̇ − V(q) with a constant, symmetric positive definite mass
+//! matrix M, equivalently H = ½ pᵀ M⁻¹ p + V(q) with p = M q̇.
+//!
+//! This is the structure explicit symplectic methods need (a separable Hamiltonian). A [`Natural`]
+//! system holds M (diagonal or dense), factors it once, and is at the same time
+//! - a [`Lagrangian`] (so [`EulerLagrange`](crate::EulerLagrange) and every Lagrangian tool apply),
+//! - a [`Separable`] Hamiltonian T(p) + V(q) (state (q, p) through
+//!   [`SeparableHamiltonian`](crate::SeparableHamiltonian)),
+//! - a [`Dynamics`](crate::Dynamics) on (q, q̇) itself, with the fast vector field
+//!   q̈ = −M⁻¹ ∇V(q) (one gradient of V by dual numbers, no Hessian, no mass matrix by AD).
+//!
+//! ```
+//! use noether_core::prelude::*;
+//!
+//! /// Pendulum of unit length and mass: V = −g cos θ.
+//! struct Gravity { g: f64 }
+//! impl Potential for Gravity {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn potential<D: Scalar>(&self, q: &[D]) -> D { -q[0].cos() * self.g }
+//! }
+//!
+//! let pendulum = Natural::diagonal(Gravity { g: 9.81 }, &[1.0]).unwrap();
+//! let mut a = [0.0];
+//! pendulum.accelerations(&[0.5], &mut a).unwrap();
+//! assert!((a[0] + 9.81 * 0.5_f64.sin()).abs() < 1e-14); // θ̈ = −g sin θ
+//! ```
+
+use crate::ad::{self, Block, Field};
+use crate::error::{check_finite, check_len};
+use crate::{Dynamics, Error, Lagrangian, Result, Scalar, Separable};
+use nalgebra::{DMatrix, DVector};
+
+/// A potential energy V(q), generic over the scalar so that its gradient and Hessian come from dual
+/// numbers.
+pub trait Potential {
+    /// Number of coordinates.
+    fn dof(&self) -> usize;
+    /// V(q).
+    fn potential<D: Scalar>(&self, q: &[D]) -> D;
+}
+
+impl<P: Potential + ?Sized> Potential for &P {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        (**self).potential(q)
+    }
+}
+
+/// V(q) seen as the AD field f(t, x = q, y = ∅).
+pub(crate) struct PotentialField<'a, P: ?Sized>(pub &'a P);
+
+impl<P: Potential + ?Sized> Field for PotentialField<'_, P> {
+    #[inline]
+    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+        self.0.potential(x)
+    }
+}
+
+/// The constant mass matrix of a [`Natural`] system.
+#[derive(Debug, Clone)]
+enum Mass {
+    /// M = diag(m), M⁻¹ = diag(1/m).
+    Diagonal { m: DVector<f64>, inv: DVector<f64> },
+    /// Dense SPD M with its Cholesky factor and explicit inverse (for T(p) with dual numbers).
+    Dense {
+        m: DMatrix<f64>,
+        chol: nalgebra::Cholesky<f64, nalgebra::Dyn>,
+        inv: DMatrix<f64>,
+    },
+}
+
+/// A natural system L = ½ q̇ᵀ M q̇ − V(q) with constant SPD mass matrix M (see the [module](self) docs).
+///
+/// Two phase-space readings, both documented where they are used:
+/// - as [`Dynamics`](crate::Dynamics) and [`SplitDynamics`](crate::integrators::SplitDynamics) the state
+///   is (q, q̇);
+/// - wrapped as `SeparableHamiltonian(natural)` the state is (q, p) with p = M q̇.
+#[derive(Debug, Clone)]
+pub struct Natural<P> {
+    potential: P,
+    mass: Mass,
+}
+
+impl<P: Potential> Natural<P> {
+    /// M = diag(`masses`). Every mass must be finite and positive.
+    pub fn diagonal(potential: P, masses: &[f64]) -> Result<Self> {
+        check_len("masses", masses, potential.dof())?;
+        check_finite("masses", masses)?;
+        if let Some(&m) = masses.iter().find(|m| **m <= 0.0) {
+            return Err(Error::InvalidParameter {
+                name: "mass",
+                value: m,
+                reason: "masses must be positive",
+            });
+        }
+        let m = DVector::from_column_slice(masses);
+        let inv = m.map(|x| 1.0 / x);
+        Ok(Natural {
+            potential,
+            mass: Mass::Diagonal { m, inv },
+        })
+    }
+
+    /// M = I (unit masses).
+    pub fn unit(potential: P) -> Self {
+        let n = potential.dof();
+        Natural {
+            potential,
+            mass: Mass::Diagonal {
+                m: DVector::from_element(n, 1.0),
+                inv: DVector::from_element(n, 1.0),
+            },
+        }
+    }
+
+    /// A dense mass matrix, which must be symmetric positive definite; it is factored here, once.
+    pub fn dense(potential: P, mass: DMatrix<f64>) -> Result<Self> {
+        let n = potential.dof();
+        if mass.shape() != (n, n) {
+            return Err(Error::Dimension {
+                what: "mass matrix (rows × columns)",
+                expected: n,
+                got: if mass.nrows() != n {
+                    mass.nrows()
+                } else {
+                    mass.ncols()
+                },
+            });
+        }
+        check_finite("mass matrix", mass.as_slice())?;
+        let asym = (&mass - mass.transpose()).amax();
+        if asym > 1e-12 * mass.amax() {
+            return Err(Error::InvalidParameter {
+                name: "mass matrix asymmetry",
+                value: asym,
+                reason: "the mass matrix must be symmetric",
+            });
+        }
+        match crate::MassFactor::new(mass.clone(), 0.0)? {
+            crate::MassFactor::Cholesky(chol) => {
+                let inv = chol.inverse();
+                Ok(Natural {
+                    potential,
+                    mass: Mass::Dense { m: mass, chol, inv },
+                })
+            }
+            crate::MassFactor::Lu(_) => Err(Error::InvalidParameter {
+                name: "mass matrix",
+                value: f64::NAN,
+                reason: "the mass matrix must be positive definite",
+            }),
+        }
+    }
+
+    /// The potential.
+    pub fn potential_model(&self) -> &P {
+        &self.potential
+    }
+
+    /// The mass matrix M.
+    pub fn mass_matrix(&self) -> DMatrix<f64> {
+        match &self.mass {
+            Mass::Diagonal { m, .. } => DMatrix::from_diagonal(m),
+            Mass::Dense { m, .. } => m.clone(),
+        }
+    }
+
+    /// Number of degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.potential.dof()
+    }
+
+    /// The value V(q).
+    pub fn potential_energy(&self, q: &[f64]) -> f64 {
+        self.potential.potential(q)
+    }
+
+    /// Forces f = −∇V(q) (one gradient by dual numbers) into `f`.
+    pub fn forces(&self, q: &[f64], f: &mut [f64]) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_len("forces (output)", f, n)?;
+        ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, f);
+        f.iter_mut().for_each(|x| *x = -*x);
+        if f.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t: 0.0 });
+        }
+        Ok(())
+    }
+
+    /// Accelerations q̈ = −M⁻¹ ∇V(q) into `a`.
+    pub fn accelerations(&self, q: &[f64], a: &mut [f64]) -> Result<()> {
+        self.forces(q, a)?;
+        self.solve_mass(a);
+        Ok(())
+    }
+
+    /// Overwrites `b` with M⁻¹ b (using the factor computed once).
+    pub fn solve_mass(&self, b: &mut [f64]) {
+        match &self.mass {
+            Mass::Diagonal { inv, .. } => b.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= i),
+            Mass::Dense { chol, .. } => {
+                let n = b.len();
+                chol.solve_mut(&mut nalgebra::DVectorViewMut::from_slice(b, n));
+            }
+        }
+    }
+
+    /// Momenta p = M q̇ into `p`.
+    pub fn momenta(&self, v: &[f64], p: &mut [f64]) {
+        match &self.mass {
+            Mass::Diagonal { m, .. } => {
+                for i in 0..p.len() {
+                    p[i] = m[i] * v[i];
+                }
+            }
+            Mass::Dense { m, .. } => {
+                for (i, pi) in p.iter_mut().enumerate() {
+                    *pi = (0..v.len()).map(|j| m[(i, j)] * v[j]).sum();
+                }
+            }
+        }
+    }
+
+    /// Velocities q̇ = M⁻¹ p into `v`.
+    pub fn velocities(&self, p: &[f64], v: &mut [f64]) {
+        v.copy_from_slice(p);
+        self.solve_mass(v);
+    }
+
+    /// Kinetic energy ½ q̇ᵀ M q̇ in terms of velocities.
+    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        quadratic(&self.mass_as(false), v)
+    }
+
+    /// The energy ½ q̇ᵀ M q̇ + V(q).
+    pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        self.kinetic_energy(v) + self.potential.potential(q)
+    }
+
+    /// Hessian ∇²V(q) (for implicit methods; explicit methods never form it).
+    pub fn potential_hessian(&self, q: &[f64], out: &mut DMatrix<f64>) {
+        ad::hessian(
+            &PotentialField(&self.potential),
+            0.0,
+            q,
+            &[],
+            Block::X,
+            Block::X,
+            out,
+        );
+    }
+
+    fn mass_as(&self, inverse: bool) -> MatRef<'_> {
+        match (&self.mass, inverse) {
+            (Mass::Diagonal { m, .. }, false) => MatRef::Diag(m),
+            (Mass::Diagonal { inv, .. }, true) => MatRef::Diag(inv),
+            (Mass::Dense { m, .. }, false) => MatRef::Dense(m),
+            (Mass::Dense { inv, .. }, true) => MatRef::Dense(inv),
+        }
+    }
+
+    /// M⁻¹ as a dense matrix.
+    pub fn inverse_mass_matrix(&self) -> DMatrix<f64> {
+        match &self.mass {
+            Mass::Diagonal { inv, .. } => DMatrix::from_diagonal(inv),
+            Mass::Dense { inv, .. } => inv.clone(),
+        }
+    }
+}
+
+enum MatRef<'a> {
+    Diag(&'a DVector<f64>),
+    Dense(&'a DMatrix<f64>),
+}
+
+/// ½ xᵀ A x for a diagonal or dense A, generic over the scalar.
+fn quadratic<D: Scalar>(a: &MatRef<'_>, x: &[D]) -> D {
+    let mut s = D::zero();
+    match a {
+        MatRef::Diag(d) => {
+            for (i, xi) in x.iter().enumerate() {
+                s += *xi * *xi * d[i];
+            }
+        }
+        MatRef::Dense(m) => {
+            for i in 0..x.len() {
+                let mut row = D::zero();
+                for (j, xj) in x.iter().enumerate() {
+                    row += *xj * m[(i, j)];
+                }
+                s += x[i] * row;
+            }
+        }
+    }
+    s * 0.5
+}
+
+impl<P: Potential> Lagrangian for Natural<P> {
+    fn dof(&self) -> usize {
+        self.potential.dof()
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        quadratic(&self.mass_as(false), v) - self.potential.potential(q)
+    }
+    fn constant_mass_matrix(&self) -> bool {
+        true
+    }
+}
+
+impl<P: Potential> Separable for Natural<P> {
+    fn dof(&self) -> usize {
+        self.potential.dof()
+    }
+    /// T(p) = ½ pᵀ M⁻¹ p.
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        quadratic(&self.mass_as(true), p)
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        self.potential.potential(q)
+    }
+}
+
+/// State (q, q̇): q̇ = q̇, q̈ = −M⁻¹∇V(q).
+impl<P: Potential> Dynamics for Natural<P> {
+    fn dof(&self) -> usize {
+        Natural::dof(self)
+    }
+    fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+        check_len("q̇", v, self.dof())?;
+        check_len("q̇ (output)", dq, self.dof())?;
+        check_finite("q", q)?;
+        check_finite("q̇", v)?;
+        dq.copy_from_slice(v);
+        self.accelerations(q, dv).map_err(|e| match e {
+            Error::NonFiniteState { step, .. } => Error::NonFiniteState { step, t },
+            other => other,
+        })
+    }
+    fn energy(&self, _t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        check_len("q", q, self.dof())?;
+        check_len("q̇", v, self.dof())?;
+        Ok(Natural::energy(self, q, v))
+    }
+    fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
+        check_len("q̇", v, self.dof())?;
+        dq.copy_from_slice(v);
+        Ok(())
+    }
+}

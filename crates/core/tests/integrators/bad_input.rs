@@ -1,0 +1,185 @@
+//! Bad input gets a clear error, never a panic or a NaN state; on error the state is unchanged.
+
+use super::problems::*;
+use noether_core::prelude::*;
+
+/// A pendulum whose potential V = −cos θ + 10⁻³ √(1.5 − θ) is NaN beyond θ = 1.5 (the square root of a
+/// negative number), as a careless model would produce mid-run.
+struct Fragile;
+impl Potential for Fragile {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        -q[0].cos() + (-q[0] + 1.5).sqrt() * 1e-3
+    }
+}
+impl Lagrangian for Fragile {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        v[0] * v[0] * 0.5 - Potential::potential(self, q)
+    }
+}
+
+fn steppers() -> Vec<Box<dyn Stepper>> {
+    vec![
+        Box::new(Euler::new(EulerLagrange::new(PendulumL))),
+        Box::new(EulerCromer::new(EulerLagrange::new(PendulumL))),
+        Box::new(Rk4::new(EulerLagrange::new(PendulumL))),
+        Box::new(SymplecticEuler::new(Natural::unit(PendulumV))),
+        Box::new(Composition::stormer_verlet(Natural::unit(PendulumV))),
+        Box::new(Composition::kahan_li8(SeparableHamiltonian(Natural::unit(
+            PendulumV,
+        )))),
+    ]
+}
+
+#[test]
+fn bad_input_step_zero_negative_nan() {
+    for mut s in steppers() {
+        for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+            let mut state = State::new(0.0, [1.0], [0.0]);
+            let before = state.clone();
+            let err = s.step(&mut state, h).unwrap_err();
+            assert!(
+                matches!(err, Error::InvalidStep { .. }),
+                "{}: h = {h}: {err}",
+                s.name()
+            );
+            assert_eq!(state, before);
+        }
+    }
+    let err = Trajectory::new(
+        Rk4::new(EulerLagrange::new(PendulumL)),
+        State::new(0.0, [1.0], [0.0]),
+        0.0,
+    );
+    assert!(matches!(err, Err(Error::InvalidStep { .. })));
+}
+
+#[test]
+fn bad_input_wrong_dimensions() {
+    for mut s in steppers() {
+        let mut state = State::new(0.0, [1.0, 2.0], [0.0]);
+        let before = state.clone();
+        let err = s.step(&mut state, 0.1).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::Dimension {
+                    expected: 1,
+                    got: 2,
+                    ..
+                }
+            ),
+            "{}: {err}",
+            s.name()
+        );
+        assert_eq!(state, before);
+    }
+}
+
+#[test]
+fn bad_input_nan_initial_state() {
+    for mut s in steppers() {
+        let mut state = State::new(0.0, [f64::NAN], [0.0]);
+        let err = s.step(&mut state, 0.1).unwrap_err();
+        assert!(
+            matches!(err, Error::NonFinite { what: "q", .. }),
+            "{}: {err}",
+            s.name()
+        );
+        assert!(state.q[0].is_nan() && state.v[0] == 0.0 && state.t == 0.0);
+    }
+    let err = Trajectory::new(
+        Composition::stormer_verlet(Natural::unit(PendulumV)),
+        State::new(0.0, [0.0], [f64::INFINITY]),
+        0.1,
+    );
+    assert!(matches!(err, Err(Error::NonFinite { what: "v", .. })));
+}
+
+#[test]
+fn bad_input_nan_mid_run_names_step_and_time() {
+    // Released at θ = 1.4 from rest with a push θ̇ = 0.5, the pendulum passes θ = 1.5 within the
+    // first second; there V is NaN. The driver must stop with the index and time of the failing
+    // step, the last good state kept.
+    fn check<S: Stepper>(s: S) {
+        let name = s.name();
+        let h = 0.01;
+        let mut traj = Trajectory::new(s, State::new(0.0, [1.4], [0.5]), h).unwrap();
+        let mut good = 0;
+        let err = loop {
+            match traj.next().unwrap() {
+                Ok(_) => good += 1,
+                Err(e) => break e,
+            }
+        };
+        match err {
+            Error::NonFiniteState { step, t } => {
+                assert_eq!(step, good, "{name}");
+                assert!((t - good as f64 * h).abs() < 1e-12, "{name}: t = {t}");
+                assert!(good > 0 && t < 1.0, "{name}: failed at step {step}");
+            }
+            other => panic!("{name}: unexpected {other}"),
+        }
+        assert!(traj.state().is_finite(), "{name}: the last good state is kept");
+        assert!(traj.next().is_none(), "a failed trajectory ends");
+    }
+    check(Euler::new(EulerLagrange::new(Fragile)));
+    check(EulerCromer::new(EulerLagrange::new(Fragile)));
+    check(Rk4::new(EulerLagrange::new(Fragile)));
+    check(SymplecticEuler::new(Natural::unit(Fragile)));
+    check(Composition::stormer_verlet(Natural::unit(Fragile)));
+    check(Composition::yoshida4(SeparableHamiltonian(Natural::unit(
+        Fragile,
+    ))));
+}
+
+#[test]
+fn bad_input_mass_matrix_and_coefficients() {
+    let singular = nalgebra::DMatrix::from_row_slice(1, 1, &[0.0]);
+    assert!(matches!(
+        Natural::dense(PendulumV, singular),
+        Err(Error::SingularMassMatrix { .. })
+    ));
+    let negative = nalgebra::DMatrix::from_row_slice(1, 1, &[-1.0]);
+    assert!(matches!(
+        Natural::dense(PendulumV, negative),
+        Err(Error::InvalidParameter { .. })
+    ));
+    let asym = nalgebra::DMatrix::from_row_slice(2, 2, &[1.0, 0.1, 0.0, 1.0]);
+    assert!(matches!(
+        Natural::dense(KeplerV, asym),
+        Err(Error::InvalidParameter { .. })
+    ));
+    let wrong = nalgebra::DMatrix::identity(3, 3);
+    assert!(matches!(
+        Natural::dense(KeplerV, wrong),
+        Err(Error::Dimension { .. })
+    ));
+    assert!(matches!(
+        Natural::diagonal(KeplerV, &[1.0, -2.0]),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        Natural::diagonal(KeplerV, &[1.0, f64::NAN]),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        Natural::diagonal(KeplerV, &[1.0]),
+        Err(Error::Dimension { .. })
+    ));
+    let sys = Natural::unit(PendulumV);
+    assert!(Composition::with_coefficients(&sys, &[0.5, 0.5], 2).is_ok());
+    assert!(matches!(
+        Composition::with_coefficients(&sys, &[0.5, 0.6], 2),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        Composition::with_coefficients(&sys, &[0.3, 0.7], 2),
+        Err(Error::InvalidParameter { .. })
+    ));
+}
