@@ -29,6 +29,36 @@ fn gallery_names_are_unique() {
     assert_eq!(names.len(), n);
 }
 
+#[test]
+fn closed_form_pendulum_cartesian() {
+    assert_example_passes("pendulum_cartesian");
+}
+
+#[test]
+fn closed_form_bead_rotating_hoop() {
+    assert_example_passes("bead_rotating_hoop");
+}
+
+#[test]
+fn closed_form_spherical_pendulum() {
+    assert_example_passes("spherical_pendulum");
+}
+
+#[test]
+fn closed_form_bead_helix() {
+    assert_example_passes("bead_helix");
+}
+
+#[test]
+fn closed_form_bead_cycloid() {
+    assert_example_passes("bead_cycloid");
+}
+
+#[test]
+fn closed_form_rolling_disk() {
+    assert_example_passes("rolling_disk");
+}
+
 // One test per example (added with each example):
 // #[test] fn closed_form_pendulum() { assert_example_passes("pendulum"); }
 #[allow(dead_code)]

@@ -4,7 +4,13 @@
 //! To add an example: write a module here with `pub fn run(opts: &Options) -> Result<Report, Error>`,
 //! and list it in [`all`].
 
+pub mod bead_cycloid;
+pub mod bead_helix;
+pub mod bead_rotating_hoop;
 pub mod heavy_top;
+pub mod pendulum_cartesian;
+pub mod rolling_disk;
+pub mod spherical_pendulum;
 
 use std::fmt;
 use std::path::PathBuf;
@@ -143,11 +149,43 @@ pub struct Example {
 
 /// Every example of the gallery, in the order a newcomer should read them.
 pub fn all() -> Vec<Example> {
-    vec![Example {
-        name: "heavy_top",
-        about: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
-        run: heavy_top::run,
-    }]
+    vec![
+        Example {
+            name: "pendulum_cartesian",
+            about: "pendulum in Cartesian coordinates with a rod constraint: angle motion and rod tension",
+            run: pendulum_cartesian::run,
+        },
+        Example {
+            name: "spherical_pendulum",
+            about: "spherical pendulum, Cartesian vs angles: same motion, E and L_z, turning points",
+            run: spherical_pendulum::run,
+        },
+        Example {
+            name: "bead_rotating_hoop",
+            about: "bead on a rotating hoop (time-dependent constraint): equilibria, frequencies, hoop force",
+            run: bead_rotating_hoop::run,
+        },
+        Example {
+            name: "bead_helix",
+            about: "bead on a helix under gravity: constant z̈ = −g a²/(a²+b²), wire force",
+            run: bead_helix::run,
+        },
+        Example {
+            name: "bead_cycloid",
+            about: "the tautochrone: period 4π sqrt(a/g) from every release height (singular mass matrix)",
+            run: bead_cycloid::run,
+        },
+        Example {
+            name: "rolling_disk",
+            about: "disk rolling without slipping (nonholonomic): constant rates, circular path, energy",
+            run: rolling_disk::run,
+        },
+        Example {
+            name: "heavy_top",
+            about: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
+            run: heavy_top::run,
+        },
+    ]
 }
 
 /// Runs one example and prints its check lines; exits non-zero if a check fails (for `examples/*.rs`).
