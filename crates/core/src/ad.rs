@@ -13,8 +13,12 @@
 //! everything on the stack), W = 8 with ⌈n/8⌉ chunks beyond. Models of any size therefore use `Copy`
 //! duals and no allocation per arithmetic operation.
 
+mod jet;
+
+pub use jet::{LagrangeJet, LagrangeJet64, Part};
+
 use crate::Scalar;
-use nalgebra::{Const, DMatrix, SVector, U1};
+use nalgebra::{Const, DMatrix, SMatrix, SVector, U1};
 use num_dual::{Derivative, Dual2Vec, Dual64, DualNum, DualVec, HyperDualVec};
 
 /// A scalar function f(t, x, y), generic over the scalar type: the shape shared by Lagrangians
@@ -306,6 +310,56 @@ fn directional_gradient_w<F: Field, const W: usize>(
                 g[c0 + j] = e[(0, j)];
             }
         }
+    }
+}
+
+/// Everything Lagrange's equations need from f(t, x, y) at one point, from one evaluation with a
+/// [`LagrangeJet`]: f, ∇_x f, ∇_y f, the mixed term ∇_y(∂_t f + ∇_x f·y) and the Hessian ∂²f/∂y².
+///
+/// For a Lagrangian (x = q, y = q̇) these are L, ∂L/∂q, the momenta p, the term
+/// (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t of Lagrange's equations and the mass matrix M.
+#[derive(Debug, Clone, Copy)]
+pub struct LagrangeTerms<const N: usize> {
+    /// f.
+    pub value: f64,
+    /// ∇_x f (∂L/∂q).
+    pub grad_x: SVector<f64, N>,
+    /// ∇_y f (the momenta ∂L/∂q̇).
+    pub grad_y: SVector<f64, N>,
+    /// ∇_y(∂_t f + ∇_x f·y): (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
+    pub mixed: SVector<f64, N>,
+    /// ∂²f/∂y² (the mass matrix ∂²L/∂q̇²).
+    pub hess_yy: SMatrix<f64, N, N>,
+}
+
+/// [`LagrangeTerms`] of f at (t, x, y) by one evaluation of f with a [`LagrangeJet64<N>`] seeded at
+/// (t + s, x + s·y + δx, y + δy): no heap allocation, every transcendental function evaluated once.
+#[inline]
+pub fn lagrange_terms<F: Field, const N: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64; N],
+    y: &[f64; N],
+) -> LagrangeTerms<N> {
+    type J<const N: usize> = LagrangeJet64<N>;
+    let unit = |i: usize| {
+        let mut e = SMatrix::<f64, 1, N>::zeros();
+        e[i] = 1.0;
+        Part::some(e)
+    };
+    let xs: [J<N>; N] =
+        std::array::from_fn(|i| J::new(x[i], unit(i), y[i], Part::none(), Part::none(), Part::none()));
+    let ys: [J<N>; N] =
+        std::array::from_fn(|i| J::new(y[i], Part::none(), 0.0, unit(i), Part::none(), Part::none()));
+    let tt = J::new(t, Part::none(), 1.0, Part::none(), Part::none(), Part::none());
+    let r = f.eval(tt, &xs, &ys);
+    let row = |p: Part<f64, f64, U1, Const<N>>| p.0.map_or_else(SVector::zeros, |m| m.transpose());
+    LagrangeTerms {
+        value: r.re,
+        grad_x: row(r.gx),
+        grad_y: row(r.gw),
+        mixed: row(r.hsw),
+        hess_yy: r.hww.0.unwrap_or_else(SMatrix::zeros),
     }
 }
 

@@ -16,7 +16,7 @@ use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len};
 use crate::newton::{DenseProblem, Newton};
 use crate::{Error, Lagrangian, Result, Scalar};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::OnceLock;
 
 /// A Lagrangian seen as the AD field f(t, x = q, y = q̇).
@@ -27,6 +27,28 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
     fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D]) -> D {
         self.0.lagrangian(t, x, y)
     }
+}
+
+/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: Cholesky with the same
+/// relative-pivot test as [`MassFactor::new`]; an indefinite or non-finite M goes through
+/// [`MassFactor`] (LU, or the error it reports).
+#[inline]
+fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
+    if let Some(ch) = m.cholesky() {
+        let d = ch.l_dirty().diagonal();
+        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+            (lo.min(v * v), hi.max(v * v))
+        });
+        if lo / hi < SINGULAR_PIVOT || !(hi.is_finite()) {
+            // Report through the general path (same tests, same error values).
+            MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)?;
+            return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
+        }
+        ch.solve_mut(b);
+        return Ok(());
+    }
+    MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)?.solve_in_place(b.as_mut_slice());
+    Ok(())
 }
 
 /// A factored mass matrix.
@@ -175,9 +197,58 @@ impl<L: Lagrangian> EulerLagrange<L> {
     }
 
     /// Accelerations q̈ = M⁻¹ (∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q), written into `a`.
+    ///
+    /// Up to [`ad::MAX_FIXED`] degrees of freedom everything comes from one evaluation of L with a
+    /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack (no heap allocation); larger
+    /// systems use the chunked gradient, directional-derivative and Hessian kernels.
     pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         self.check(t, q, v)?;
         check_len("q̈ (output)", a, self.dof())?;
+        match self.dof() {
+            0 => Ok(()),
+            1 => self.accelerations_fixed::<1>(t, q, v, a),
+            2 => self.accelerations_fixed::<2>(t, q, v, a),
+            3 => self.accelerations_fixed::<3>(t, q, v, a),
+            4 => self.accelerations_fixed::<4>(t, q, v, a),
+            5 => self.accelerations_fixed::<5>(t, q, v, a),
+            6 => self.accelerations_fixed::<6>(t, q, v, a),
+            7 => self.accelerations_fixed::<7>(t, q, v, a),
+            8 => self.accelerations_fixed::<8>(t, q, v, a),
+            9 => self.accelerations_fixed::<9>(t, q, v, a),
+            10 => self.accelerations_fixed::<10>(t, q, v, a),
+            11 => self.accelerations_fixed::<11>(t, q, v, a),
+            12 => self.accelerations_fixed::<12>(t, q, v, a),
+            _ => self.accelerations_chunked(t, q, v, a),
+        }
+    }
+
+    /// The static path: one jet evaluation, stack Cholesky.
+    #[inline]
+    fn accelerations_fixed<const N: usize>(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
+        let (Ok(qn), Ok(vn)) = (<&[f64; N]>::try_from(q), <&[f64; N]>::try_from(v)) else {
+            unreachable!("lengths checked by the caller")
+        };
+        let terms = ad::lagrange_terms(&LagrangianField(&self.lagrangian), t, qn, vn);
+        let mut b = terms.grad_x - terms.mixed;
+        if self.lagrangian.has_generalized_force() {
+            let mut qf = [0.0; N];
+            self.lagrangian.generalized_force(t, q, v, &mut qf);
+            b += SVector::from(qf);
+        }
+        if self.lagrangian.constant_mass_matrix() {
+            self.constant_factor(t, q, v)?.solve_in_place(b.as_mut_slice());
+        } else {
+            solve_mass_fixed(terms.hess_yy, &mut b, t)?;
+        }
+        if b.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        a.copy_from_slice(b.as_slice());
+        Ok(())
+    }
+
+    /// The run-time-sized path: gradient, one directional derivative and the Hessian in q̇, by chunks.
+    fn accelerations_chunked(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         let f = LagrangianField(&self.lagrangian);
         let n = self.dof();
         ad::gradient(&f, t, q, v, Block::X, a);
@@ -225,7 +296,8 @@ impl<L: Lagrangian> EulerLagrange<L> {
     }
 
     /// Inverse Legendre map: the velocities q̇ with ∂L/∂q̇(t, q, q̇) = p, by Newton's method with the
-    /// mass matrix as Jacobian, started from q̇ = M(t, q, 0)⁻¹ p (exact when L is quadratic in q̇).
+    /// mass matrix as Jacobian, started from q̇ = M(t, q, 0)⁻¹ p (exact when L is quadratic in q̇),
+    /// halved toward 0 while the momenta there are not finite (a start outside the model's domain).
     pub fn velocities(&self, t: f64, q: &[f64], p: &[f64]) -> Result<DVector<f64>> {
         let n = self.dof();
         check_len("p", p, n)?;
@@ -233,6 +305,15 @@ impl<L: Lagrangian> EulerLagrange<L> {
         let zero = vec![0.0; n];
         let mut v0 = p.to_vec();
         self.solve_mass(t, q, &zero, &mut v0)?;
+        // Pull the start back into the model's domain if it lies outside (p/m may exceed c).
+        let mut r = vec![0.0; n];
+        for _ in 0..60 {
+            self.momenta(t, q, &v0, &mut r)?;
+            if r.iter().all(|x| x.is_finite()) {
+                break;
+            }
+            v0.iter_mut().for_each(|x| *x *= 0.5);
+        }
         struct InverseLegendre<'a, L> {
             el: &'a EulerLagrange<L>,
             t: f64,

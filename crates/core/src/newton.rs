@@ -183,7 +183,19 @@ impl Newton {
             }
             info.iterations += 1;
             sys.residual(x, &mut r)?;
-            let new_norm = max_norm(&r);
+            let mut new_norm = max_norm(&r);
+            // A step that leaves the model's domain (non-finite residual, e.g. a speed above c in a
+            // relativistic Lagrangian) is halved back toward the last iterate.
+            let mut halvings = 0;
+            while !new_norm.is_finite() && halvings < 40 {
+                halvings += 1;
+                for (xi, di) in x.iter_mut().zip(dx.iter_mut()) {
+                    *di *= 0.5;
+                    *xi += *di;
+                }
+                sys.residual(x, &mut r)?;
+                new_norm = max_norm(&r);
+            }
             // Keep the factor only while it contracts the residual well.
             fresh = new_norm <= self.contraction * rnorm;
             rnorm = new_norm;

@@ -1,0 +1,348 @@
+//! A dual number that carries, in one evaluation of L(t, q, q̇), every derivative Lagrange's equations
+//! need — and nothing else.
+//!
+//! L is evaluated at (t + s, q + s·q̇ + x, q̇ + w) around s = 0, x = 0, w = 0, truncated to
+//!
+//! ```text
+//! L + ∇ₓL·x + ∂ₛL s + ∇_wL·w + s (∂²L/∂s∂w)·w + ½ wᵀ (∂²L/∂w²) w
+//! ```
+//!
+//! so that one evaluation yields ∂L/∂q (`gx`), the momenta ∂L/∂q̇ (`gw`), the mixed term
+//! (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (`hsw`, a Hessian-vector product) and the mass matrix ∂²L/∂q̇² (`hww`).
+//! Compared with three separate evaluations (gradient, directional derivative, Hessian), every
+//! transcendental function of the model is computed once, and the second-order parts exist only
+//! where the model needs them: each part is `None` until an operation makes it non-zero (a function
+//! of q alone never carries a w-part, a term linear in q̇ never carries a Hessian).
+//!
+//! The number-type boilerplate (conversions, assignment operators, `DualNum` and its elementary
+//! functions) comes from num-dual's exported macros; the product, quotient and chain rules are
+//! written here as fused loops.
+
+use crate::Scalar;
+use nalgebra::allocator::Allocator;
+use nalgebra::{DefaultAllocator, Dim, OMatrix, U1};
+use num_dual::{chain_rule, first, second, third, zeroth};
+use num_dual::{
+    forward_binop, impl_add_sub_rem, impl_assign_ops, impl_comparisons, impl_derivatives, impl_dual,
+    impl_dual_struct, impl_float_const, impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_neg,
+    impl_num, impl_scalar_op, impl_second_derivatives, impl_signed, impl_zero_one,
+};
+use num_dual::{DualNum, DualNumFloat, DualStruct};
+use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
+use std::fmt;
+use std::iter::{Product, Sum};
+use std::marker::PhantomData;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
+
+/// One derivative part of a [`LagrangeJet`]: `None` means identically zero (and costs nothing).
+#[derive(Clone, Debug)]
+pub struct Part<T: DualNum<F>, F, R: Dim, C: Dim>(pub Option<OMatrix<T, R, C>>, PhantomData<F>)
+where
+    DefaultAllocator: Allocator<R, C>;
+
+impl<T: DualNum<F> + Copy, F: Copy, const R: usize, const C: usize> Copy
+    for Part<T, F, nalgebra::Const<R>, nalgebra::Const<C>>
+{
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    /// A part that is identically zero.
+    #[inline]
+    pub fn none() -> Self {
+        Part(None, PhantomData)
+    }
+
+    /// A non-zero part.
+    #[inline]
+    pub fn some(m: OMatrix<T, R, C>) -> Self {
+        Part(Some(m), PhantomData)
+    }
+
+    /// `α x + β y` (either may be absent).
+    #[inline]
+    fn lin(x: &Self, alpha: &T, y: &Self, beta: &T) -> Self {
+        match (&x.0, &y.0) {
+            (Some(a), Some(b)) => Part::some(a.zip_map(b, |ai, bi| ai * alpha.clone() + bi * beta.clone())),
+            (Some(a), None) => Part::some(a.map(|ai| ai * alpha.clone())),
+            (None, Some(b)) => Part::some(b.map(|bi| bi * beta.clone())),
+            (None, None) => Part::none(),
+        }
+    }
+
+    /// `α x`.
+    #[inline]
+    fn scale(x: &Self, alpha: &T) -> Self {
+        Part(x.0.as_ref().map(|a| a.map(|ai| ai * alpha.clone())), PhantomData)
+    }
+
+    /// `self += α x`.
+    #[inline]
+    fn axpy(&mut self, alpha: &T, x: &Self) {
+        if let Some(b) = &x.0 {
+            match &mut self.0 {
+                Some(a) => a.zip_apply(b, |ai, bi| *ai += bi * alpha.clone()),
+                None => self.0 = Some(b.map(|bi| bi * alpha.clone())),
+            }
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, C: Dim> Part<T, F, C, C>
+where
+    DefaultAllocator: Allocator<C, C> + Allocator<U1, C>,
+{
+    /// `self += α (u vᵀ + v uᵀ)` for row vectors u, v (`v = u` gives 2α u uᵀ).
+    #[inline]
+    fn sym_outer(&mut self, alpha: &T, u: &Part<T, F, U1, C>, v: &Part<T, F, U1, C>) {
+        let (Some(u), Some(v)) = (&u.0, &v.0) else {
+            return;
+        };
+        let (n, c) = (u.ncols(), u.shape_generic().1);
+        let m = self.0.get_or_insert_with(|| OMatrix::zeros_generic(c, c));
+        let (u, v) = (u.as_slice(), v.as_slice());
+        let m = m.as_mut_slice();
+        for j in 0..n {
+            let (uj, vj) = (u[j].clone() * alpha.clone(), v[j].clone() * alpha.clone());
+            let col = &mut m[j * n..(j + 1) * n];
+            for i in 0..n {
+                col[i] += u[i].clone() * vj.clone() + v[i].clone() * uj.clone();
+            }
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Add<&Part<T, F, R, C>> for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    type Output = Self;
+    #[inline]
+    fn add(mut self, rhs: &Self) -> Self {
+        self.axpy(&T::one(), rhs);
+        self
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Sub<&Part<T, F, R, C>> for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    type Output = Self;
+    #[inline]
+    fn sub(mut self, rhs: &Self) -> Self {
+        self.axpy(&-T::one(), rhs);
+        self
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> AddAssign for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    #[inline]
+    fn add_assign(&mut self, rhs: Self) {
+        match (&mut self.0, rhs.0) {
+            (Some(a), Some(b)) => *a += b,
+            (None, b) => self.0 = b,
+            (_, None) => {}
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> SubAssign for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    #[inline]
+    fn sub_assign(&mut self, rhs: Self) {
+        match (&mut self.0, rhs.0) {
+            (Some(a), Some(b)) => *a -= b,
+            (None, Some(b)) => self.0 = Some(-b),
+            (_, None) => {}
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Neg for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Part(self.0.map(|a| -a), PhantomData)
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> MulAssign<T> for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    #[inline]
+    fn mul_assign(&mut self, rhs: T) {
+        if let Some(a) = &mut self.0 {
+            a.apply(|ai| *ai *= rhs.clone());
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim> DivAssign<T> for Part<T, F, R, C>
+where
+    DefaultAllocator: Allocator<R, C>,
+{
+    #[inline]
+    fn div_assign(&mut self, rhs: T) {
+        if let Some(a) = &mut self.0 {
+            a.apply(|ai| *ai /= rhs.clone());
+        }
+    }
+}
+
+/// The Lagrange jet: value, ∂/∂x (first order), ∂/∂s, ∂/∂w, ∂²/∂s∂w and ∂²/∂w² of a scalar (see the
+/// module documentation). `D` is the number of degrees of freedom.
+#[derive(Clone, Debug)]
+pub struct LagrangeJet<T: DualNum<F>, F, D: Dim>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    /// Value.
+    pub re: T,
+    /// ∂/∂x: the gradient in q (first order only).
+    pub gx: Part<T, F, U1, D>,
+    /// ∂/∂s: the derivative along the flow direction (δt, δq) = (1, q̇).
+    pub gs: T,
+    /// ∂/∂w: the gradient in q̇.
+    pub gw: Part<T, F, U1, D>,
+    /// ∂²/∂s∂w: the mixed term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
+    pub hsw: Part<T, F, U1, D>,
+    /// ∂²/∂w²: the Hessian in q̇ (the mass matrix).
+    pub hww: Part<T, F, D, D>,
+    f: PhantomData<F>,
+}
+
+impl<T: DualNum<F> + Copy, F: Copy, const N: usize> Copy for LagrangeJet<T, F, nalgebra::Const<N>> {}
+
+/// The jet over f64 with `N` degrees of freedom.
+pub type LagrangeJet64<const N: usize> = LagrangeJet<f64, f64, nalgebra::Const<N>>;
+
+impl<T: DualNum<F>, F, D: Dim> LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    /// A jet from its parts.
+    #[inline]
+    pub fn new(
+        re: T,
+        gx: Part<T, F, U1, D>,
+        gs: T,
+        gw: Part<T, F, U1, D>,
+        hsw: Part<T, F, U1, D>,
+        hww: Part<T, F, D, D>,
+    ) -> Self {
+        LagrangeJet {
+            re,
+            gx,
+            gs,
+            gw,
+            hsw,
+            hww,
+            f: PhantomData,
+        }
+    }
+
+    /// A constant.
+    #[inline]
+    pub fn from_re(re: T) -> Self {
+        Self::new(
+            re,
+            Part::none(),
+            T::zero(),
+            Part::none(),
+            Part::none(),
+            Part::none(),
+        )
+    }
+}
+
+impl<T: DualNum<F>, F: Float, D: Dim> LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    /// g(a) from g(a.re), g'(a.re), g''(a.re).
+    #[inline]
+    fn chain_rule(&self, f0: T, f1: T, f2: T) -> Self {
+        let mut hsw = Part::scale(&self.hsw, &f1);
+        hsw.axpy(&(f2.clone() * self.gs.clone()), &self.gw);
+        let mut hww = Part::scale(&self.hww, &f1);
+        hww.sym_outer(&(f2 * F::from(0.5).unwrap()), &self.gw, &self.gw);
+        Self::new(
+            f0,
+            Part::scale(&self.gx, &f1),
+            self.gs.clone() * f1.clone(),
+            Part::scale(&self.gw, &f1),
+            hsw,
+            hww,
+        )
+    }
+}
+
+impl<T: DualNum<F>, F: Float, D: Dim> Mul<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = LagrangeJet<T, F, D>;
+    /// Product rule, second-order terms only between s and w.
+    #[inline]
+    fn mul(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        let (a, b) = (self, o);
+        let mut hsw = Part::lin(&a.hsw, &b.re, &b.hsw, &a.re);
+        hsw.axpy(&a.gs, &b.gw);
+        hsw.axpy(&b.gs, &a.gw);
+        let mut hww = Part::lin(&a.hww, &b.re, &b.hww, &a.re);
+        hww.sym_outer(&T::one(), &a.gw, &b.gw);
+        LagrangeJet::new(
+            a.re.clone() * b.re.clone(),
+            Part::lin(&a.gx, &b.re, &b.gx, &a.re),
+            a.gs.clone() * b.re.clone() + b.gs.clone() * a.re.clone(),
+            Part::lin(&a.gw, &b.re, &b.gw, &a.re),
+            hsw,
+            hww,
+        )
+    }
+}
+
+impl<T: DualNum<F>, F: Float, D: Dim> Div<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = LagrangeJet<T, F, D>;
+    /// a / b = a · (1/b), with 1/b by the chain rule.
+    #[inline]
+    fn div(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        let rec = o.re.recip();
+        let f1 = -rec.clone() * rec.clone();
+        let f2 = f1.clone() * rec.clone() * F::from(-2.0).unwrap();
+        self * &o.chain_rule(rec, f1, f2)
+    }
+}
+
+impl<T: DualNum<F>, F: fmt::Display, D: Dim> fmt::Display for LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        write!(f, "{} + {}ε_s + …", self.re, self.gs)
+    }
+}
+
+impl_second_derivatives!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_dual!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+
+// Compile-time check that the jet is a `Scalar` (a model can be evaluated with it).
+const _: fn() = || {
+    fn is_scalar<S: Scalar>() {}
+    is_scalar::<LagrangeJet64<3>>();
+};

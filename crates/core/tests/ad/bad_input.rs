@@ -1,0 +1,140 @@
+//! Degenerate Lagrangians, wrong dimensions and non-finite input give their errors, never a panic or
+//! a NaN state.
+
+use crate::systems::{Chain, DoublePendulum};
+use noether_core::{Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Scalar};
+
+/// L = q̇₁ q₂ − ½ (q₁² + q₂²): linear in q̇, M = 0 (a first-order, degenerate Lagrangian).
+struct LinearInVelocity;
+impl Lagrangian for LinearInVelocity {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        v[0] * q[1] - (q[0] * q[0] + q[1] * q[1]) * 0.5
+    }
+}
+
+/// L = ½ (q̇₁ + q̇₂)² − ½ q₁²: M = [[1, 1], [1, 1]], rank one (a gauge-like redundancy).
+struct RankDeficient;
+impl Lagrangian for RankDeficient {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let s = v[0] + v[1];
+        s * s * 0.5 - q[0] * q[0] * 0.5
+    }
+}
+
+/// 14 coordinates where the last velocity does not appear: M singular on the chunked path.
+struct Degenerate14;
+impl Lagrangian for Degenerate14 {
+    fn dof(&self) -> usize {
+        14
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        (0..13).fold(D::zero(), |acc, i| acc + v[i] * v[i] * 0.5 - q[i] * q[i] * 0.5) + q[13] * v[0]
+    }
+}
+
+fn singular<T: std::fmt::Debug>(r: noether_core::Result<T>) {
+    assert!(
+        matches!(r, Err(Error::SingularMassMatrix { .. })),
+        "expected SingularMassMatrix, got {r:?}"
+    );
+}
+
+#[test]
+fn bad_input_singular_mass_matrix_linear_in_velocity() {
+    let el = EulerLagrange::new(LinearInVelocity);
+    let mut a = [0.0; 2];
+    singular(el.accelerations(0.0, &[0.3, 0.4], &[0.1, 0.2], &mut a));
+    singular(el.mass_factor(0.0, &[0.3, 0.4], &[0.1, 0.2]));
+    singular(el.velocities(0.0, &[0.3, 0.4], &[1.0, 2.0]));
+    assert_eq!(a, [0.0; 2], "no NaN written on error");
+}
+
+#[test]
+fn bad_input_singular_mass_matrix_rank_deficient() {
+    let el = EulerLagrange::new(RankDeficient);
+    let mut a = [0.0; 2];
+    singular(el.accelerations(0.0, &[0.3, 0.4], &[0.1, 0.2], &mut a));
+    singular(el.velocities(0.0, &[0.3, 0.4], &[1.0, 2.0]));
+}
+
+#[test]
+fn bad_input_singular_mass_matrix_chunked_path() {
+    let el = EulerLagrange::new(Degenerate14);
+    let mut a = [0.0; 14];
+    singular(el.accelerations(0.0, &[0.1; 14], &[0.2; 14], &mut a));
+}
+
+#[test]
+fn bad_input_wrong_dimensions() {
+    let el = EulerLagrange::new(DoublePendulum::default());
+    let mut a2 = [0.0; 2];
+    let mut a3 = [0.0; 3];
+    let dim = |r: noether_core::Result<()>| assert!(matches!(r, Err(Error::Dimension { .. })), "{r:?}");
+    dim(el.accelerations(0.0, &[0.1], &[0.1, 0.2], &mut a2));
+    dim(el.accelerations(0.0, &[0.1, 0.2], &[0.1, 0.2, 0.3], &mut a2));
+    dim(el.accelerations(0.0, &[0.1, 0.2], &[0.1, 0.2], &mut a3));
+    dim(el.momenta(0.0, &[0.1, 0.2], &[0.1, 0.2], &mut a3));
+    dim(el.energy(0.0, &[0.1, 0.2, 0.3], &[0.1, 0.2]).map(|_| ()));
+    dim(el.mass_matrix(0.0, &[0.1], &[0.1, 0.2]).map(|_| ()));
+    dim(el.velocities(0.0, &[0.1, 0.2], &[1.0]).map(|_| ()));
+
+    let chain = EulerLagrange::new(Chain::<15>::default());
+    let mut a = [0.0; 15];
+    dim(chain.accelerations(0.0, &[0.1; 14], &[0.1; 15], &mut a));
+
+    let h = HamiltonEquations::new(Spring);
+    let (mut dq, mut dp) = ([0.0; 1], [0.0; 2]);
+    dim(h.rates(0.0, &[0.1], &[0.2], &mut dq, &mut dp));
+    dim(h.rates(0.0, &[0.1, 0.2], &[0.2], &mut dq, &mut [0.0]));
+}
+
+/// H = ½ p² + ½ q².
+struct Spring;
+impl Hamiltonian for Spring {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+        (p[0] * p[0] + q[0] * q[0]) * 0.5
+    }
+}
+
+#[test]
+fn bad_input_non_finite_state() {
+    let el = EulerLagrange::new(DoublePendulum::default());
+    let mut a = [0.0; 2];
+    let nf = |r: noether_core::Result<()>| assert!(matches!(r, Err(Error::NonFinite { .. })), "{r:?}");
+    nf(el.accelerations(f64::NAN, &[0.1, 0.2], &[0.1, 0.2], &mut a));
+    nf(el.accelerations(0.0, &[0.1, f64::NAN], &[0.1, 0.2], &mut a));
+    nf(el.accelerations(0.0, &[0.1, 0.2], &[f64::INFINITY, 0.2], &mut a));
+    nf(el.momenta(0.0, &[0.1, 0.2], &[f64::NAN, 0.2], &mut a));
+    nf(el.energy(0.0, &[f64::NEG_INFINITY, 0.2], &[0.1, 0.2]).map(|_| ()));
+    nf(el.velocities(0.0, &[0.1, 0.2], &[f64::NAN, 0.2]).map(|_| ()));
+    assert_eq!(a, [0.0; 2], "no NaN written on error");
+
+    let h = HamiltonEquations::new(Spring);
+    let (mut dq, mut dp) = ([0.0], [0.0]);
+    nf(h.rates(0.0, &[f64::NAN], &[0.2], &mut dq, &mut dp));
+    nf(h.rates(0.0, &[0.1], &[f64::INFINITY], &mut dq, &mut dp));
+}
+
+#[test]
+fn bad_input_model_returns_nan() {
+    // The relativistic L at |v| > c takes the square root of a negative number: the model itself
+    // produces NaN, which must come back as an error, not as NaN accelerations.
+    let el = EulerLagrange::new(crate::legendre::Relativistic {
+        m: 1.0,
+        c: 1.0,
+        k: 1.0,
+    });
+    let mut a = [0.0; 3];
+    let r = el.accelerations(0.0, &[0.1, 0.2, 0.3], &[1.5, 0.0, 0.0], &mut a);
+    assert!(matches!(r, Err(Error::NonFiniteState { .. })), "{r:?}");
+    assert_eq!(a, [0.0; 3]);
+}
