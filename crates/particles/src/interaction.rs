@@ -117,27 +117,25 @@ impl<A: Interaction, B: Interaction> Interaction for (A, B) {
 }
 
 /// Evaluates `eval` on every term and applies the result with `apply`, serially or on rayon's pool,
-/// with bit-identical results (see the module docs). Returns the sum of the energies.
-pub(crate) fn run_terms<T: Sync>(
+/// with bit-identical results (see the module docs); the value is the sum of the energies. A macro, so
+/// that each path gets its own copy of the closure (a closure with two call sites is not inlined).
+macro_rules! run_terms {
+    ($terms:expr, $eval:expr, $apply:expr, $parallel:expr, $scratch:expr $(,)?) => {
+        if $parallel {
+            $crate::interaction::run_parallel($terms, $eval, $apply, $scratch)
+        } else {
+            $crate::interaction::run_serial($terms, $eval, $apply)
+        }
+    };
+}
+
+/// The parallel path of `run_terms!`: fixed chunks evaluated on the pool, then applied in order.
+pub(crate) fn run_parallel<T: Sync>(
     terms: &[T],
     eval: impl Fn(&T) -> (f64, Vec3) + Sync,
     mut apply: impl FnMut(&T, Vec3),
-    parallel: bool,
     scratch: &Mutex<Vec<Vec3>>,
 ) -> f64 {
-    if !parallel {
-        let mut total = 0.0;
-        for chunk in terms.chunks(CHUNK) {
-            let mut e = 0.0;
-            for t in chunk {
-                let (u, g) = eval(t);
-                e += u;
-                apply(t, g);
-            }
-            total += e;
-        }
-        return total;
-    }
     let mut buf = scratch.lock().unwrap_or_else(|e| e.into_inner());
     buf.resize(terms.len(), [0.0; 3]);
     let energies: Vec<f64> = buf
@@ -157,6 +155,22 @@ pub(crate) fn run_terms<T: Sync>(
         apply(t, *g);
     }
     energies.iter().fold(0.0, |a, e| a + e)
+}
+
+/// The serial path of `run_terms!`: chunk energies summed in the same order as the parallel path.
+#[inline(always)]
+pub(crate) fn run_serial<T>(terms: &[T], eval: impl Fn(&T) -> (f64, Vec3), mut apply: impl FnMut(&T, Vec3)) -> f64 {
+    let mut total = 0.0;
+    for chunk in terms.chunks(CHUNK) {
+        let mut e = 0.0;
+        for t in chunk {
+            let (u, g) = eval(t);
+            e += u;
+            apply(t, g);
+        }
+        total += e;
+    }
+    total
 }
 
 /// Appends the blocks of a pair term: (i,i) and (j,j) get +H, (i,j) and (j,i) get −H.
@@ -258,7 +272,7 @@ impl<P: PairPotential> Interaction for Internal<P> {
         })
     }
     fn add_forces(&self, _t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
-        run_terms(
+        run_terms!(
             &self.pairs,
             |&[i, j]| {
                 let (i, j) = (i as usize, j as usize);
@@ -339,7 +353,7 @@ impl<P: OnePotential> Interaction for External<P> {
         })
     }
     fn add_forces(&self, t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
-        run_terms(
+        run_terms!(
             &self.indices,
             |&i| one_gradient(&self.potential, t, get3(x, i as usize), &ps[i as usize]),
             |&i, g| sub3(f, i as usize, g),

@@ -28,7 +28,12 @@ pub struct Gravity {
 impl PairPotential for Gravity {
     #[inline(always)]
     fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        r2(&r).sqrt().recip() * (-self.g * p1.mass * p2.mass)
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, p1: &Particle, p2: &Particle) -> D {
+        s.sqrt().recip() * (-self.g * p1.mass * p2.mass)
     }
 }
 
@@ -42,7 +47,12 @@ pub struct Coulomb {
 impl PairPotential for Coulomb {
     #[inline(always)]
     fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        r2(&r).sqrt().recip() * (self.k * p1.charge * p2.charge)
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, p1: &Particle, p2: &Particle) -> D {
+        s.sqrt().recip() * (self.k * p1.charge * p2.charge)
     }
 }
 
@@ -55,8 +65,13 @@ pub struct ConstantRepulsion {
 
 impl PairPotential for ConstantRepulsion {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
-        r2(&r).sqrt() * (-self.f)
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
+        s.sqrt() * (-self.f)
     }
 }
 
@@ -71,8 +86,12 @@ pub struct Spring {
 
 impl PairPotential for Spring {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
-        let s = r2(&r);
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
         if self.re == 0.0 {
             s * (0.5 * self.k)
         } else {
@@ -94,8 +113,12 @@ pub struct Billiard {
 
 impl PairPotential for Billiard {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
-        let s = r2(&r);
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
         if s.re() >= self.re * self.re {
             D::zero()
         } else {
@@ -145,8 +168,12 @@ impl LennardJones {
 
 impl PairPotential for LennardJones {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
-        let s = r2(&r);
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
         if let Some(rc) = self.rc {
             if s.re() >= rc * rc {
                 return D::zero();
@@ -171,8 +198,13 @@ pub struct GaussianCoupling {
 
 impl PairPotential for GaussianCoupling {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], _: &Particle, _: &Particle) -> D {
-        (r2(&r) * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2
+    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+        self.radial(r2(&r), p1, p2)
+    }
+    const RADIAL: bool = true;
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
+        (s * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2
     }
 }
 

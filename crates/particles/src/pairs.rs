@@ -133,7 +133,8 @@ impl CellList {
                 hi[k] = hi[k].max(p[k]);
             }
         }
-        if n == 0 {
+        if n == 0 || lo.iter().chain(&hi).any(|c| !c.is_finite()) {
+            // Nothing to grid, or non-finite positions (reported by the caller after the evaluation).
             lo = [0.0; 3];
             hi = [0.0; 3];
         }

@@ -29,7 +29,7 @@
 use crate::particle::{Particle, Vec3};
 use nalgebra::{Const, U1};
 use noether_core::Scalar;
-use num_dual::{Dual2SVec64, DualSVec64};
+use num_dual::{Dual2SVec64, Dual64, DualSVec64};
 
 /// A two-body potential energy U(r21; particle 1, particle 2), generic over the scalar.
 ///
@@ -38,6 +38,18 @@ use num_dual::{Dual2SVec64, DualSVec64};
 pub trait PairPotential: Sync + Send {
     /// U at separation `r` = r2 − r1.
     fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D;
+
+    /// `true` for a central potential U(|r21|): forces then come from one `Dual64` evaluation of
+    /// [`radial`](PairPotential::radial) in s = |r21|² (∇U = 2 U'(s) r21), the fast path.
+    const RADIAL: bool = false;
+
+    /// A central potential as a function of s = |r21|². The default evaluates
+    /// [`energy`](PairPotential::energy) at r21 = (√s, 0, 0); the ready-made laws write their physics
+    /// here once and let `energy` call it.
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, s: D, p1: &Particle, p2: &Particle) -> D {
+        self.energy([s.sqrt(), D::zero(), D::zero()], p1, p2)
+    }
 
     /// Distance beyond which U = 0 exactly (required by [`ShortRange`](crate::ShortRange)).
     fn cutoff(&self) -> Option<f64> {
@@ -78,7 +90,8 @@ pub trait TwoBodyForce: Sync + Send {
     fn force(&self, t: f64, by: Body<'_>, on: Body<'_>) -> Vec3;
 }
 
-/// U(r) and ∇_r U by one `DualSVec64<3>` evaluation. The force on particle 2 is −∇U, on particle 1 +∇U.
+/// U(r) and ∇_r U by one `DualSVec64<3>` evaluation (one `Dual64` evaluation in s = |r|² for
+/// [`RADIAL`](PairPotential::RADIAL) potentials). The force on particle 2 is −∇U, on particle 1 +∇U.
 #[inline(always)]
 pub fn pair_gradient<P: PairPotential + ?Sized>(
     pot: &P,
@@ -109,10 +122,15 @@ pub fn pair_hessian<P: PairPotential + ?Sized>(
 /// V(t, r) and ∇_r V by one `DualSVec64<3>` evaluation.
 #[inline(always)]
 pub fn one_gradient<P: OnePotential + ?Sized>(pot: &P, t: f64, r: Vec3, p: &Particle) -> (f64, Vec3) {
-    let s = |k: usize| DualSVec64::<3>::from_re(r[k]).derivative(k);
-    let u = pot.energy(t, [s(0), s(1), s(2)], p);
-    let g = u.eps.unwrap_generic(Const::<3>, U1);
-    (u.re, [g[0], g[1], g[2]])
+    let mut g = [0.0; 3];
+    let mut val = 0.0;
+    for (k, gk) in g.iter_mut().enumerate() {
+        let s = |i: usize| Dual64::new(r[i], if i == k { 1.0 } else { 0.0 });
+        let u = pot.energy(t, [s(0), s(1), s(2)], p);
+        val = u.re;
+        *gk = u.eps;
+    }
+    (val, g)
 }
 
 /// The 3×3 Hessian ∂²V/∂r∂r of a one-body potential.

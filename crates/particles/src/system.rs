@@ -163,7 +163,8 @@ impl<I: Interaction> System<I> {
     /// Writes the conservative forces F = −∇V into `f` (length 3N); returns V. Two particles at the
     /// same position under a singular potential give [`Error::Coincident`], not NaN.
     pub fn potential_forces(&self, t: f64, x: &[f64], f: &mut [f64]) -> Result<f64> {
-        self.check(x, None)?;
+        // Non-finite positions are caught after the evaluation (one pass over f instead of two).
+        check_len("positions", x, 3 * self.len())?;
         check_len("forces", f, x.len())?;
         f.iter_mut().for_each(|a| *a = 0.0);
         let v = self
@@ -175,19 +176,23 @@ impl<I: Interaction> System<I> {
 
     /// Writes the total forces (potential and non-potential) into `f`; returns V.
     pub fn forces(&self, t: f64, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<f64> {
-        self.check(x, Some(v))?;
+        check_len("velocities", v, 3 * self.len())?;
         let e = self.potential_forces(t, x, f)?;
         if self.interactions.has_nonpotential() {
             self.interactions.add_nonpotential(t, x, v, &self.particles, f);
-            self.finite_or_singular(t, x, f, e)?;
+            if !all_finite(f) {
+                check_finite("velocities", v)?;
+                self.finite_or_singular(t, x, f, e)?;
+            }
         }
         Ok(e)
     }
 
     fn finite_or_singular(&self, t: f64, x: &[f64], f: &[f64], v: f64) -> Result<()> {
-        if v.is_finite() && f.iter().all(|a| a.is_finite()) {
+        if v.is_finite() && all_finite(f) {
             return Ok(());
         }
+        check_finite("positions", x)?;
         Err(self
             .interactions
             .find_singular(t, x, &self.particles)
@@ -272,6 +277,19 @@ impl<I: Interaction> System<I> {
         self.interactions.add_hessian(t, x, &self.particles, &mut trip);
         Ok(SparseHessian::from_triplets(x.len(), trip))
     }
+}
+
+/// `true` when every entry is finite, branch-free in 8 lanes (x·0 is 0 for finite x, NaN otherwise).
+fn all_finite(f: &[f64]) -> bool {
+    let mut acc = [0.0_f64; 8];
+    let chunks = f.chunks_exact(8);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for k in 0..8 {
+            acc[k] += c[k] * 0.0;
+        }
+    }
+    acc.iter().chain(rest).all(|a| a.is_finite())
 }
 
 /// The system as a Lagrangian L = Σ ½ m |ẋ|² − V(t, x) with generalized forces Q = non-potential
