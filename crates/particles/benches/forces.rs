@@ -33,7 +33,14 @@ fn chain_system(n: usize) -> System<impl noether_particles::Interaction> {
         .unwrap()
         .with(Internal::chain(Spring { k: K, re: RE }, n))
         .unwrap()
-        .with(External::new(Trap { k2: K2, k4: K4, center: [0.0; 3] }, 0..n))
+        .with(External::new(
+            Trap {
+                k2: K2,
+                k4: K4,
+                center: [0.0; 3],
+            },
+            0..n,
+        ))
         .unwrap()
         .with_parallel(Parallel::Serial)
 }
@@ -44,7 +51,11 @@ fn chain_hand(x: &[f64], f: &mut [f64]) -> f64 {
     f.iter_mut().for_each(|a| *a = 0.0);
     let mut e = 0.0;
     for i in 1..n {
-        let r = [x[3 * i] - x[3 * i - 3], x[3 * i + 1] - x[3 * i - 2], x[3 * i + 2] - x[3 * i - 1]];
+        let r = [
+            x[3 * i] - x[3 * i - 3],
+            x[3 * i + 1] - x[3 * i - 2],
+            x[3 * i + 2] - x[3 * i - 1],
+        ];
         let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
         let s = K * (d - RE);
         e += 0.5 * s * (d - RE);
@@ -97,7 +108,11 @@ fn gravity_hand(x: &[f64], m: &[f64], f: &mut [f64]) -> f64 {
     let mut e = 0.0;
     for i in 0..n {
         for j in i + 1..n {
-            let r = [x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]];
+            let r = [
+                x[3 * j] - x[3 * i],
+                x[3 * j + 1] - x[3 * i + 1],
+                x[3 * j + 2] - x[3 * i + 2],
+            ];
             let d2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
             let d = d2.sqrt();
             let gm = m[i] * m[j];
@@ -116,7 +131,9 @@ fn gravity(c: &mut Criterion) {
     let mut g = c.benchmark_group("gravity_1000");
     g.sample_size(20).measurement_time(Duration::from_secs(3));
     let n = 1000;
-    let x: Vec<f64> = (0..3 * n).map(|k| ((k as f64) * 0.618_033_988_7).fract() * 10.0).collect();
+    let x: Vec<f64> = (0..3 * n)
+        .map(|k| ((k as f64) * 0.618_033_988_7).fract() * 10.0)
+        .collect();
     let m: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64 * 0.1).collect();
     let sys = System::new(m.iter().map(|&mi| Particle::new(mi)).collect())
         .unwrap()

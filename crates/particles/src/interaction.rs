@@ -46,6 +46,11 @@ pub trait Interaction: Sync + Send {
     /// Adds the conservative forces −∇V into `f` (length 3N); returns V.
     fn add_forces(&self, t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64;
 
+    /// `false` when a potential of the group depends on time explicitly.
+    fn autonomous(&self) -> bool {
+        true
+    }
+
     /// `true` when the group has forces that are not gradients of a potential.
     fn has_nonpotential(&self) -> bool {
         false
@@ -100,6 +105,9 @@ impl<A: Interaction, B: Interaction> Interaction for (A, B) {
     }
     fn has_nonpotential(&self) -> bool {
         self.0.has_nonpotential() || self.1.has_nonpotential()
+    }
+    fn autonomous(&self) -> bool {
+        self.0.autonomous() && self.1.autonomous()
     }
     fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
         self.0.add_nonpotential(t, x, v, ps, f);
@@ -159,7 +167,11 @@ pub(crate) fn run_parallel<T: Sync>(
 
 /// The serial path of `run_terms!`: chunk energies summed in the same order as the parallel path.
 #[inline(always)]
-pub(crate) fn run_serial<T>(terms: &[T], eval: impl Fn(&T) -> (f64, Vec3), mut apply: impl FnMut(&T, Vec3)) -> f64 {
+pub(crate) fn run_serial<T>(
+    terms: &[T],
+    eval: impl Fn(&T) -> (f64, Vec3),
+    mut apply: impl FnMut(&T, Vec3),
+) -> f64 {
     let mut total = 0.0;
     for chunk in terms.chunks(CHUNK) {
         let mut e = 0.0;
@@ -330,6 +342,9 @@ impl<P: OnePotential> External<P> {
 }
 
 impl<P: OnePotential> Interaction for External<P> {
+    fn autonomous(&self) -> bool {
+        !P::TIME_DEPENDENT
+    }
     fn validate(&self, n: usize) -> Result<()> {
         for (k, &i) in self.indices.iter().enumerate() {
             check_index(k, i as usize, n)?;

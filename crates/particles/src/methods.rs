@@ -1,22 +1,22 @@
-//! The seed's state updates (Euler, Euler-Cromer, RK4), symplectic velocity Verlet and Yoshida's
-//! 4th-order composition on the particle system, and the evolver (an iterator of states).
+//! The seed's state updates on a particle system and its evolver, through core's integrators.
 //!
-//! With a = F(t, x, v)/m:
+//! With a = F(t, x, v)/m (forces term by term, [`System`]'s [`Dynamics`](noether_core::Dynamics)):
 //! - Euler: x' = x + h v, v' = v + h a(x, v);
 //! - Euler-Cromer (semi-implicit): v' = v + h a(x, v), x' = x + h v';
-//! - RK4: core's classical Runge-Kutta on (x, v);
-//! - velocity Verlet (kick-drift-kick): v½ = v + (h/2) a(x), x' = x + h v½, v' = v½ + (h/2) a(x');
-//!   symplectic, order 2, one force evaluation per step (the last one is reused);
-//! - Yoshida 4: three Verlet steps of w₁h, w₀h, w₁h with w₁ = 1/(2 − 2^{1/3}), w₀ = 1 − 2w₁;
+//! - RK4: the classical Runge-Kutta method on (x, v);
+//! - velocity Verlet (Störmer-Verlet, kick-drift-kick): v½ = v + (h/2) a(x), x' = x + h v½,
+//!   v' = v½ + (h/2) a(x'); symplectic, order 2, one force evaluation per step;
+//! - Yoshida 4: the triple jump w₁, w₀, w₁ of Verlet steps, w₁ = 1/(2 − 2^{1/3}), w₀ = 1 − 2w₁;
 //!   symplectic, order 4.
 //!
-//! Every method leaves the state unchanged when a step fails.
+//! The symplectic methods use the system's [`SplitDynamics`] (kicks from the potential forces only):
+//! they refuse systems with non-potential forces or time-dependent potentials. Every method leaves the
+//! state unchanged when a step fails.
 
 use crate::error::{Error, Result};
 use crate::interaction::Interaction;
 use crate::system::System;
-use noether_core::error::check_step;
-use noether_core::integrators::Rk4;
+use noether_core::integrators::{Composition, Euler, EulerCromer, Rk4, SplitDynamics};
 use noether_core::{State, StepInfo, Stepper, Trajectory};
 
 /// A state-update method for particle systems.
@@ -43,157 +43,83 @@ impl Method {
             Method::Rk4 | Method::Yoshida4 => 4,
         }
     }
+}
 
-    fn name(self) -> &'static str {
-        match self {
-            Method::Euler => "Euler",
-            Method::EulerCromer => "Euler-Cromer",
-            Method::Rk4 => "RK4",
-            Method::VelocityVerlet => "velocity Verlet",
-            Method::Yoshida4 => "Yoshida 4",
-        }
-    }
+enum Inner<'a, I> {
+    Euler(Euler<&'a System<I>>),
+    EulerCromer(EulerCromer<&'a System<I>>),
+    Rk4(Rk4<&'a System<I>>),
+    Split(Composition<&'a System<I>>),
 }
 
 /// A [`Stepper`] for a particle system with one of the [`Method`]s (use it with core's [`Trajectory`]).
 pub struct ParticleStepper<'a, I> {
     sys: &'a System<I>,
-    method: Method,
-    rk4: Option<Rk4<&'a System<I>>>,
-    x: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    /// Positions at which `a` holds the accelerations (velocity Verlet reuses its last force).
-    a_at: Option<Vec<f64>>,
-    /// Number of force evaluations so far.
-    pub force_evaluations: usize,
+    inner: Inner<'a, I>,
 }
 
 impl<'a, I: Interaction> ParticleStepper<'a, I> {
     /// A stepper for `sys` with `method`.
     pub fn new(sys: &'a System<I>, method: Method) -> Self {
-        let n = 3 * sys.len();
-        ParticleStepper {
-            sys,
-            method,
-            rk4: (method == Method::Rk4).then(|| Rk4::new(sys)),
-            x: vec![0.0; n],
-            v: vec![0.0; n],
-            a: vec![0.0; n],
-            a_at: None,
-            force_evaluations: 0,
+        let inner = match method {
+            Method::Euler => Inner::Euler(Euler::new(sys)),
+            Method::EulerCromer => Inner::EulerCromer(EulerCromer::new(sys)),
+            Method::Rk4 => Inner::Rk4(Rk4::new(sys)),
+            Method::VelocityVerlet => Inner::Split(Composition::stormer_verlet(sys)),
+            Method::Yoshida4 => Inner::Split(Composition::yoshida4(sys)),
+        };
+        ParticleStepper { sys, inner }
+    }
+
+    fn stepper(&mut self) -> &mut dyn Stepper {
+        match &mut self.inner {
+            Inner::Euler(s) => s,
+            Inner::EulerCromer(s) => s,
+            Inner::Rk4(s) => s,
+            Inner::Split(s) => s,
         }
     }
 
-    /// One step with the crate's full error (core's [`Stepper::step`] converts it).
-    pub fn advance(&mut self, state: &mut State, h: f64) -> Result<()> {
-        check_step(h)?;
-        state.validate(3 * self.sys.len())?;
-        let t = state.t;
-        self.x.copy_from_slice(state.q.as_slice());
-        self.v.copy_from_slice(state.v.as_slice());
-        match self.method {
-            Method::Euler => {
-                self.sys.accelerations(t, &self.x, &self.v, &mut self.a)?;
-                self.force_evaluations += 1;
-                for k in 0..self.x.len() {
-                    self.x[k] += h * self.v[k];
-                    self.v[k] += h * self.a[k];
-                }
-            }
-            Method::EulerCromer => {
-                self.sys.accelerations(t, &self.x, &self.v, &mut self.a)?;
-                self.force_evaluations += 1;
-                for k in 0..self.x.len() {
-                    self.v[k] += h * self.a[k];
-                    self.x[k] += h * self.v[k];
-                }
-            }
-            Method::Rk4 => {
-                let rk = self.rk4.as_mut().expect("RK4 stepper built for Method::Rk4");
-                rk.step(state, h)?;
-                self.force_evaluations += 4;
-                return Ok(());
-            }
-            Method::VelocityVerlet => self.verlet(t, h)?,
-            Method::Yoshida4 => {
-                let c = 2f64.powf(1.0 / 3.0);
-                let w1 = 1.0 / (2.0 - c);
-                let w0 = 1.0 - 2.0 * w1;
-                self.verlet(t, w1 * h)?;
-                self.verlet(t + w1 * h, w0 * h)?;
-                self.verlet(t + (w1 + w0) * h, w1 * h)?;
-            }
+    fn stepper_ref(&self) -> &dyn Stepper {
+        match &self.inner {
+            Inner::Euler(s) => s,
+            Inner::EulerCromer(s) => s,
+            Inner::Rk4(s) => s,
+            Inner::Split(s) => s,
         }
-        if self.x.iter().chain(&self.v).any(|c| !c.is_finite()) {
-            return Err(noether_core::Error::NonFiniteState { step: 0, t }.into());
-        }
-        state.q.as_mut_slice().copy_from_slice(&self.x);
-        state.v.as_mut_slice().copy_from_slice(&self.v);
-        state.t = t + h;
-        Ok(())
-    }
-
-    /// One kick-drift-kick step on the working copies `x`, `v`.
-    fn verlet(&mut self, t: f64, h: f64) -> Result<()> {
-        if self.sys.has_nonpotential_forces() {
-            return Err(noether_core::Error::Unsupported(
-                "velocity Verlet/Yoshida need position-only potential forces; use RK4 with drag",
-            )
-            .into());
-        }
-        if self.a_at.as_deref() != Some(&self.x[..]) {
-            self.sys.potential_accelerations(t, &self.x, &mut self.a)?;
-            self.force_evaluations += 1;
-        }
-        for k in 0..self.x.len() {
-            self.v[k] += 0.5 * h * self.a[k];
-            self.x[k] += h * self.v[k];
-        }
-        let res = self.sys.potential_accelerations(t + h, &self.x, &mut self.a);
-        self.force_evaluations += 1;
-        if let Err(e) = res {
-            self.a_at = None;
-            return Err(e);
-        }
-        for k in 0..self.x.len() {
-            self.v[k] += 0.5 * h * self.a[k];
-        }
-        match &mut self.a_at {
-            Some(p) => p.copy_from_slice(&self.x),
-            None => self.a_at = Some(self.x.clone()),
-        }
-        Ok(())
     }
 }
 
 impl<I: Interaction> Stepper for ParticleStepper<'_, I> {
     fn step(&mut self, state: &mut State, h: f64) -> noether_core::Result<StepInfo> {
-        self.advance(state, h)?;
-        Ok(StepInfo::fixed(h))
+        if matches!(self.inner, Inner::Split(_)) {
+            self.sys.check_split()?;
+        }
+        self.stepper().step(state, h)
     }
     fn dof(&self) -> usize {
         3 * self.sys.len()
     }
     fn order(&self) -> u32 {
-        self.method.order()
+        self.stepper_ref().order()
     }
     fn name(&self) -> &'static str {
-        self.method.name()
+        self.stepper_ref().name()
     }
 }
 
 impl<I: Interaction> System<I> {
     /// Advances `state` by one step `h` of `method` (state unchanged on error).
     pub fn step(&self, method: Method, state: &mut State, h: f64) -> Result<()> {
-        ParticleStepper::new(self, method).advance(state, h)
+        ParticleStepper::new(self, method).step(state, h)?;
+        Ok(())
     }
 
     /// Takes `n` steps of `method`; returns the final state.
     pub fn run(&self, method: Method, mut state: State, h: f64, n: usize) -> Result<State> {
         let mut st = ParticleStepper::new(self, method);
         for _ in 0..n {
-            st.advance(&mut state, h)?;
+            st.step(&mut state, h)?;
         }
         Ok(state)
     }
@@ -206,5 +132,36 @@ impl<I: Interaction> System<I> {
         h: f64,
     ) -> Result<Trajectory<ParticleStepper<'_, I>>> {
         Trajectory::new(ParticleStepper::new(self, method), state, h).map_err(Error::from)
+    }
+
+    /// Symplectic (split) methods need potential forces that depend on positions only.
+    fn check_split(&self) -> noether_core::Result<()> {
+        if self.has_nonpotential_forces() {
+            return Err(noether_core::Error::Unsupported(
+                "symplectic split methods need potential forces only; use RK4 with drag or given forces",
+            ));
+        }
+        if !self.interactions().autonomous() {
+            return Err(noether_core::Error::Unsupported(
+                "symplectic split methods need time-independent potentials",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// q̇ = v (drift), v̇ = −M⁻¹∇V(x) (kick, term by term): core's Störmer-Verlet and compositions apply.
+impl<I: Interaction> SplitDynamics for System<I> {
+    fn drift_rate(&self, v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
+        dq.copy_from_slice(v);
+        Ok(())
+    }
+    fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> noether_core::Result<()> {
+        self.check_split()?;
+        self.potential_accelerations(0.0, q, dv)?;
+        Ok(())
+    }
+    fn drift_is_identity(&self) -> bool {
+        true
     }
 }

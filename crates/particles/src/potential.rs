@@ -60,6 +60,9 @@ pub trait PairPotential: Sync + Send {
 /// A one-body potential energy V(t, r; particle), generic over the scalar (uniform gravity, a trap,
 /// a spring to a fixed point).
 pub trait OnePotential: Sync + Send {
+    /// `true` when V depends on t explicitly (symplectic split methods then refuse the system).
+    const TIME_DEPENDENT: bool = false;
+
     /// V at time `t` and position `r` of a particle with parameters `p`.
     fn energy<D: Scalar>(&self, t: f64, r: [D; 3], p: &Particle) -> D;
 }

@@ -336,6 +336,10 @@ impl<I: Interaction> Dynamics for System<I> {
         dq.copy_from_slice(v);
         Ok(())
     }
+    fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
+        dq.copy_from_slice(v);
+        Ok(())
+    }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         self.check(q, Some(v))?;
         Ok(self.kinetic_energy(v) + self.interactions.energy(t, q, &self.particles))

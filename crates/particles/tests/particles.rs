@@ -480,9 +480,11 @@ fn bad_input_coincident_particles_reported_not_nan() {
     assert!(sys.step(Method::VelocityVerlet, &mut s, 0.1).is_err());
     assert_eq!(s, before);
     // Through core's Dynamics interface too.
-    let mut st = noether_particles::ParticleStepper::new(&sys, Method::Rk4);
-    assert!(noether_core::Stepper::step(&mut st, &mut s, 0.1).is_err());
-    assert_eq!(s, before);
+    for m in [Method::Euler, Method::EulerCromer, Method::Rk4, Method::Yoshida4] {
+        let mut st = noether_particles::ParticleStepper::new(&sys, m);
+        assert!(noether_core::Stepper::step(&mut st, &mut s, 0.1).is_err());
+        assert_eq!(s, before);
+    }
 }
 
 #[test]
