@@ -3,8 +3,9 @@
 //! `cargo bench -p noether-particles --bench forces` (all groups, ~1 minute), or one group with a filter,
 //! e.g. `cargo bench -p noether-particles --bench forces -- chain_1e5`.
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use noether_particles::prelude::*;
+use std::hint::black_box;
 use std::time::Duration;
 
 const K: f64 = 1.0;
@@ -23,13 +24,8 @@ fn chain_positions(n: usize) -> Vec<f64> {
 }
 
 fn chain_system(n: usize) -> System<impl noether_particles::Interaction> {
-    let ps = vec![Particle::new(1.0); n];
-    let sites: Vec<Vec3> = (0..n).map(|i| [i as f64 * RE, 0.0, 0.0]).collect();
-    // On-site potential ½ k2 d² + ¼ k4 d⁴ about each lattice site: one Trap per particle would be N
-    // groups, so the bench uses a one-body potential reading the site from the particle index via
-    // the position's x (the site is the nearest lattice point of the unperturbed chain).
-    let _ = sites;
-    System::new(ps)
+    // Nearest-neighbour springs and an on-site potential ½ k2 d² + ¼ k4 d⁴ (d = |r|) on every mass.
+    System::new(vec![Particle::new(1.0); n])
         .unwrap()
         .with(Internal::chain(Spring { k: K, re: RE }, n))
         .unwrap()
