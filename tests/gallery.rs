@@ -70,3 +70,13 @@ fn _keep(name: &str) {
 fn closed_form_heavy_top() {
     assert_example_passes("heavy_top");
 }
+
+#[test]
+fn closed_form_normal_modes() {
+    assert_example_passes("normal_modes");
+}
+
+#[test]
+fn closed_form_three_body() {
+    assert_example_passes("three_body");
+}

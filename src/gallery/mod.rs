@@ -8,9 +8,11 @@ pub mod bead_cycloid;
 pub mod bead_helix;
 pub mod bead_rotating_hoop;
 pub mod heavy_top;
+pub mod normal_modes;
 pub mod pendulum_cartesian;
 pub mod rolling_disk;
 pub mod spherical_pendulum;
+pub mod three_body;
 
 use std::fmt;
 use std::path::PathBuf;
@@ -184,6 +186,16 @@ pub fn all() -> Vec<Example> {
             name: "heavy_top",
             about: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
             run: heavy_top::run,
+        },
+        Example {
+            name: "normal_modes",
+            about: "equilibria (argmin) and normal modes: coupled pendula, chain, rotating hoop, triangle",
+            run: normal_modes::run,
+        },
+        Example {
+            name: "three_body",
+            about: "restricted three-body problem: Jacobi integral, Lagrange points, Routh's stability limit",
+            run: three_body::run,
         },
     ]
 }
