@@ -29,6 +29,32 @@ fn gallery_names_are_unique() {
     assert_eq!(names.len(), n);
 }
 
+// One test per example; each example module states its closed forms and why each tolerance is what it is.
+#[test]
+fn closed_form_pendulum() {
+    assert_example_passes("pendulum");
+}
+
+#[test]
+fn closed_form_harmonic_oscillator() {
+    assert_example_passes("harmonic_oscillator");
+}
+
+#[test]
+fn closed_form_kepler() {
+    assert_example_passes("kepler");
+}
+
+#[test]
+fn conserves_energy_double_pendulum() {
+    assert_example_passes("double_pendulum");
+}
+
+#[test]
+fn closed_form_charged_particle() {
+    assert_example_passes("charged_particle");
+}
+
 #[test]
 fn closed_form_pendulum_cartesian() {
     assert_example_passes("pendulum_cartesian");
@@ -57,13 +83,6 @@ fn closed_form_bead_cycloid() {
 #[test]
 fn closed_form_rolling_disk() {
     assert_example_passes("rolling_disk");
-}
-
-// One test per example (added with each example):
-// #[test] fn closed_form_pendulum() { assert_example_passes("pendulum"); }
-#[allow(dead_code)]
-fn _keep(name: &str) {
-    assert_example_passes(name)
 }
 
 #[test]

@@ -4,18 +4,28 @@
 //! To add an example: write a module here with `pub fn run(opts: &Options) -> Result<Report, Error>`,
 //! and list it in [`all`].
 
+use std::fmt;
+use std::path::PathBuf;
+
+// Helpers shared by the examples.
+pub mod measure;
+pub mod plot;
+
+// The examples.
 pub mod bead_cycloid;
 pub mod bead_helix;
 pub mod bead_rotating_hoop;
+pub mod charged_particle;
+pub mod double_pendulum;
+pub mod harmonic_oscillator;
 pub mod heavy_top;
+pub mod kepler;
 pub mod normal_modes;
+pub mod pendulum;
 pub mod pendulum_cartesian;
 pub mod rolling_disk;
 pub mod spherical_pendulum;
 pub mod three_body;
-
-use std::fmt;
-use std::path::PathBuf;
 
 /// How a computed value is compared with the expected one.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -152,6 +162,31 @@ pub struct Example {
 /// Every example of the gallery, in the order a newcomer should read them.
 pub fn all() -> Vec<Example> {
     vec![
+        Example {
+            name: "pendulum",
+            about: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
+            run: pendulum::run,
+        },
+        Example {
+            name: "harmonic_oscillator",
+            about: "harmonic oscillator: exact solution over 1000 periods",
+            run: harmonic_oscillator::run,
+        },
+        Example {
+            name: "kepler",
+            about: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
+            run: kepler::run,
+        },
+        Example {
+            name: "double_pendulum",
+            about: "double pendulum: energy conservation over a chaotic run",
+            run: double_pendulum::run,
+        },
+        Example {
+            name: "charged_particle",
+            about: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
+            run: charged_particle::run,
+        },
         Example {
             name: "pendulum_cartesian",
             about: "pendulum in Cartesian coordinates with a rod constraint: angle motion and rod tension",

@@ -1,0 +1,288 @@
+//! Pictures for the gallery: line plots of several named series, with a legend and axis labels, written
+//! as SVG by `plotters`.
+//!
+//! ```no_run
+//! use noether::gallery::plot::Figure;
+//!
+//! let circle: Vec<(f64, f64)> = (0..=100)
+//!     .map(|i| (i as f64 * 0.0628).cos())
+//!     .zip((0..=100).map(|i| (i as f64 * 0.0628).sin()))
+//!     .collect();
+//! Figure::new("A circle")
+//!     .x_label("x")
+//!     .y_label("y")
+//!     .equal_aspect()
+//!     .series("unit circle", circle)
+//!     .save("circle.svg".as_ref())
+//!     .unwrap();
+//! ```
+
+use super::{Options, Report};
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::prelude::*;
+use std::error::Error;
+use std::path::{Path, PathBuf};
+
+/// Boxed error of the gallery.
+pub type BoxError = Box<dyn Error + Send + Sync>;
+
+/// Series longer than this are thinned (every k-th point kept) before drawing, so the SVG stays small.
+pub const MAX_POINTS: usize = 4000;
+
+/// One named curve.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend entry.
+    pub name: String,
+    /// The points (x, y), drawn joined in order.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A line plot of several series.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    title: String,
+    x_label: String,
+    y_label: String,
+    series: Vec<Series>,
+    equal_aspect: bool,
+    log_y: bool,
+    size: (u32, u32),
+}
+
+impl Figure {
+    /// An empty figure with a title.
+    pub fn new(title: impl Into<String>) -> Self {
+        Figure {
+            title: title.into(),
+            x_label: String::new(),
+            y_label: String::new(),
+            series: Vec::new(),
+            equal_aspect: false,
+            log_y: false,
+            size: (800, 600),
+        }
+    }
+
+    /// Label of the horizontal axis.
+    pub fn x_label(mut self, label: impl Into<String>) -> Self {
+        self.x_label = label.into();
+        self
+    }
+
+    /// Label of the vertical axis.
+    pub fn y_label(mut self, label: impl Into<String>) -> Self {
+        self.y_label = label.into();
+        self
+    }
+
+    /// Adds a series (thinned to at most [`MAX_POINTS`] points; non-finite points are dropped). An empty
+    /// name leaves it out of the legend.
+    pub fn series(mut self, name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        let points: Vec<_> = points
+            .into_iter()
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
+        self.series.push(Series {
+            name: name.into(),
+            points: thin(points, MAX_POINTS),
+        });
+        self
+    }
+
+    /// Same scale on both axes (orbits, trajectories in the plane).
+    pub fn equal_aspect(mut self) -> Self {
+        self.equal_aspect = true;
+        self
+    }
+
+    /// Logarithmic vertical axis (errors spanning decades); points with y ≤ 0 are dropped.
+    pub fn log_y(mut self) -> Self {
+        self.log_y = true;
+        self
+    }
+
+    /// Size in pixels (default 800 × 600).
+    pub fn size(mut self, width: u32, height: u32) -> Self {
+        self.size = (width, height);
+        self
+    }
+
+    /// Writes the figure as SVG to `path`.
+    pub fn save(&self, path: &Path) -> Result<PathBuf, BoxError> {
+        let (mut x0, mut x1, mut y0, mut y1) = self.bounds()?;
+        if self.equal_aspect {
+            // Widen the shorter side so one unit has the same length on both axes (plot area ≈ size − margins).
+            let (w, h) = (self.size.0 as f64 - 110.0, self.size.1 as f64 - 110.0);
+            let scale = ((x1 - x0) / w).max((y1 - y0) / h);
+            let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+            (x0, x1) = (cx - 0.5 * scale * w, cx + 0.5 * scale * w);
+            (y0, y1) = (cy - 0.5 * scale * h, cy + 0.5 * scale * h);
+        }
+        let root = SVGBackend::new(path, self.size).into_drawing_area();
+        root.fill(&WHITE)?;
+        if self.log_y {
+            self.draw(&root, x0..x1, (y0..y1).log_scale())?;
+        } else {
+            self.draw(&root, x0..x1, y0..y1)?;
+        }
+        root.present()?;
+        Ok(path.to_path_buf())
+    }
+
+    /// Saves into the options' output folder (if any) as `file` and records the path in `report`.
+    pub fn save_in(&self, opts: &Options, file: &str, report: &mut Report) -> Result<(), BoxError> {
+        if let Some(dir) = &opts.out_dir {
+            std::fs::create_dir_all(dir)?;
+            report.figures.push(self.save(&dir.join(file))?);
+        }
+        Ok(())
+    }
+
+    fn visible(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let log = self.log_y;
+        self.series
+            .iter()
+            .flat_map(|s| s.points.iter().copied())
+            .filter(move |&(_, y)| !log || y > 0.0)
+    }
+
+    fn bounds(&self) -> Result<(f64, f64, f64, f64), BoxError> {
+        let mut b = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for (x, y) in self.visible() {
+            b = (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y));
+        }
+        if !b.0.is_finite() {
+            return Err(format!("figure '{}' has no point to draw", self.title).into());
+        }
+        let pad = |lo: f64, hi: f64, log: bool| {
+            if log {
+                let (lo, hi) = if hi > lo { (lo, hi) } else { (lo / 10.0, hi * 10.0) };
+                (lo / 1.5, hi * 1.5)
+            } else {
+                let d = if hi > lo {
+                    0.05 * (hi - lo)
+                } else {
+                    0.5 * lo.abs().max(1.0)
+                };
+                (lo - d, hi + d)
+            }
+        };
+        let (x0, x1) = pad(b.0, b.1, false);
+        let (y0, y1) = pad(b.2, b.3, self.log_y);
+        Ok((x0, x1, y0, y1))
+    }
+
+    fn draw<Y>(
+        &self,
+        root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+        xr: std::ops::Range<f64>,
+        yr: Y,
+    ) -> Result<(), BoxError>
+    where
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: ValueFormatter<f64>,
+    {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(75)
+            .build_cartesian_2d(xr, yr)?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 16))
+            .x_label_formatter(&|v| short(*v))
+            .y_label_formatter(&|v| short(*v))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()?;
+        for (i, s) in self.series.iter().enumerate() {
+            let color = color(i);
+            let log = self.log_y;
+            let pts = s.points.iter().copied().filter(move |&(_, y)| !log || y > 0.0);
+            let drawn = chart.draw_series(LineSeries::new(pts, color.stroke_width(2)))?;
+            if !s.name.is_empty() {
+                drawn
+                    .label(s.name.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)));
+            }
+        }
+        if self.series.iter().any(|s| !s.name.is_empty()) {
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.4))
+                .label_font(("sans-serif", 14))
+                .draw()?;
+        }
+        Ok(())
+    }
+}
+
+/// A color-blind-friendly palette (Okabe-Ito), cycled.
+fn color(i: usize) -> RGBColor {
+    const P: [RGBColor; 7] = [
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+        RGBColor(0, 158, 115),
+        RGBColor(204, 121, 167),
+        RGBColor(230, 159, 0),
+        RGBColor(86, 180, 233),
+        RGBColor(0, 0, 0),
+    ];
+    P[i % P.len()]
+}
+
+/// Tick labels: plain for moderate magnitudes, scientific otherwise.
+fn short(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e4).contains(&a) {
+        format!("{v:.0e}")
+    } else {
+        let s = format!("{v:.3}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+/// Keeps every k-th point (and the last) so that at most about `max` remain.
+pub fn thin(points: Vec<(f64, f64)>, max: usize) -> Vec<(f64, f64)> {
+    if points.len() <= max || max < 2 {
+        return points;
+    }
+    let k = points.len().div_ceil(max);
+    let last = *points.last().expect("non-empty");
+    let mut out: Vec<_> = points.into_iter().step_by(k).collect();
+    if out.last() != Some(&last) {
+        out.push(last);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thin_keeps_ends_and_bounds_length() {
+        let pts: Vec<_> = (0..10_001).map(|i| (i as f64, 0.0)).collect();
+        let t = thin(pts, 1000);
+        assert!(t.len() <= 1001);
+        assert_eq!(t[0].0, 0.0);
+        assert_eq!(t.last().unwrap().0, 10_000.0);
+    }
+
+    #[test]
+    fn bad_input_empty_figure_is_an_error() {
+        let dir = std::env::temp_dir().join("noether-plot-test-empty.svg");
+        assert!(Figure::new("empty").save(&dir).is_err());
+        let nan = Figure::new("nan").series("s", vec![(f64::NAN, 1.0)]);
+        assert!(nan.save(&dir).is_err());
+    }
+}
