@@ -334,7 +334,7 @@ pub struct LagrangeTerms<const N: usize> {
 
 /// [`LagrangeTerms`] of f at (t, x, y) by one evaluation of f with a [`LagrangeJet64<N>`] seeded at
 /// (t + s, x + s·y + δx, y + δy): no heap allocation, every transcendental function evaluated once.
-#[inline]
+#[inline(always)]
 pub fn lagrange_terms<F: Field, const N: usize>(
     f: &F,
     t: f64,
@@ -347,11 +347,15 @@ pub fn lagrange_terms<F: Field, const N: usize>(
         e[i] = 1.0;
         Part::some(e)
     };
-    let xs: [J<N>; N] =
-        std::array::from_fn(|i| J::new(x[i], unit(i), y[i], Part::none(), Part::none(), Part::none()));
-    let ys: [J<N>; N] =
-        std::array::from_fn(|i| J::new(y[i], Part::none(), 0.0, unit(i), Part::none(), Part::none()));
-    let tt = J::new(t, Part::none(), 1.0, Part::none(), Part::none(), Part::none());
+    // Absent parts stay `None`: a function of q alone never carries a q̇-part, and so on.
+    let (zero, zero_h) = (Part::none, Part::none);
+    let mut xs = [J::<N>::from_re(0.0); N];
+    let mut ys = [J::<N>::from_re(0.0); N];
+    for i in 0..N {
+        xs[i] = J::new(x[i], unit(i), y[i], zero(), zero(), zero_h());
+        ys[i] = J::new(y[i], zero(), 0.0, unit(i), zero(), zero_h());
+    }
+    let tt = J::new(t, zero(), 1.0, zero(), zero(), zero_h());
     let r = f.eval(tt, &xs, &ys);
     let row = |p: Part<f64, f64, U1, Const<N>>| p.0.map_or_else(SVector::zeros, |m| m.transpose());
     LagrangeTerms {
@@ -359,7 +363,15 @@ pub fn lagrange_terms<F: Field, const N: usize>(
         grad_x: row(r.gx),
         grad_y: row(r.gw),
         mixed: row(r.hsw),
-        hess_yy: r.hww.0.unwrap_or_else(SMatrix::zeros),
+        hess_yy: r.hww.0.map_or_else(SMatrix::zeros, |mut h| {
+            // Only the upper triangle is maintained: mirror it.
+            for j in 0..N {
+                for i in j + 1..N {
+                    h[(i, j)] = h[(j, i)];
+                }
+            }
+            h
+        }),
     }
 }
 

@@ -7,10 +7,17 @@
 //! M q̈ = ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q
 //! ```
 //!
-//! [`EulerLagrange`] evaluates the right-hand side with three AD kernels: ∇_q L (a gradient), the
-//! term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t as one directional derivative (a Hessian-vector product, never the
-//! full mixed Hessian), and M (a Hessian in q̇ only), then solves with a Cholesky factor (LU when M is
-//! not positive definite). A mass matrix declared constant is factored once.
+//! [`EulerLagrange`] evaluates the right-hand side without any hand-written derivative:
+//! - up to [`ad::MAX_FIXED`] degrees of freedom, one evaluation of L with a
+//!   [`LagrangeJet`](ad::LagrangeJet) gives ∂L/∂q, the term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (a
+//!   Hessian-vector product, never the full mixed Hessian) and M together, and M is factored by an
+//!   in-place Cholesky on the stack: no heap allocation per call;
+//! - a mass matrix declared constant is factored once and never differentiated again (then only a
+//!   gradient and a Hessian-vector product are evaluated);
+//! - larger systems use the chunked gradient, directional-derivative and Hessian kernels of [`ad`].
+//!
+//! An indefinite (but regular) M is solved by LU; a singular one is reported as
+//! [`Error::SingularMassMatrix`].
 
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len};
@@ -29,25 +36,65 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
     }
 }
 
-/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: Cholesky with the same
-/// relative-pivot test as [`MassFactor::new`]; an indefinite or non-finite M goes through
-/// [`MassFactor`] (LU, or the error it reports).
+/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: an in-place Cholesky
+/// factorization M = L Lᵀ with the same relative-pivot test as [`MassFactor::new`]. An indefinite or
+/// non-finite M goes through [`MassFactor`] (LU, or the error it reports).
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
-    if let Some(ch) = m.cholesky() {
-        let d = ch.l_dirty().diagonal();
-        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
-            (lo.min(v * v), hi.max(v * v))
-        });
-        if lo / hi < SINGULAR_PIVOT || !(hi.is_finite()) {
-            // Report through the general path (same tests, same error values).
-            MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)?;
-            return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
+    // Column-major: l[(i, j)] for i ≥ j holds L; the strict upper triangle keeps M (unused).
+    let mut l = m;
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    for j in 0..N {
+        let mut d = l[(j, j)];
+        for k in 0..j {
+            d -= l[(j, k)] * l[(j, k)];
         }
-        ch.solve_mut(b);
-        return Ok(());
+        // d is the j-th pivot (a squared diagonal entry of L).
+        if d.is_nan() || d <= 0.0 {
+            return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
+                .map(|f| f.solve_in_place(b.as_mut_slice()));
+        }
+        lo = lo.min(d);
+        hi = hi.max(d);
+        let djj = d.sqrt();
+        l[(j, j)] = djj;
+        let inv = 1.0 / djj;
+        for i in j + 1..N {
+            let mut s = l[(i, j)];
+            for k in 0..j {
+                s -= l[(i, k)] * l[(j, k)];
+            }
+            l[(i, j)] = s * inv;
+        }
     }
-    MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)?.solve_in_place(b.as_mut_slice());
+    if lo / hi < SINGULAR_PIVOT || !hi.is_finite() {
+        return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
+            .map(|f| f.solve_in_place(b.as_mut_slice()));
+    }
+    for i in 0..N {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[(i, k)] * b[k];
+        }
+        b[i] = s / l[(i, i)];
+    }
+    for i in (0..N).rev() {
+        let mut s = b[i];
+        for k in i + 1..N {
+            s -= l[(k, i)] * b[k];
+        }
+        b[i] = s / l[(i, i)];
+    }
+    Ok(())
+}
+
+/// Copies finite accelerations into `a`; a non-finite one is the model's failure, reported as such.
+#[inline]
+fn finish(b: &[f64], a: &mut [f64], t: f64) -> Result<()> {
+    if b.iter().any(|x| !x.is_finite()) {
+        return Err(Error::NonFiniteState { step: 0, t });
+    }
+    a.copy_from_slice(b);
     Ok(())
 }
 
@@ -228,23 +275,33 @@ impl<L: Lagrangian> EulerLagrange<L> {
         let (Ok(qn), Ok(vn)) = (<&[f64; N]>::try_from(q), <&[f64; N]>::try_from(v)) else {
             unreachable!("lengths checked by the caller")
         };
-        let terms = ad::lagrange_terms(&LagrangianField(&self.lagrangian), t, qn, vn);
+        let f = LagrangianField(&self.lagrangian);
+        if self.lagrangian.constant_mass_matrix() {
+            // M is factored once: no second derivative in q̇ at all, only ∂L/∂q (one gradient) and the
+            // mixed term (one Hessian-vector product), both with small stack duals.
+            let (mut g, mut mixed) = ([0.0; N], [0.0; N]);
+            ad::gradient(&f, t, q, v, Block::X, &mut g);
+            ad::directional_gradient(&f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+            let mut b = SVector::from(g) - SVector::from(mixed);
+            self.add_generalized_force(t, q, v, &mut b);
+            self.constant_factor(t, q, v)?.solve_in_place(b.as_mut_slice());
+            return finish(b.as_slice(), a, t);
+        }
+        let terms = ad::lagrange_terms(&f, t, qn, vn);
         let mut b = terms.grad_x - terms.mixed;
+        self.add_generalized_force(t, q, v, &mut b);
+        solve_mass_fixed(terms.hess_yy, &mut b, t)?;
+        finish(b.as_slice(), a, t)
+    }
+
+    /// b += Q(t, q, q̇) when the model has generalized forces.
+    #[inline]
+    fn add_generalized_force<const N: usize>(&self, t: f64, q: &[f64], v: &[f64], b: &mut SVector<f64, N>) {
         if self.lagrangian.has_generalized_force() {
             let mut qf = [0.0; N];
             self.lagrangian.generalized_force(t, q, v, &mut qf);
-            b += SVector::from(qf);
+            *b += SVector::from(qf);
         }
-        if self.lagrangian.constant_mass_matrix() {
-            self.constant_factor(t, q, v)?.solve_in_place(b.as_mut_slice());
-        } else {
-            solve_mass_fixed(terms.hess_yy, &mut b, t)?;
-        }
-        if b.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        a.copy_from_slice(b.as_slice());
-        Ok(())
     }
 
     /// The run-time-sized path: gradient, one directional derivative and the Hessian in q̇, by chunks.

@@ -23,9 +23,9 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{DefaultAllocator, Dim, OMatrix, U1};
 use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
-    forward_binop, impl_add_sub_rem, impl_assign_ops, impl_comparisons, impl_derivatives, impl_dual,
-    impl_dual_struct, impl_float_const, impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_neg,
-    impl_num, impl_scalar_op, impl_second_derivatives, impl_signed, impl_zero_one,
+    impl_assign_ops, impl_comparisons, impl_derivatives, impl_dual_struct, impl_float_const, impl_from_f,
+    impl_from_primitive, impl_inv, impl_iterator, impl_neg, impl_num, impl_second_derivatives, impl_signed,
+    impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -35,67 +35,126 @@ use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
 
 /// One derivative part of a [`LagrangeJet`]: `None` means identically zero (and costs nothing).
+/// With `SYM = true` the part is a symmetric square matrix of which only the upper triangle
+/// (row ≤ column) is kept up to date; the reader mirrors it.
 #[derive(Clone, Debug)]
-pub struct Part<T: DualNum<F>, F, R: Dim, C: Dim>(pub Option<OMatrix<T, R, C>>, PhantomData<F>)
+pub struct Part<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool = false>(
+    pub Option<OMatrix<T, R, C>>,
+    PhantomData<F>,
+)
 where
     DefaultAllocator: Allocator<R, C>;
 
-impl<T: DualNum<F> + Copy, F: Copy, const R: usize, const C: usize> Copy
-    for Part<T, F, nalgebra::Const<R>, nalgebra::Const<C>>
+impl<T: DualNum<F> + Copy, F: Copy, const R: usize, const C: usize, const SYM: bool> Copy
+    for Part<T, F, nalgebra::Const<R>, nalgebra::Const<C>, SYM>
 {
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> Part<T, F, R, C>
+/// Calls `f` with every storage index a part of `len` entries and `n` rows keeps up to date.
+#[inline(always)]
+fn each<const SYM: bool>(len: usize, n: usize, mut f: impl FnMut(usize)) {
+    if SYM {
+        for j in 0..n {
+            for i in 0..=j {
+                f(j * n + i);
+            }
+        }
+    } else {
+        for k in 0..len {
+            f(k);
+        }
+    }
+}
+
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
     /// A part that is identically zero.
-    #[inline]
+    #[inline(always)]
     pub fn none() -> Self {
         Part(None, PhantomData)
     }
 
     /// A non-zero part.
-    #[inline]
+    #[inline(always)]
     pub fn some(m: OMatrix<T, R, C>) -> Self {
         Part(Some(m), PhantomData)
     }
 
     /// `α x + β y` (either may be absent).
-    #[inline]
+    #[inline(always)]
     fn lin(x: &Self, alpha: &T, y: &Self, beta: &T) -> Self {
         match (&x.0, &y.0) {
-            (Some(a), Some(b)) => Part::some(a.zip_map(b, |ai, bi| ai * alpha.clone() + bi * beta.clone())),
-            (Some(a), None) => Part::some(a.map(|ai| ai * alpha.clone())),
-            (None, Some(b)) => Part::some(b.map(|bi| bi * beta.clone())),
+            (Some(a), Some(b)) => {
+                let mut m = a.clone();
+                let n = m.nrows();
+                let (ms, bs) = (m.as_mut_slice(), b.as_slice());
+                each::<SYM>(ms.len(), n, |k| {
+                    ms[k] = ms[k].clone() * alpha.clone() + bs[k].clone() * beta.clone()
+                });
+                Part::some(m)
+            }
+            (Some(_), None) => Part::scale(x, alpha),
+            (None, Some(_)) => Part::scale(y, beta),
+            (None, None) => Part::none(),
+        }
+    }
+
+    /// `x + y` (either may be absent).
+    #[inline(always)]
+    fn sum(x: &Self, y: &Self, sign: &T) -> Self {
+        match (&x.0, &y.0) {
+            (Some(a), Some(b)) => {
+                let mut m = a.clone();
+                let n = m.nrows();
+                let (ms, bs) = (m.as_mut_slice(), b.as_slice());
+                each::<SYM>(ms.len(), n, |k| ms[k] += bs[k].clone() * sign.clone());
+                Part::some(m)
+            }
+            (Some(_), None) => Part(x.0.clone(), PhantomData),
+            (None, Some(_)) => Part::scale(y, sign),
             (None, None) => Part::none(),
         }
     }
 
     /// `α x`.
-    #[inline]
+    #[inline(always)]
     fn scale(x: &Self, alpha: &T) -> Self {
-        Part(x.0.as_ref().map(|a| a.map(|ai| ai * alpha.clone())), PhantomData)
+        match &x.0 {
+            Some(a) => {
+                let mut m = a.clone();
+                let n = m.nrows();
+                let ms = m.as_mut_slice();
+                each::<SYM>(ms.len(), n, |k| ms[k] *= alpha.clone());
+                Part::some(m)
+            }
+            None => Part::none(),
+        }
     }
 
     /// `self += α x`.
-    #[inline]
+    #[inline(always)]
     fn axpy(&mut self, alpha: &T, x: &Self) {
         if let Some(b) = &x.0 {
             match &mut self.0 {
-                Some(a) => a.zip_apply(b, |ai, bi| *ai += bi * alpha.clone()),
-                None => self.0 = Some(b.map(|bi| bi * alpha.clone())),
+                Some(a) => {
+                    let n = a.nrows();
+                    let (ms, bs) = (a.as_mut_slice(), b.as_slice());
+                    each::<SYM>(ms.len(), n, |k| ms[k] += bs[k].clone() * alpha.clone());
+                }
+                None => *self = Part::scale(x, alpha),
             }
         }
     }
 }
 
-impl<T: DualNum<F>, F, C: Dim> Part<T, F, C, C>
+impl<T: DualNum<F>, F, C: Dim> Part<T, F, C, C, true>
 where
     DefaultAllocator: Allocator<C, C> + Allocator<U1, C>,
 {
     /// `self += α (u vᵀ + v uᵀ)` for row vectors u, v (`v = u` gives 2α u uᵀ).
-    #[inline]
+    #[inline(always)]
     fn sym_outer(&mut self, alpha: &T, u: &Part<T, F, U1, C>, v: &Part<T, F, U1, C>) {
         let (Some(u), Some(v)) = (&u.0, &v.0) else {
             return;
@@ -107,97 +166,83 @@ where
         for j in 0..n {
             let (uj, vj) = (u[j].clone() * alpha.clone(), v[j].clone() * alpha.clone());
             let col = &mut m[j * n..(j + 1) * n];
-            for i in 0..n {
+            for i in 0..=j {
                 col[i] += u[i].clone() * vj.clone() + v[i].clone() * uj.clone();
             }
         }
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> Add<&Part<T, F, R, C>> for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Add<&Part<T, F, R, C, SYM>> for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
     type Output = Self;
-    #[inline]
-    fn add(mut self, rhs: &Self) -> Self {
-        self.axpy(&T::one(), rhs);
-        self
+    #[inline(always)]
+    fn add(self, rhs: &Self) -> Self {
+        Part::sum(&self, rhs, &T::one())
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> Sub<&Part<T, F, R, C>> for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Sub<&Part<T, F, R, C, SYM>> for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
     type Output = Self;
-    #[inline]
-    fn sub(mut self, rhs: &Self) -> Self {
-        self.axpy(&-T::one(), rhs);
-        self
+    #[inline(always)]
+    fn sub(self, rhs: &Self) -> Self {
+        Part::sum(&self, rhs, &-T::one())
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> AddAssign for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> AddAssign for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
-    #[inline]
+    #[inline(always)]
     fn add_assign(&mut self, rhs: Self) {
-        match (&mut self.0, rhs.0) {
-            (Some(a), Some(b)) => *a += b,
-            (None, b) => self.0 = b,
-            (_, None) => {}
-        }
+        self.axpy(&T::one(), &rhs);
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> SubAssign for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> SubAssign for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
-    #[inline]
+    #[inline(always)]
     fn sub_assign(&mut self, rhs: Self) {
-        match (&mut self.0, rhs.0) {
-            (Some(a), Some(b)) => *a -= b,
-            (None, Some(b)) => self.0 = Some(-b),
-            (_, None) => {}
-        }
+        self.axpy(&-T::one(), &rhs);
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> Neg for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Neg for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn neg(self) -> Self {
         Part(self.0.map(|a| -a), PhantomData)
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> MulAssign<T> for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> MulAssign<T> for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
-    #[inline]
+    #[inline(always)]
     fn mul_assign(&mut self, rhs: T) {
-        if let Some(a) = &mut self.0 {
-            a.apply(|ai| *ai *= rhs.clone());
-        }
+        *self = Part::scale(self, &rhs);
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim> DivAssign<T> for Part<T, F, R, C>
+impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> DivAssign<T> for Part<T, F, R, C, SYM>
 where
     DefaultAllocator: Allocator<R, C>,
 {
-    #[inline]
+    #[inline(always)]
     fn div_assign(&mut self, rhs: T) {
-        if let Some(a) = &mut self.0 {
-            a.apply(|ai| *ai /= rhs.clone());
-        }
+        *self = Part::scale(self, &rhs.recip());
     }
 }
 
@@ -219,7 +264,7 @@ where
     /// ∂²/∂s∂w: the mixed term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
     pub hsw: Part<T, F, U1, D>,
     /// ∂²/∂w²: the Hessian in q̇ (the mass matrix).
-    pub hww: Part<T, F, D, D>,
+    pub hww: Part<T, F, D, D, true>,
     f: PhantomData<F>,
 }
 
@@ -233,14 +278,14 @@ where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
 {
     /// A jet from its parts.
-    #[inline]
+    #[inline(always)]
     pub fn new(
         re: T,
         gx: Part<T, F, U1, D>,
         gs: T,
         gw: Part<T, F, U1, D>,
         hsw: Part<T, F, U1, D>,
-        hww: Part<T, F, D, D>,
+        hww: Part<T, F, D, D, true>,
     ) -> Self {
         LagrangeJet {
             re,
@@ -254,7 +299,7 @@ where
     }
 
     /// A constant.
-    #[inline]
+    #[inline(always)]
     pub fn from_re(re: T) -> Self {
         Self::new(
             re,
@@ -272,7 +317,7 @@ where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
 {
     /// g(a) from g(a.re), g'(a.re), g''(a.re).
-    #[inline]
+    #[inline(always)]
     fn chain_rule(&self, f0: T, f1: T, f2: T) -> Self {
         let mut hsw = Part::scale(&self.hsw, &f1);
         hsw.axpy(&(f2.clone() * self.gs.clone()), &self.gw);
@@ -289,14 +334,13 @@ where
     }
 }
 
-impl<T: DualNum<F>, F: Float, D: Dim> Mul<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+impl<T: DualNum<F>, F: Float, D: Dim> LagrangeJet<T, F, D>
 where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
 {
-    type Output = LagrangeJet<T, F, D>;
     /// Product rule, second-order terms only between s and w.
-    #[inline]
-    fn mul(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+    #[inline(always)]
+    fn mul_ref(&self, o: &Self) -> Self {
         let (a, b) = (self, o);
         let mut hsw = Part::lin(&a.hsw, &b.re, &b.hsw, &a.re);
         hsw.axpy(&a.gs, &b.gw);
@@ -312,20 +356,200 @@ where
             hww,
         )
     }
+
+    /// a / b = a · (1/b), with 1/b by the chain rule.
+    #[inline(always)]
+    fn div_ref(&self, o: &Self) -> Self {
+        let rec = o.re.recip();
+        let f1 = -rec.clone() * rec.clone();
+        let f2 = f1.clone() * rec.clone() * F::from(-2.0).unwrap();
+        self.mul_ref(&o.chain_rule(rec, f1, f2))
+    }
+
+    #[inline(always)]
+    fn add_ref(&self, o: &Self) -> Self {
+        let one = T::one();
+        Self::new(
+            self.re.clone() + o.re.clone(),
+            Part::sum(&self.gx, &o.gx, &one),
+            self.gs.clone() + o.gs.clone(),
+            Part::sum(&self.gw, &o.gw, &one),
+            Part::sum(&self.hsw, &o.hsw, &one),
+            Part::sum(&self.hww, &o.hww, &one),
+        )
+    }
+
+    #[inline(always)]
+    fn sub_ref(&self, o: &Self) -> Self {
+        let m1 = -T::one();
+        Self::new(
+            self.re.clone() - o.re.clone(),
+            Part::sum(&self.gx, &o.gx, &m1),
+            self.gs.clone() - o.gs.clone(),
+            Part::sum(&self.gw, &o.gw, &m1),
+            Part::sum(&self.hsw, &o.hsw, &m1),
+            Part::sum(&self.hww, &o.hww, &m1),
+        )
+    }
+
+    #[inline(always)]
+    fn scale_by(&self, f: &T) -> Self {
+        Self::new(
+            self.re.clone() * f.clone(),
+            Part::scale(&self.gx, f),
+            self.gs.clone() * f.clone(),
+            Part::scale(&self.gw, f),
+            Part::scale(&self.hsw, f),
+            Part::scale(&self.hww, f),
+        )
+    }
 }
 
-impl<T: DualNum<F>, F: Float, D: Dim> Div<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+/// The four reference/value combinations of a binary operator, all forced inline so that the
+/// compiler sees through the `None` parts of a model's straight-line code.
+macro_rules! jet_binop {
+    ($trt:ident, $mth:ident, $imp:ident) => {
+        impl<T: DualNum<F>, F: Float, D: Dim> $trt<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            type Output = LagrangeJet<T, F, D>;
+            #[inline(always)]
+            fn $mth(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+                self.$imp(o)
+            }
+        }
+        impl<T: DualNum<F>, F: Float, D: Dim> $trt<LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            type Output = LagrangeJet<T, F, D>;
+            #[inline(always)]
+            fn $mth(self, o: LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+                self.$imp(&o)
+            }
+        }
+        impl<T: DualNum<F>, F: Float, D: Dim> $trt<&LagrangeJet<T, F, D>> for LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            type Output = LagrangeJet<T, F, D>;
+            #[inline(always)]
+            fn $mth(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+                self.$imp(o)
+            }
+        }
+        impl<T: DualNum<F>, F: Float, D: Dim> $trt for LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            type Output = LagrangeJet<T, F, D>;
+            #[inline(always)]
+            fn $mth(self, o: LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+                self.$imp(&o)
+            }
+        }
+    };
+}
+
+jet_binop!(Add, add, add_ref);
+jet_binop!(Sub, sub, sub_ref);
+jet_binop!(Mul, mul, mul_ref);
+jet_binop!(Div, div, div_ref);
+
+impl<T: DualNum<F>, F, D: Dim> Rem<&LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
 where
     DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
 {
     type Output = LagrangeJet<T, F, D>;
-    /// a / b = a · (1/b), with 1/b by the chain rule.
-    #[inline]
-    fn div(self, o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
-        let rec = o.re.recip();
-        let f1 = -rec.clone() * rec.clone();
-        let f2 = f1.clone() * rec.clone() * F::from(-2.0).unwrap();
-        self * &o.chain_rule(rec, f1, f2)
+    fn rem(self, _o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        unimplemented!("remainder of a dual number")
+    }
+}
+impl<T: DualNum<F>, F, D: Dim> Rem<LagrangeJet<T, F, D>> for &LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = LagrangeJet<T, F, D>;
+    fn rem(self, _o: LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        unimplemented!("remainder of a dual number")
+    }
+}
+impl<T: DualNum<F>, F, D: Dim> Rem<&LagrangeJet<T, F, D>> for LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = LagrangeJet<T, F, D>;
+    fn rem(self, _o: &LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        unimplemented!("remainder of a dual number")
+    }
+}
+impl<T: DualNum<F>, F, D: Dim> Rem for LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = LagrangeJet<T, F, D>;
+    fn rem(self, _o: LagrangeJet<T, F, D>) -> LagrangeJet<T, F, D> {
+        unimplemented!("remainder of a dual number")
+    }
+}
+
+/// Operations with a real number `F`.
+macro_rules! jet_scalar_op {
+    ($trt:ident, $mth:ident, $atrt:ident, $amth:ident, |$a:ident, $f:ident| $body:expr) => {
+        impl<T: DualNum<F>, F: DualNumFloat, D: Dim> $trt<F> for LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            type Output = Self;
+            #[inline(always)]
+            fn $mth(self, $f: F) -> Self {
+                let $a = self;
+                $body
+            }
+        }
+        impl<T: DualNum<F>, F: DualNumFloat, D: Dim> $atrt<F> for LagrangeJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+        {
+            #[inline(always)]
+            fn $amth(&mut self, $f: F) {
+                let $a = self.clone();
+                *self = $body;
+            }
+        }
+    };
+}
+
+jet_scalar_op!(Mul, mul, MulAssign, mul_assign, |a, f| a.scale_by(&T::from(f)));
+jet_scalar_op!(Div, div, DivAssign, div_assign, |a, f| a
+    .scale_by(&T::from(f.recip())));
+jet_scalar_op!(Add, add, AddAssign, add_assign, |a, f| {
+    let mut a = a;
+    a.re += f;
+    a
+});
+jet_scalar_op!(Sub, sub, SubAssign, sub_assign, |a, f| {
+    let mut a = a;
+    a.re -= f;
+    a
+});
+
+impl<T: DualNum<F>, F, D: Dim> Rem<F> for LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    type Output = Self;
+    fn rem(self, _f: F) -> Self {
+        unimplemented!("remainder of a dual number")
+    }
+}
+impl<T: DualNum<F>, F, D: Dim> RemAssign<F> for LagrangeJet<T, F, D>
+where
+    DefaultAllocator: Allocator<U1, D> + Allocator<D, D>,
+{
+    fn rem_assign(&mut self, _f: F) {
+        unimplemented!("remainder of a dual number")
     }
 }
 
@@ -339,7 +563,18 @@ where
 }
 
 impl_second_derivatives!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
-impl_dual!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_from_f!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_zero_one!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_neg!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_assign_ops!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_inv!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_iterator!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_from_primitive!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_signed!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_num!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_float_const!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_dual_struct!(LagrangeJet, [D], [U1, D], [D, D]);
+impl_comparisons!(LagrangeJet, [D], [U1, D], [D, D]);
 
 // Compile-time check that the jet is a `Scalar` (a model can be evaluated with it).
 const _: fn() = || {
