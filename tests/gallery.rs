@@ -99,3 +99,41 @@ fn closed_form_normal_modes() {
 fn closed_form_three_body() {
     assert_example_passes("three_body");
 }
+
+#[test]
+fn closed_form_two_springs() {
+    assert_example_passes("two_springs");
+}
+
+#[test]
+fn closed_form_binary_star() {
+    assert_example_passes("binary_star");
+}
+
+#[test]
+fn closed_form_billiard() {
+    assert_example_passes("billiard");
+}
+
+#[test]
+fn closed_form_third_law() {
+    assert_example_passes("third_law");
+}
+
+/// The gallery example runs the full 10⁵ steps (`cargo run --release --example lj_cluster`, ~4 s on
+/// an idle core); the test runs the same cluster for 2·10⁴ steps to keep the suite fast. Same checks.
+#[test]
+fn conserves_energy_lj_cluster() {
+    let report = gallery::lj_cluster::run_steps(20_000).expect("lj_cluster runs");
+    let failed: Vec<String> = report
+        .checks
+        .iter()
+        .filter(|c| !c.passed())
+        .map(|c| c.to_string())
+        .collect();
+    assert!(
+        !report.checks.is_empty() && failed.is_empty(),
+        "failed checks:\n{}",
+        failed.join("\n")
+    );
+}

@@ -15,17 +15,22 @@ pub mod plot;
 pub mod bead_cycloid;
 pub mod bead_helix;
 pub mod bead_rotating_hoop;
+pub mod billiard;
+pub mod binary_star;
 pub mod charged_particle;
 pub mod double_pendulum;
 pub mod harmonic_oscillator;
 pub mod heavy_top;
 pub mod kepler;
+pub mod lj_cluster;
 pub mod normal_modes;
 pub mod pendulum;
 pub mod pendulum_cartesian;
 pub mod rolling_disk;
 pub mod spherical_pendulum;
+pub mod third_law;
 pub mod three_body;
+pub mod two_springs;
 
 /// How a computed value is compared with the expected one.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -231,6 +236,31 @@ pub fn all() -> Vec<Example> {
             name: "three_body",
             about: "restricted three-body problem: Jacobi integral, Lagrange points, Routh's stability limit",
             run: three_body::run,
+        },
+        Example {
+            name: "two_springs",
+            about: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
+            run: two_springs::run,
+        },
+        Example {
+            name: "binary_star",
+            about: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
+            run: binary_star::run,
+        },
+        Example {
+            name: "billiard",
+            about: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
+            run: billiard::run,
+        },
+        Example {
+            name: "third_law",
+            about: "random internal interactions (particles): momentum and angular momentum to 1e-13",
+            run: third_law::run,
+        },
+        Example {
+            name: "lj_cluster",
+            about: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
+            run: lj_cluster::run,
         },
     ]
 }

@@ -44,6 +44,7 @@ pub use hessian::SparseHessian;
 pub use interaction::{External, ExternalForce, Interaction, Internal, InternalForce};
 pub use laws::*;
 pub use methods::{Method, ParticleStepper};
+pub use noether_core::Scalar;
 pub use pairs::{AllPairs, CellList, ShortRange};
 pub use particle::{Particle, Vec3};
 pub use potential::{Body, OneBodyForce, OnePotential, PairPotential, TwoBodyForce};
@@ -54,6 +55,6 @@ pub mod prelude {
     pub use crate::laws::*;
     pub use crate::{
         AllPairs, Body, External, ExternalForce, Internal, InternalForce, Method, OneBodyForce, OnePotential,
-        PairPotential, Parallel, Particle, ShortRange, System, Vec3,
+        PairPotential, Parallel, Particle, Scalar, ShortRange, System, Vec3,
     };
 }
