@@ -164,6 +164,9 @@ pub fn hessian<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, b: Block
     }
     if a == b && na <= MAX_FIXED {
         with_width!(na, hessian_diag_w::<F>(f, t, x, y, a, out))
+    } else if a != b && na.max(nb) <= MAX_FIXED {
+        // A small mixed block (e.g. ∂²L_d/∂q₀∂q₁): one evaluation with width max(na, nb).
+        with_width!(na.max(nb), hessian_blocks::<F>(f, t, x, y, a, b, out))
     } else {
         hessian_blocks::<F, CHUNK>(f, t, x, y, a, b, out)
     }
