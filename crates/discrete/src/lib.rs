@@ -1,1 +1,65 @@
-//! noether-discrete (under construction).
+//! # noether-discrete
+//!
+//! Discrete mechanics: discrete Lagrangians L_d(q₀, q₁, h) written once as generic code (or built from a
+//! continuous [`Lagrangian`](noether_core::Lagrangian) by quadrature), the variational integrators they
+//! define in position-momentum form
+//!
+//! ```text
+//! p_k = −D₁L_d(q_k, q_{k+1}) − f⁻(q_k, q_{k+1}),      p_{k+1} = D₂L_d(q_k, q_{k+1}) + f⁺(q_k, q_{k+1}),
+//! ```
+//!
+//! solved for q_{k+1} by the core Newton with Jacobians from dual numbers, discrete Noether momenta, and
+//! the discrete Lagrange-d'Alembert principle for forced and dissipative systems (f^±).
+//!
+//! - [`DiscreteLagrangian`]: the user's (or a rule's) L_d; [`DiscreteDerivatives`]: D₁L_d, D₂L_d, D₁₂L_d.
+//! - [`Midpoint`], [`Trapezoidal`]: second-order discrete Lagrangians of a continuous L.
+//! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6.
+//! - [`momentum`]: discrete Noether momenta p·ξ(q).
+//!
+//! ```
+//! use noether_core::prelude::*;
+//! use noether_discrete::{momentum, Midpoint, VariationalIntegrator};
+//!
+//! /// Kepler problem in the plane, L = ½|q̇|² + 1/|q|.
+//! struct Kepler;
+//! impl Lagrangian for Kepler {
+//!     fn dof(&self) -> usize { 2 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+//!         (v[0] * v[0] + v[1] * v[1]) * 0.5 + (q[0] * q[0] + q[1] * q[1]).sqrt().recip()
+//!     }
+//! }
+//!
+//! let mut vi = VariationalIntegrator::new(Midpoint::new(Kepler));
+//! let mut s = vi.state_from_velocities(0.0, &[1.0, 0.0], &[0.0, 1.2]).unwrap();
+//! let rot = momentum::PlanarRotation::new(vec![(0, 1)]);
+//! let l0 = momentum::noether_momentum(&rot, s.q.as_slice(), s.v.as_slice());
+//! for _ in 0..200 {
+//!     vi.step(&mut s, 0.05).unwrap();
+//! }
+//! let l1 = momentum::noether_momentum(&rot, s.q.as_slice(), s.v.as_slice());
+//! assert!((l1 - l0).abs() < 1e-13); // angular momentum: a discrete Noether momentum
+//! ```
+
+pub mod banded;
+pub mod composition;
+pub mod flow;
+pub mod integrator;
+pub mod lagrangian;
+pub mod momentum;
+pub mod quadrature;
+
+pub use composition::Composition;
+pub use flow::DiscreteFlow;
+pub use integrator::VariationalIntegrator;
+pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
+pub use momentum::{noether_momentum, Symmetry};
+pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
+
+/// Everything needed to build and step a discrete model, in one import.
+pub mod prelude {
+    pub use crate::momentum::{noether_momentum, PlanarRotation, Symmetry, Translation};
+    pub use crate::{
+        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Midpoint,
+        Trapezoidal, VariationalIntegrator,
+    };
+}

@@ -1,0 +1,120 @@
+//! The one-step map of a variational integrator in position-momentum form, (q_k, p_k) ↦ (q_{k+1}, p_{k+1}),
+//! as a [`DiscreteFlow`]; every flow is also a core [`Stepper`](noether_core::Stepper) on a
+//! [`State`] whose second half `v` holds the momenta p.
+
+use noether_core::error::{check_finite, check_len, check_step};
+use noether_core::{Error, Result, State, StepInfo};
+
+/// A discrete flow (q, p) ↦ (q', p') over a step h, the discrete Hamiltonian map of a discrete Lagrangian.
+///
+/// Unlike [`Stepper::step`](noether_core::Stepper::step), `h` may be negative (symmetric compositions
+/// take backward substeps); it must be finite and non-zero.
+pub trait DiscreteFlow {
+    /// Number of coordinates.
+    fn dof(&self) -> usize;
+    /// Nominal order.
+    fn order(&self) -> u32;
+    /// Short name.
+    fn name(&self) -> &'static str;
+    /// Advances `(q, p)` from time `t` by the signed step `h`; on error `q` and `p` are left exactly as
+    /// they were. Returns the Newton iterations spent.
+    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize>;
+}
+
+impl<F: DiscreteFlow + ?Sized> DiscreteFlow for &mut F {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn order(&self) -> u32 {
+        (**self).order()
+    }
+    fn name(&self) -> &'static str {
+        (**self).name()
+    }
+    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+        (**self).flow(t, h, q, p)
+    }
+}
+
+/// Checks the arguments of a flow call: lengths, finiteness, and a finite non-zero signed step.
+pub(crate) fn check_flow_args(dof: usize, t: f64, h: f64, q: &[f64], p: &[f64]) -> Result<()> {
+    if !h.is_finite() || h == 0.0 {
+        return Err(Error::InvalidStep { h });
+    }
+    check_len("q", q, dof)?;
+    check_len("p", p, dof)?;
+    check_finite("t", &[t])?;
+    check_finite("q", q)?;
+    check_finite("p", p)
+}
+
+/// One [`Stepper`](noether_core::Stepper) step of a flow: a positive step, the state left untouched on error.
+pub(crate) fn step_state<F: DiscreteFlow + ?Sized>(
+    flow: &mut F,
+    state: &mut State,
+    h: f64,
+) -> Result<StepInfo> {
+    check_step(h)?;
+    state.validate(flow.dof())?;
+    let t = state.t;
+    let iterations = flow.flow(t, h, state.q.as_mut_slice(), state.v.as_mut_slice())?;
+    state.t = t + h;
+    Ok(StepInfo {
+        newton_iterations: iterations,
+        ..StepInfo::fixed(h)
+    })
+}
+
+/// Implements [`noether_core::Stepper`] for a type that implements [`DiscreteFlow`].
+macro_rules! stepper_via_flow {
+    ($ty:ident < $($g:ident : $b:path),* >) => {
+        impl<$($g: $b),*> noether_core::Stepper for $ty<$($g),*> {
+            fn step(
+                &mut self,
+                state: &mut noether_core::State,
+                h: f64,
+            ) -> noether_core::Result<noether_core::StepInfo> {
+                $crate::flow::step_state(self, state, h)
+            }
+            fn dof(&self) -> usize {
+                $crate::DiscreteFlow::dof(self)
+            }
+            fn order(&self) -> u32 {
+                $crate::DiscreteFlow::order(self)
+            }
+            fn name(&self) -> &'static str {
+                $crate::DiscreteFlow::name(self)
+            }
+        }
+    };
+}
+pub(crate) use stepper_via_flow;
+
+/// Remembers the last step (end point and displacement) to predict the next q_{k+1} by linear
+/// extrapolation, q_{k+1} ≈ q_k + (h/h_prev)(q_k − q_{k−1}), when the next step starts where the last ended.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Predictor {
+    end: Vec<f64>,
+    dq: Vec<f64>,
+    h: f64,
+}
+
+impl Predictor {
+    /// Writes the initial Newton guess for a step from `q` of size `h` into `guess`.
+    pub(crate) fn guess(&self, q: &[f64], h: f64, guess: &mut [f64]) {
+        guess.copy_from_slice(q);
+        if self.h != 0.0 && self.end.as_slice() == q {
+            let s = h / self.h;
+            guess.iter_mut().zip(&self.dq).for_each(|(g, d)| *g += s * d);
+        }
+    }
+
+    /// Records a step from `q0` to `q1` of size `h`.
+    pub(crate) fn record(&mut self, q0: &[f64], q1: &[f64], h: f64) {
+        self.end.clear();
+        self.end.extend_from_slice(q1);
+        self.dq.clear();
+        self.dq.extend(q1.iter().zip(q0).map(|(b, a)| b - a));
+        self.h = h;
+    }
+}

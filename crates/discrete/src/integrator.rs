@@ -1,0 +1,273 @@
+//! The variational integrator of any [`DiscreteLagrangian`] in position-momentum form, solved by the
+//! core Newton with the Jacobian D₁₂L_d from dual numbers.
+//!
+//! Given (q_k, p_k), solve for q_{k+1}
+//!
+//! ```text
+//! F(q_{k+1}) = p_k + D₁L_d(q_k, q_{k+1}) + f⁻(q_k, q_{k+1}) = 0,     ∂F/∂q_{k+1} = D₁₂L_d(q_k, q_{k+1}),
+//! ```
+//!
+//! then set p_{k+1} = D₂L_d(q_k, q_{k+1}) + f⁺(q_k, q_{k+1}). Without forces this is the discrete
+//! Euler-Lagrange equation D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0 written as a symplectic map.
+//! The Jacobian neglects the derivative of the discrete forces (they come as plain `f64` from
+//! [`Lagrangian::generalized_force`](noether_core::Lagrangian::generalized_force)); Newton still converges
+//! to the exact solution of F = 0, linearly when the forces depend strongly on q_{k+1}.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//! use noether_discrete::{Midpoint, VariationalIntegrator};
+//!
+//! struct Oscillator;
+//! impl Lagrangian for Oscillator {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+//!         (v[0] * v[0] - q[0] * q[0]) * 0.5
+//!     }
+//! }
+//!
+//! let mut vi = VariationalIntegrator::new(Midpoint::new(Oscillator));
+//! let start = vi.state_from_velocities(0.0, &[1.0], &[0.0]).unwrap();
+//! let mut traj = Trajectory::new(vi, start, 0.01).unwrap();
+//! let end = traj.run_steps(100).unwrap();
+//! // Midpoint is second order: q(1) = cos 1 up to O(h²).
+//! assert!((end.q[0] - 1f64.cos()).abs() < 1e-4);
+//! ```
+
+use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow, Predictor};
+use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
+use crate::quadrature::FromLagrangian;
+use nalgebra::{DMatrix, DVector};
+use noether_core::error::{check_finite, check_len};
+use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result, State};
+
+/// Default absolute Newton tolerance on the momentum residual.
+pub(crate) const DEFAULT_TOL: f64 = 1e-16;
+
+/// The Newton settings for a step from momentum `p`: the residual tolerance raised to the rounding floor
+/// 2ε‖p‖∞ when the requested one is below it.
+pub(crate) fn effective_newton(newton: &Newton, p: &[f64]) -> Newton {
+    let floor = 2.0 * f64::EPSILON * noether_core::newton::max_norm(p);
+    newton.tol_residual(newton.tol_residual.max(floor))
+}
+
+/// The discrete Euler-Lagrange equation of one step as a Newton system in q_{k+1}.
+struct DelSystem<'a, Ld: ?Sized> {
+    ld: &'a Ld,
+    t0: f64,
+    h: f64,
+    q0: &'a [f64],
+    p0: &'a [f64],
+    jac: &'a mut DMatrix<f64>,
+    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    fm: &'a mut [f64],
+    fp: &'a mut [f64],
+}
+
+impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
+    fn dim(&self) -> usize {
+        self.q0.len()
+    }
+    fn residual(&mut self, q1: &[f64], r: &mut [f64]) -> Result<()> {
+        self.ld.d1(self.t0, self.h, self.q0, q1, r);
+        r.iter_mut().zip(self.p0).for_each(|(ri, pi)| *ri += pi);
+        if self.ld.has_discrete_force() {
+            self.ld
+                .discrete_force(self.t0, self.h, self.q0, q1, self.fm, self.fp);
+            r.iter_mut().zip(self.fm.iter()).for_each(|(ri, fi)| *ri += fi);
+        }
+        Ok(())
+    }
+    fn factor_jacobian(&mut self, q1: &[f64]) -> Result<()> {
+        self.ld.d12(self.t0, self.h, self.q0, q1, self.jac);
+        if self.jac.iter().any(|v| !v.is_finite()) {
+            return Err(Error::SingularMatrix {
+                what: "discrete Euler-Lagrange Jacobian D₁₂L_d (non-finite entries)",
+            });
+        }
+        let lu = self.jac.clone().lu();
+        if !lu.is_invertible() {
+            return Err(Error::SingularMatrix {
+                what: "discrete Euler-Lagrange Jacobian D₁₂L_d",
+            });
+        }
+        self.lu = Some(lu);
+        Ok(())
+    }
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let singular = Error::SingularMatrix {
+            what: "discrete Euler-Lagrange Jacobian D₁₂L_d",
+        };
+        let lu = self.lu.as_ref().ok_or(singular.clone())?;
+        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
+        if lu.solve_mut(&mut b) {
+            Ok(())
+        } else {
+            Err(singular)
+        }
+    }
+}
+
+/// The variational integrator of a discrete Lagrangian, in position-momentum form (see the module docs).
+///
+/// As a [`Stepper`](noether_core::Stepper) it advances a [`State`] whose `v` holds the momenta p.
+pub struct VariationalIntegrator<Ld> {
+    ld: Ld,
+    newton: Newton,
+    predictor: Predictor,
+    q1: Vec<f64>,
+    p1: Vec<f64>,
+    fm: Vec<f64>,
+    fp: Vec<f64>,
+    jac: DMatrix<f64>,
+    last: NewtonInfo,
+}
+
+impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
+    /// The integrator of `ld`, with Newton solved to rounding: residual ‖p_k + D₁L_d + f⁻‖∞ at most
+    /// max(1e-16, 2ε‖p_k‖∞) (see [`with_newton`](Self::with_newton)), at most 50 iterations.
+    pub fn new(ld: Ld) -> Self {
+        let n = ld.dof();
+        VariationalIntegrator {
+            ld,
+            newton: Newton::default().tol_residual(DEFAULT_TOL),
+            predictor: Predictor::default(),
+            q1: vec![0.0; n],
+            p1: vec![0.0; n],
+            fm: vec![0.0; n],
+            fp: vec![0.0; n],
+            jac: DMatrix::zeros(n, n),
+            last: NewtonInfo::default(),
+        }
+    }
+
+    /// Replaces the Newton settings (iteration cap, Jacobian reuse, and the absolute tolerance τ on the
+    /// residual). A step is solved to ‖p_k + D₁L_d + f⁻‖∞ ≤ max(τ, 2ε‖p_k‖∞): the second bound is the
+    /// rounding floor of the residual. Conserved Noether momenta change per step by the residual's
+    /// component along the symmetry (exactly zero after one iteration for translations, whose residual
+    /// component is linear in q_{k+1}), so a loose τ (the paper uses 1e-8) keeps translational momenta
+    /// at rounding level but not angular ones.
+    pub fn with_newton(mut self, newton: Newton) -> Self {
+        self.newton = newton;
+        self
+    }
+
+    /// The Newton settings.
+    pub fn newton(&self) -> &Newton {
+        &self.newton
+    }
+
+    /// The discrete Lagrangian.
+    pub fn discrete_lagrangian(&self) -> &Ld {
+        &self.ld
+    }
+
+    /// Statistics of the last successful Newton solve.
+    pub fn last_newton(&self) -> NewtonInfo {
+        self.last
+    }
+
+    /// The state at `t0 + h` reached from two positions q₀ (at t₀) and q₁ (at t₀ + h), as the paper
+    /// starts: p₁ = D₂L_d(q₀, q₁) + f⁺(q₀, q₁).
+    pub fn state_from_positions(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<State> {
+        check_flow_args(self.ld.dof(), t0, h, q0, q1)?;
+        let n = self.ld.dof();
+        let mut p1 = vec![0.0; n];
+        self.ld.d2(t0, h, q0, q1, &mut p1);
+        if self.ld.has_discrete_force() {
+            let (mut fm, mut fp) = (vec![0.0; n], vec![0.0; n]);
+            self.ld.discrete_force(t0, h, q0, q1, &mut fm, &mut fp);
+            p1.iter_mut().zip(&fp).for_each(|(p, f)| *p += f);
+        }
+        check_finite("p₁ = D₂L_d(q₀, q₁)", &p1)?;
+        Ok(State::new(t0 + h, q1.to_vec(), p1))
+    }
+
+    /// The discrete momentum of a step, p_k = −D₁L_d(q_k, q_{k+1}) − f⁻: the left end of the discrete
+    /// Legendre transform (equal to the state's p when q_{k+1} is the step taken from it).
+    pub fn momentum_minus(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<DVector<f64>> {
+        check_flow_args(self.ld.dof(), t0, h, q0, q1)?;
+        let n = self.ld.dof();
+        let mut p = vec![0.0; n];
+        self.ld.d1(t0, h, q0, q1, &mut p);
+        if self.ld.has_discrete_force() {
+            let (mut fm, mut fp) = (vec![0.0; n], vec![0.0; n]);
+            self.ld.discrete_force(t0, h, q0, q1, &mut fm, &mut fp);
+            p.iter_mut().zip(&fm).for_each(|(p, f)| *p += f);
+        }
+        Ok(DVector::from_iterator(n, p.into_iter().map(|x| -x)))
+    }
+}
+
+impl<Ld: DiscreteLagrangian + FromLagrangian> VariationalIntegrator<Ld> {
+    /// The state (t, q, p) from positions and velocities through the continuous Legendre map
+    /// p = ∂L/∂q̇(t, q, q̇).
+    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
+        let mut p = vec![0.0; self.ld.dof()];
+        self.ld.continuous().momenta(t, q, v, &mut p)?;
+        Ok(State::new(t, q.to_vec(), p))
+    }
+
+    /// The velocities q̇ of a state (t, q, p) through the inverse continuous Legendre map.
+    pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
+        self.ld
+            .continuous()
+            .velocities(state.t, state.q.as_slice(), state.v.as_slice())
+    }
+
+    /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a discrete state (t, q, p), with q̇ from
+    /// the inverse Legendre map.
+    pub fn energy(&self, state: &State) -> Result<f64> {
+        let v = self.velocities(state)?;
+        self.ld
+            .continuous()
+            .energy(state.t, state.q.as_slice(), v.as_slice())
+    }
+}
+
+impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
+    fn dof(&self) -> usize {
+        self.ld.dof()
+    }
+    fn order(&self) -> u32 {
+        self.ld.order()
+    }
+    fn name(&self) -> &'static str {
+        "variational (position-momentum)"
+    }
+
+    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+        let n = self.ld.dof();
+        check_flow_args(n, t, h, q, p)?;
+        check_len("q₁ (workspace)", &self.q1, n)?;
+        self.predictor.guess(q, h, &mut self.q1);
+        let mut sys = DelSystem {
+            ld: &self.ld,
+            t0: t,
+            h,
+            q0: q,
+            p0: p,
+            jac: &mut self.jac,
+            lu: None,
+            fm: &mut self.fm,
+            fp: &mut self.fp,
+        };
+        let newton = effective_newton(&self.newton, p);
+        let info = newton.solve(&mut sys, &mut self.q1)?;
+        self.ld.d2(t, h, q, &self.q1, &mut self.p1);
+        if self.ld.has_discrete_force() {
+            self.ld
+                .discrete_force(t, h, q, &self.q1, &mut self.fm, &mut self.fp);
+            self.p1.iter_mut().zip(&self.fp).for_each(|(pi, fi)| *pi += fi);
+        }
+        if self.q1.iter().chain(&self.p1).any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        self.predictor.record(q, &self.q1, h);
+        q.copy_from_slice(&self.q1);
+        p.copy_from_slice(&self.p1);
+        self.last = info;
+        Ok(info.iterations)
+    }
+}
+
+stepper_via_flow!(VariationalIntegrator<Ld: DiscreteLagrangian>);

@@ -1,0 +1,178 @@
+//! Discrete Lagrangians L_d(q₀, q₁, h) ≈ ∫ L dt over one step, written once as generic code, and
+//! their derivatives by dual numbers.
+//!
+//! A discrete Lagrangian fits the AD field shape f(t, x, y) of [`noether_core::ad`] with the step h in
+//! the scalar slot, x = q₀ and y = q₁:
+//! - D₁L_d = ∇_x f and D₂L_d = ∇_y f are gradients;
+//! - the Newton Jacobian of the discrete Euler-Lagrange residual p_k + D₁L_d(q_k, q_{k+1}) with respect to
+//!   q_{k+1} is the mixed Hessian block D₁₂L_d = ∂²f/∂x∂y;
+//! - the discrete energy E_d = −∂L_d/∂h is the derivative in the scalar slot.
+//!
+//! ```
+//! use noether_core::Scalar;
+//! use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian};
+//!
+//! /// Free particle of mass m, exact discrete Lagrangian L_d = m (q₁ − q₀)² / (2h).
+//! struct Free { m: f64 }
+//! impl DiscreteLagrangian for Free {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn discrete_lagrangian<D: Scalar>(&self, _t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
+//!         let dq = q1[0] - q0[0];
+//!         dq * dq / h * (0.5 * self.m)
+//!     }
+//! }
+//!
+//! let mut p1 = [0.0];
+//! Free { m: 2.0 }.d2(0.0, 0.5, &[1.0], &[1.25], &mut p1);
+//! assert!((p1[0] - 2.0 * 0.25 / 0.5).abs() < 1e-15); // p₁ = D₂L_d = m (q₁ − q₀)/h
+//! ```
+
+use nalgebra::DMatrix;
+use noether_core::ad::{self, Block, Field};
+use noether_core::Scalar;
+
+/// A discrete Lagrangian L_d(t₀; q₀, q₁, h): an approximation of the action ∫ L dt from (t₀, q₀) to
+/// (t₀ + h, q₁).
+///
+/// Only [`dof`](Self::dof) and [`discrete_lagrangian`](Self::discrete_lagrangian) are required. Discrete
+/// forces (the discrete Lagrange-d'Alembert principle) are optional:
+///
+/// ```text
+/// p_k + D₁L_d(q_k, q_{k+1}) + f⁻(q_k, q_{k+1}) = 0,     p_{k+1} = D₂L_d(q_k, q_{k+1}) + f⁺(q_k, q_{k+1}).
+/// ```
+pub trait DiscreteLagrangian {
+    /// Number of coordinates.
+    fn dof(&self) -> usize;
+
+    /// The value of L_d for a step of size `h` (which may be negative inside compositions) starting at
+    /// time `t0`, from `q0` to `q1`. Generic over the scalar so that h, q₀ and q₁ can all be dual numbers.
+    fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D;
+
+    /// Nominal order of the discrete Lagrangian (the order of the integrator it defines).
+    fn order(&self) -> u32 {
+        2
+    }
+
+    /// `true` when [`discrete_force`](Self::discrete_force) is not identically zero.
+    fn has_discrete_force(&self) -> bool {
+        false
+    }
+
+    /// The discrete forces f⁻ (acting at the left end q₀) and f⁺ (at the right end q₁) of one step, whose
+    /// sum approximates ∫ Q·δq dt over the step. Only called when
+    /// [`has_discrete_force`](Self::has_discrete_force) is `true`.
+    fn discrete_force(
+        &self,
+        _t0: f64,
+        _h: f64,
+        _q0: &[f64],
+        _q1: &[f64],
+        minus: &mut [f64],
+        plus: &mut [f64],
+    ) {
+        minus.iter_mut().chain(plus.iter_mut()).for_each(|x| *x = 0.0);
+    }
+}
+
+impl<Ld: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &Ld {
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
+        (**self).discrete_lagrangian(t0, h, q0, q1)
+    }
+    fn order(&self) -> u32 {
+        (**self).order()
+    }
+    fn has_discrete_force(&self) -> bool {
+        (**self).has_discrete_force()
+    }
+    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
+        (**self).discrete_force(t0, h, q0, q1, minus, plus)
+    }
+}
+
+/// A discrete Lagrangian seen as the AD field f(h, x = q₀, y = q₁) at a fixed start time t₀.
+pub struct DiscreteField<'a, Ld: ?Sized> {
+    /// The discrete Lagrangian.
+    pub ld: &'a Ld,
+    /// Start time of the step.
+    pub t0: f64,
+}
+
+impl<Ld: DiscreteLagrangian + ?Sized> Field for DiscreteField<'_, Ld> {
+    #[inline]
+    fn eval<D: Scalar>(&self, h: D, x: &[D], y: &[D]) -> D {
+        self.ld.discrete_lagrangian(self.t0, h, x, y)
+    }
+}
+
+/// Derivatives of every [`DiscreteLagrangian`] by dual numbers (blanket-implemented).
+///
+/// Lengths are not checked here (debug assertions only): the steppers validate their inputs once.
+pub trait DiscreteDerivatives: DiscreteLagrangian {
+    /// D₁L_d(q₀, q₁) into `out`; returns L_d.
+    fn d1(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut [f64]) -> f64 {
+        ad::gradient(&DiscreteField { ld: self, t0 }, h, q0, q1, Block::X, out)
+    }
+
+    /// D₂L_d(q₀, q₁) into `out`; returns L_d.
+    fn d2(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut [f64]) -> f64 {
+        ad::gradient(&DiscreteField { ld: self, t0 }, h, q0, q1, Block::Y, out)
+    }
+
+    /// The mixed block D₁₂L_d = ∂²L_d/∂q₀∂q₁ (rows q₀, columns q₁) into `out` (dof × dof): the Jacobian
+    /// of q₁ ↦ D₁L_d(q₀, q₁).
+    fn d12(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut DMatrix<f64>) {
+        let f = DiscreteField { ld: self, t0 };
+        ad::hessian(&f, h, q0, q1, Block::X, Block::Y, out)
+    }
+
+    /// D₂₂L_d = ∂²L_d/∂q₁² into `out` (dof × dof): the Jacobian of q₁ ↦ D₂L_d(q₀, q₁).
+    fn d22(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut DMatrix<f64>) {
+        let f = DiscreteField { ld: self, t0 };
+        ad::hessian(&f, h, q0, q1, Block::Y, Block::Y, out)
+    }
+
+    /// D₁₁L_d = ∂²L_d/∂q₀² into `out` (dof × dof).
+    fn d11(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut DMatrix<f64>) {
+        let f = DiscreteField { ld: self, t0 };
+        ad::hessian(&f, h, q0, q1, Block::X, Block::X, out)
+    }
+
+    /// The discrete energy E_d = −∂L_d/∂h (q₀, q₁ fixed).
+    fn discrete_energy(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> f64 {
+        -ad::partial_t(&DiscreteField { ld: self, t0 }, h, q0, q1)
+    }
+}
+
+impl<Ld: DiscreteLagrangian + ?Sized> DiscreteDerivatives for Ld {}
+
+/// A short vector of scalars on the stack (up to 16), on the heap beyond: scratch space for generic
+/// model code that must not allocate per evaluation for small systems.
+pub(crate) enum Scratch<D> {
+    Stack([D; 16], usize),
+    Heap(Vec<D>),
+}
+
+impl<D: Scalar> Scratch<D> {
+    #[inline]
+    pub(crate) fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
+        if n <= 16 {
+            Scratch::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
+        } else {
+            Scratch::Heap((0..n).map(f).collect())
+        }
+    }
+}
+
+impl<D> std::ops::Deref for Scratch<D> {
+    type Target = [D];
+    #[inline]
+    fn deref(&self) -> &[D] {
+        match self {
+            Scratch::Stack(a, n) => &a[..*n],
+            Scratch::Heap(v) => v,
+        }
+    }
+}

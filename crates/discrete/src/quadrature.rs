@@ -1,0 +1,128 @@
+//! Discrete Lagrangians from a continuous [`Lagrangian`] by quadrature of the action over one step
+//! (second order): the midpoint rule and the trapezoidal rule.
+//!
+//! With v = (q₁ − q₀)/h:
+//! - midpoint: `L_d = h L(t₀ + h/2, (q₀ + q₁)/2, v)`; discrete forces f⁻ = f⁺ = (h/2) Q(t₀ + h/2, (q₀+q₁)/2, v);
+//! - trapezoidal: `L_d = (h/2) [L(t₀, q₀, v) + L(t₀ + h, q₁, v)]`; f⁻ = (h/2) Q(t₀, q₀, v),
+//!   f⁺ = (h/2) Q(t₀ + h, q₁, v).
+//!
+//! For L = ½ q̇ᵀMq̇ − V(q) the midpoint rule gives the implicit midpoint method and the trapezoidal rule
+//! gives Störmer-Verlet (see [`crate::Verlet`] for the explicit fast path).
+//!
+//! # References
+//! J. E. Marsden and M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001),
+//! §2.2 and §3.2.
+
+use crate::lagrangian::{DiscreteLagrangian, Scratch};
+use noether_core::{EulerLagrange, Lagrangian, Scalar};
+
+/// A discrete Lagrangian built from a continuous Lagrangian: gives access to the continuous equations
+/// (Legendre map, energy) so a discrete trajectory can be started from velocities and reported in the
+/// continuous system's energy.
+pub trait FromLagrangian {
+    /// The continuous Lagrangian.
+    type L: Lagrangian;
+    /// The continuous Euler-Lagrange equations (mass factor cached there).
+    fn continuous(&self) -> &EulerLagrange<Self::L>;
+}
+
+/// The midpoint discrete Lagrangian `L_d = h L(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h)`.
+pub struct Midpoint<L> {
+    el: EulerLagrange<L>,
+}
+
+impl<L: Lagrangian> Midpoint<L> {
+    /// The midpoint rule applied to `lagrangian`.
+    pub fn new(lagrangian: L) -> Self {
+        Midpoint {
+            el: EulerLagrange::new(lagrangian),
+        }
+    }
+}
+
+impl<L: Lagrangian> FromLagrangian for Midpoint<L> {
+    type L = L;
+    fn continuous(&self) -> &EulerLagrange<L> {
+        &self.el
+    }
+}
+
+impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
+    fn dof(&self) -> usize {
+        self.el.dof()
+    }
+
+    fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
+        let n = q0.len();
+        let half = D::from(0.5);
+        let mid = Scratch::new(n, |i| (q0[i] + q1[i]) * half);
+        let v = Scratch::new(n, |i| (q1[i] - q0[i]) / h);
+        self.el.lagrangian().lagrangian(h * half + t0, &mid, &v) * h
+    }
+
+    fn has_discrete_force(&self) -> bool {
+        self.el.lagrangian().has_generalized_force()
+    }
+
+    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
+        let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
+        let v: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| (b - a) / h).collect();
+        self.el
+            .lagrangian()
+            .generalized_force(t0 + 0.5 * h, &mid, &v, minus);
+        for (m, p) in minus.iter_mut().zip(plus.iter_mut()) {
+            *m *= 0.5 * h;
+            *p = *m;
+        }
+    }
+}
+
+/// The trapezoidal discrete Lagrangian `L_d = (h/2) [L(t₀, q₀, v) + L(t₀ + h, q₁, v)]`, v = (q₁ − q₀)/h.
+pub struct Trapezoidal<L> {
+    el: EulerLagrange<L>,
+}
+
+impl<L: Lagrangian> Trapezoidal<L> {
+    /// The trapezoidal rule applied to `lagrangian`.
+    pub fn new(lagrangian: L) -> Self {
+        Trapezoidal {
+            el: EulerLagrange::new(lagrangian),
+        }
+    }
+}
+
+impl<L: Lagrangian> FromLagrangian for Trapezoidal<L> {
+    type L = L;
+    fn continuous(&self) -> &EulerLagrange<L> {
+        &self.el
+    }
+}
+
+impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
+    fn dof(&self) -> usize {
+        self.el.dof()
+    }
+
+    fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
+        let n = q0.len();
+        let v = Scratch::new(n, |i| (q1[i] - q0[i]) / h);
+        let l = self.el.lagrangian();
+        let t = D::from(t0);
+        (l.lagrangian(t, q0, &v) + l.lagrangian(t + h, q1, &v)) * h * 0.5
+    }
+
+    fn has_discrete_force(&self) -> bool {
+        self.el.lagrangian().has_generalized_force()
+    }
+
+    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
+        let v: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| (b - a) / h).collect();
+        let l = self.el.lagrangian();
+        l.generalized_force(t0, q0, &v, minus);
+        l.generalized_force(t0 + h, q1, &v, plus);
+        minus
+            .iter_mut()
+            .chain(plus.iter_mut())
+            .for_each(|x| *x *= 0.5 * h);
+    }
+}

@@ -1,0 +1,8 @@
+//! Tests of noether-discrete, one binary with a module per kind of truth: closed forms and orders,
+//! conservation laws, regressions against hand-written equations, bad input.
+
+mod bad_input;
+mod conserves;
+mod models;
+mod order;
+mod regress;
