@@ -13,7 +13,8 @@ use noether_core::{Lagrangian, Scalar};
 
 use crate::Result;
 
-/// A potential energy V(q) with `dof()` coordinates.
+/// A potential energy V(q) with `dof()` coordinates: noether-core's trait (the one natural systems and
+/// symplectic methods use), re-exported so that one model serves both.
 ///
 /// ```
 /// use noether_analysis::Potential;
@@ -29,21 +30,7 @@ use crate::Result;
 ///     }
 /// }
 /// ```
-pub trait Potential {
-    /// Number of coordinates.
-    fn dof(&self) -> usize;
-    /// The value V(q).
-    fn potential<D: Scalar>(&self, q: &[D]) -> D;
-}
-
-impl<P: Potential + ?Sized> Potential for &P {
-    fn dof(&self) -> usize {
-        (**self).dof()
-    }
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        (**self).potential(q)
-    }
-}
+pub use noether_core::Potential;
 
 /// The effective potential U(q) = −L(t, q, 0) of a Lagrangian at a fixed time `t`.
 #[derive(Debug, Clone, Copy)]
