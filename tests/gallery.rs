@@ -137,3 +137,18 @@ fn conserves_energy_lj_cluster() {
         failed.join("\n")
     );
 }
+
+#[test]
+fn closed_form_rutherford() {
+    assert_example_passes("rutherford");
+}
+
+#[test]
+fn closed_form_bertrand() {
+    assert_example_passes("bertrand");
+}
+
+#[test]
+fn closed_form_cyclotron() {
+    assert_example_passes("cyclotron");
+}

@@ -15,9 +15,11 @@ pub mod plot;
 pub mod bead_cycloid;
 pub mod bead_helix;
 pub mod bead_rotating_hoop;
+pub mod bertrand;
 pub mod billiard;
 pub mod binary_star;
 pub mod charged_particle;
+pub mod cyclotron;
 pub mod double_pendulum;
 pub mod harmonic_oscillator;
 pub mod heavy_top;
@@ -27,6 +29,7 @@ pub mod normal_modes;
 pub mod pendulum;
 pub mod pendulum_cartesian;
 pub mod rolling_disk;
+pub mod rutherford;
 pub mod spherical_pendulum;
 pub mod third_law;
 pub mod three_body;
@@ -261,6 +264,21 @@ pub fn all() -> Vec<Example> {
             name: "lj_cluster",
             about: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
             run: lj_cluster::run,
+        },
+        Example {
+            name: "rutherford",
+            about: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
+            run: rutherford::run,
+        },
+        Example {
+            name: "bertrand",
+            about: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
+            run: bertrand::run,
+        },
+        Example {
+            name: "cyclotron",
+            about: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
+            run: cyclotron::run,
         },
     ]
 }
