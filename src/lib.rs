@@ -15,3 +15,8 @@ pub mod prelude {
 }
 
 pub mod gallery;
+
+/// The code blocks of `docs/guide.md` run as doc-tests, so the guide stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/guide.md")]
+pub struct GuideDoctests;
