@@ -183,3 +183,93 @@ fn bad_input_mass_matrix_and_coefficients() {
         Err(Error::InvalidParameter { .. })
     ));
 }
+
+/// ẏ = y² (on q; v idle): y = 1/(1 − t) blows up at t = 1.
+struct BlowUp;
+impl Dynamics for BlowUp {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn rates(&self, _t: f64, q: &[f64], _v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+        dq[0] = q[0] * q[0];
+        dv[0] = 0.0;
+        Ok(())
+    }
+    fn energy(&self, _t: f64, _q: &[f64], _v: &[f64]) -> Result<f64> {
+        Ok(0.0)
+    }
+}
+
+#[test]
+fn bad_input_adaptive_step_size_underflow() {
+    // Integrating ẏ = y² from y(0) = 1 past the blow-up at t = 1: the steps shrink to h_min and the
+    // integration stops with StepSizeUnderflow at t ≈ 1 (the numerical blow-up time agrees with the true
+    // one to the tolerance), and `integrate` leaves the state untouched on error.
+    for name in ["DOPRI5", "DOP853"] {
+        let mut state = State::new(0.0, [1.0], [0.0]);
+        let res = if name == "DOPRI5" {
+            Dopri5::new(BlowUp)
+                .tolerances(1e-8, 1e-8)
+                .integrate(&mut state, 2.0, &[])
+        } else {
+            Dop853::new(BlowUp)
+                .tolerances(1e-8, 1e-8)
+                .integrate(&mut state, 2.0, &[])
+        };
+        match res {
+            Err(Error::StepSizeUnderflow { t, h, .. }) => {
+                assert!((t - 1.0).abs() < 1e-3 && h < 1e-13, "{name}: t = {t}, h = {h}");
+            }
+            other => panic!("{name}: expected underflow, got {other:?}"),
+        }
+        assert!(
+            state.is_finite() && state.t == 0.0,
+            "integrate leaves the state on error"
+        );
+    }
+    // A model turning NaN mid-run (θ > 1.5) is also met by shrinking steps, never by a NaN state.
+    let mut s = Dopri5::new(Natural::unit(Fragile));
+    let mut traj_state = State::new(0.0, [1.4], [0.5]);
+    let mut h = 0.01;
+    let err = loop {
+        match s.step(&mut traj_state, h) {
+            Ok(info) => h = info.h_next,
+            Err(e) => break e,
+        }
+    };
+    assert!(matches!(err, Error::StepSizeUnderflow { .. }), "{err}");
+    assert!(traj_state.is_finite() && traj_state.q[0] <= 1.5);
+}
+
+#[test]
+fn bad_input_adaptive_parameters() {
+    let mut state = State::new(0.0, [1.0], [0.0]);
+    let before = state.clone();
+    let sys = || Natural::unit(PendulumV);
+    for (atol, rtol) in [(0.0, 0.0), (-1.0, 1e-6), (1e-6, f64::NAN)] {
+        let err = Dopri5::new(sys())
+            .tolerances(atol, rtol)
+            .step(&mut state, 0.1)
+            .unwrap_err();
+        assert!(matches!(err, Error::InvalidParameter { .. }), "{err}");
+    }
+    let mut dp = Dopri5::new(sys());
+    let unsorted = dp.integrate(&mut state, 1.0, &[0.5, 0.2]);
+    assert!(matches!(
+        unsorted,
+        Err(Error::InvalidParameter {
+            name: "sample time",
+            ..
+        })
+    ));
+    let outside = dp.integrate(&mut state, 1.0, &[1.5]);
+    assert!(matches!(outside, Err(Error::InvalidParameter { .. })));
+    let backwards = dp.integrate(&mut state, -1.0, &[]);
+    assert!(matches!(
+        backwards,
+        Err(Error::InvalidParameter { name: "t_end", .. })
+    ));
+    let nan_end = dp.integrate(&mut state, f64::NAN, &[]);
+    assert!(matches!(nan_end, Err(Error::NonFinite { .. })));
+    assert_eq!(state, before);
+}

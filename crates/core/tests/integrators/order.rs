@@ -13,9 +13,27 @@ pub const T_PENDULUM: f64 = 10.0;
 pub const ECC: f64 = 0.5;
 pub const T_KEPLER: f64 = 5.0;
 
-/// Errors at t_end for n steps in `ns`.
-pub fn errors<S: Stepper>(
+/// Errors against `exact` = (q, v) at t_end for n steps in `ns`.
+pub fn errors_vs<S: Stepper>(
     mut make: impl FnMut() -> S,
+    start: &State,
+    t_end: f64,
+    exact: &(Vec<f64>, Vec<f64>),
+    ns: &[usize],
+) -> Vec<(f64, f64)> {
+    ns.iter()
+        .map(|&n| {
+            let h = t_end / n as f64;
+            let end = run(&mut make(), start.clone(), h, n);
+            (h, distance(&end, &exact.0, &exact.1))
+        })
+        .collect()
+}
+
+/// Errors at t_end for n steps in `ns` against the pendulum (θ₀ = [`THETA0`]) or Kepler (e = [`ECC`])
+/// closed form, by the dimension of `start`.
+pub fn errors<S: Stepper>(
+    make: impl FnMut() -> S,
     start: &State,
     t_end: f64,
     ns: &[usize],
@@ -29,14 +47,7 @@ pub fn errors<S: Stepper>(
             (q.to_vec(), p.to_vec())
         }
     };
-    let (q, v) = exact(t_end);
-    ns.iter()
-        .map(|&n| {
-            let h = t_end / n as f64;
-            let end = run(&mut make(), start.clone(), h, n);
-            (h, distance(&end, &q, &v))
-        })
-        .collect()
+    errors_vs(make, start, t_end, &exact(t_end), ns)
 }
 
 /// Least-squares slope of log(err) against log(h).

@@ -37,6 +37,17 @@ impl Hamiltonian for PendulumH {
     }
 }
 
+/// Harmonic oscillator V = ½ q² (closed form q = q₀ cos t + v₀ sin t).
+pub struct HarmonicV;
+impl Potential for HarmonicV {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        q[0] * q[0] * 0.5
+    }
+}
+
 /// Kepler problem with μ = m = 1: V(q) = −1/|q|.
 pub struct KeplerV;
 impl Potential for KeplerV {
@@ -99,7 +110,10 @@ pub fn jacobi_sn_cn_dn(u: f64, m: f64) -> (f64, f64, f64) {
 /// Complete elliptic integral K(m) = π / (2 AGM(1, √(1 − m))).
 pub fn elliptic_k(m: f64) -> f64 {
     let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
-    while (a - b).abs() > 1e-16 * a {
+    for _ in 0..60 {
+        if (a - b).abs() <= 4.0 * f64::EPSILON * a {
+            break;
+        }
         (a, b) = ((a + b) / 2.0, (a * b).sqrt());
     }
     std::f64::consts::PI / (2.0 * a)

@@ -1,0 +1,533 @@
+//! Adaptive embedded Runge-Kutta pairs with error control and dense output: the engine shared by
+//! [`Dopri5`](super::Dopri5) (Dormand-Prince 5(4)) and [`Dop853`](super::Dop853) (Dormand-Prince
+//! 8(5,3)).
+//!
+//! A step of size h computes the stages k_i = F(t + c_i h, y + h Σ_j a_ij k_j) on y = (q, v), the
+//! solution y₁ = y + h Σ b_i k_i and an error estimate (the difference to an embedded lower-order
+//! solution), measured in the scaled norm
+//!
+//! ```text
+//! err = sqrt( (1/2n) Σ_i ( e_i / (atol + rtol·max(|y_i|, |y₁_i|)) )² ).
+//! ```
+//!
+//! The step is accepted when err ≤ 1. The next step size follows the PI controller of Hairer's codes
+//! (Hairer-Nørsett-Wanner I, II.4 and IV.2):
+//! h_new = h · clamp(safety · err^(−α) · err_prev^β, fac_min, fac_max), α = 1/q − 0.75β, with q the
+//! controller order (5 for DOPRI5, 8 for DOP853). A rejected step is retried with a smaller h; when h
+//! falls below `h_min` (or below 10 ulps of t) the step fails with [`Error::StepSizeUnderflow`].
+//! Stage values that are not finite count as a rejected step (the step is too large), so a solution
+//! running into a singularity ends in a step-size underflow rather than a NaN state.
+//!
+//! After every accepted step a continuous extension ([`DenseOutput`]) gives y(t) inside the step to
+//! the method's dense order (4 for DOPRI5, 7 for DOP853): sample at given times
+//! ([`Adaptive::integrate`]) or locate events ([`DenseOutput::locate`]).
+
+use crate::error::{check_finite, check_step};
+use crate::{Dynamics, Error, Result, State, StepInfo, Stepper};
+
+/// The coefficients and formulas of an embedded pair with dense output.
+pub trait EmbeddedPair {
+    /// Short name.
+    const NAME: &'static str;
+    /// Order of the propagated solution.
+    const ORDER: u32;
+    /// Controller order q: the step size scales like err^(−1/q).
+    const CONTROL_ORDER: f64;
+    /// Default step-size controller.
+    const CONTROLLER: Controller;
+    /// Nodes c_i of the s main stages.
+    const C: &'static [f64];
+    /// Rows a_i (length i) of the s main stages.
+    const A: &'static [&'static [f64]];
+    /// Weights b_i (length s) of the propagated solution.
+    const B: &'static [f64];
+    /// Extra stages for the dense output, each (c, row over all previous stages incl. F(t+h, y₁)).
+    const DENSE_STAGES: &'static [(f64, &'static [f64])];
+    /// Number of coefficient vectors of the dense polynomial.
+    const DENSE_LEN: usize;
+    /// Dense order (of the continuous extension).
+    const DENSE_ORDER: u32;
+    /// The scaled error norm; `k` holds the s main stages and k_s = F(t + h, y₁).
+    fn error_norm(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64;
+    /// Coefficients of the dense polynomial from all stages (main, F(t+h,y₁), dense extra).
+    fn dense_coefficients(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]);
+    /// y(t₀ + θh) from the coefficients.
+    fn dense_eval(theta: f64, y0: &[f64], coeffs: &[Vec<f64>], out: &mut [f64]);
+}
+
+/// Step-size controller parameters (Hairer's `safe`, `fac1`, `fac2`, `beta`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Controller {
+    /// Safety factor (0.9).
+    pub safety: f64,
+    /// Smallest ratio h_new/h.
+    pub fac_min: f64,
+    /// Largest ratio h_new/h.
+    pub fac_max: f64,
+    /// PI stabilisation exponent β (0 gives the standard controller).
+    pub beta: f64,
+}
+
+/// Counters of an adaptive integration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AdaptiveStats {
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected trial steps.
+    pub rejected: usize,
+    /// Evaluations of the vector field.
+    pub evaluations: usize,
+}
+
+/// y(t₀ + θh) from θ, y₀ and the coefficients of a continuous extension.
+type DenseEval = fn(f64, &[f64], &[Vec<f64>], &mut [f64]);
+
+/// The continuous extension of the last accepted step, valid for t in [t₀, t₀ + h].
+#[derive(Debug, Clone)]
+pub struct DenseOutput {
+    t0: f64,
+    h: f64,
+    n: usize,
+    y0: Vec<f64>,
+    coeffs: Vec<Vec<f64>>,
+    eval: DenseEval,
+}
+
+impl DenseOutput {
+    /// Start of the step.
+    pub fn t_start(&self) -> f64 {
+        self.t0
+    }
+    /// End of the step.
+    pub fn t_end(&self) -> f64 {
+        self.t0 + self.h
+    }
+    /// The interpolated state at time `t` (which should lie in [t_start, t_end]; outside, the
+    /// polynomial extrapolates).
+    pub fn state_at(&self, t: f64) -> State {
+        let mut y = vec![0.0; 2 * self.n];
+        (self.eval)((t - self.t0) / self.h, &self.y0, &self.coeffs, &mut y);
+        let v = y.split_off(self.n);
+        State::new(t, y, v)
+    }
+
+    /// A time in the step where `g(state)` vanishes, when g changes sign between the ends of the step,
+    /// located to ~1e-14 relative accuracy by the Illinois (modified regula falsi) method on the dense
+    /// output; `None` when g has the same sign at both ends (or is not finite there).
+    pub fn locate(&self, mut g: impl FnMut(&State) -> f64) -> Option<f64> {
+        let (mut a, mut b) = (self.t0, self.t_end());
+        let (mut ga, mut gb) = (g(&self.state_at(a)), g(&self.state_at(b)));
+        if !(ga.is_finite() && gb.is_finite()) || ga * gb > 0.0 {
+            return None;
+        }
+        if ga == 0.0 {
+            return Some(a);
+        }
+        for _ in 0..200 {
+            if gb == 0.0 || (b - a).abs() <= 1e-14 * (a.abs() + b.abs()).max(self.h.abs()) {
+                return Some(b);
+            }
+            let c = b - gb * (b - a) / (gb - ga);
+            let gc = g(&self.state_at(c));
+            if !gc.is_finite() {
+                return Some(b);
+            }
+            if gc * gb < 0.0 {
+                (a, ga) = (b, gb);
+            } else {
+                ga *= 0.5;
+            }
+            (b, gb) = (c, gc);
+        }
+        Some(b)
+    }
+}
+
+/// An adaptive embedded Runge-Kutta method `M` (see the [module](self) docs) stepping a [`Dynamics`].
+///
+/// ```
+/// use noether_core::prelude::*;
+/// struct Oscillator;
+/// impl Lagrangian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D { (v[0] * v[0] - q[0] * q[0]) * 0.5 }
+/// }
+/// let mut dp = Dopri5::new(EulerLagrange::new(Oscillator)).tolerances(1e-10, 1e-10);
+/// let mut state = State::new(0.0, [1.0], [0.0]);
+/// let samples = dp.integrate(&mut state, 10.0, &[1.0, 2.0, 3.0]).unwrap();
+/// for s in &samples {
+///     assert!((s.q[0] - s.t.cos()).abs() < 1e-8); // q = cos t
+/// }
+/// assert!((state.t - 10.0).abs() < 1e-15 && (state.q[0] - 10f64.cos()).abs() < 1e-8);
+/// ```
+pub struct Adaptive<S, M> {
+    system: S,
+    atol: f64,
+    rtol: f64,
+    h_min: f64,
+    controller: Controller,
+    fixed: bool,
+    dense_enabled: bool,
+    n: usize,
+    k: Vec<Vec<f64>>,
+    y0: Vec<f64>,
+    y1: Vec<f64>,
+    tmp: Vec<f64>,
+    err_prev: f64,
+    fsal: Option<f64>,
+    dense: Option<DenseOutput>,
+    stats: AdaptiveStats,
+    _method: std::marker::PhantomData<M>,
+}
+
+impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
+    /// The method for `system` with atol = rtol = 1e-9, dense output on.
+    pub fn new(system: S) -> Self {
+        let n = system.dof();
+        let stages = M::C.len() + 1 + M::DENSE_STAGES.len();
+        Adaptive {
+            system,
+            atol: 1e-9,
+            rtol: 1e-9,
+            h_min: 1e-14,
+            controller: M::CONTROLLER,
+            fixed: false,
+            dense_enabled: true,
+            n,
+            k: vec![vec![0.0; 2 * n]; stages],
+            y0: vec![0.0; 2 * n],
+            y1: vec![0.0; 2 * n],
+            tmp: vec![0.0; 2 * n],
+            err_prev: 1e-4,
+            fsal: None,
+            dense: None,
+            stats: AdaptiveStats::default(),
+            _method: std::marker::PhantomData,
+        }
+    }
+
+    /// Sets the absolute and relative tolerances (checked at the next step: finite, ≥ 0, not both 0).
+    pub fn tolerances(mut self, atol: f64, rtol: f64) -> Self {
+        self.atol = atol;
+        self.rtol = rtol;
+        self
+    }
+    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14).
+    pub fn h_min(mut self, h_min: f64) -> Self {
+        self.h_min = h_min;
+        self
+    }
+    /// Sets the step-size controller.
+    pub fn controller(mut self, controller: Controller) -> Self {
+        self.controller = controller;
+        self
+    }
+    /// Fixed steps: every step is accepted with the size asked for (no error control); for
+    /// convergence studies and for users who want a plain high-order Runge-Kutta method.
+    pub fn fixed_step(mut self, fixed: bool) -> Self {
+        self.fixed = fixed;
+        self
+    }
+    /// Turns the dense output off (saves the extra stages of DOP853).
+    pub fn with_dense_output(mut self, on: bool) -> Self {
+        self.dense_enabled = on;
+        self
+    }
+    /// The system stepped.
+    pub fn system(&self) -> &S {
+        &self.system
+    }
+    /// Counters since construction.
+    pub fn stats(&self) -> AdaptiveStats {
+        self.stats
+    }
+    /// The continuous extension of the last accepted step.
+    pub fn dense_output(&self) -> Option<&DenseOutput> {
+        self.dense.as_ref()
+    }
+
+    fn check_parameters(&self) -> Result<()> {
+        let bad = |name, value, reason| Err(Error::InvalidParameter { name, value, reason });
+        if !(self.atol.is_finite() && self.atol >= 0.0) {
+            return bad("atol", self.atol, "must be finite and non-negative");
+        }
+        if !(self.rtol.is_finite() && self.rtol >= 0.0) {
+            return bad("rtol", self.rtol, "must be finite and non-negative");
+        }
+        if self.atol == 0.0 && self.rtol == 0.0 {
+            return bad("atol", 0.0, "atol and rtol cannot both be zero");
+        }
+        if !(self.h_min.is_finite() && self.h_min >= 0.0) {
+            return bad("h_min", self.h_min, "must be finite and non-negative");
+        }
+        Ok(())
+    }
+
+    /// F at (t, y) into k[i]; Ok(false) when the value is not finite.
+    fn eval(&mut self, i: usize, t: f64, from_tmp: bool) -> Result<bool> {
+        let n = self.n;
+        let y = if from_tmp { &self.tmp } else { &self.y0 };
+        let (dq, dv) = self.k[i].split_at_mut(n);
+        self.stats.evaluations += 1;
+        match self.system.rates(t, &y[..n], &y[n..], dq, dv) {
+            Ok(()) => Ok(self.k[i].iter().all(|x| x.is_finite())),
+            Err(Error::NonFiniteState { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// tmp = y0 + h Σ_j row_j k_j.
+    fn combine(&mut self, h: f64, row: &[f64]) {
+        self.tmp.copy_from_slice(&self.y0);
+        for (j, a) in row.iter().enumerate() {
+            if *a != 0.0 {
+                let c = h * a;
+                self.tmp.iter_mut().zip(&self.k[j]).for_each(|(y, k)| *y += c * k);
+            }
+        }
+    }
+
+    /// One trial step of size h from (t, y0); returns the error norm (∞ for non-finite stages).
+    fn attempt(&mut self, t: f64, h: f64) -> Result<f64> {
+        let s = M::C.len();
+        for i in 1..s {
+            self.combine(h, M::A[i]);
+            if !self.eval(i, t + M::C[i] * h, true)? {
+                return Ok(f64::INFINITY);
+            }
+        }
+        self.combine(h, M::B);
+        self.y1.copy_from_slice(&self.tmp);
+        if !self.eval(s, t + h, true)? {
+            return Ok(f64::INFINITY);
+        }
+        if self.fixed {
+            return Ok(0.0);
+        }
+        let err = M::error_norm(h, &self.k, &self.y0, &self.y1, self.atol, self.rtol);
+        Ok(if err.is_nan() { f64::INFINITY } else { err })
+    }
+
+    fn build_dense(&mut self, t: f64, h: f64) -> Result<()> {
+        let s = M::C.len();
+        for (j, (c, row)) in M::DENSE_STAGES.iter().enumerate() {
+            self.combine(h, row);
+            if !self.eval(s + 1 + j, t + c * h, true)? {
+                return Err(Error::NonFiniteState { step: 0, t });
+            }
+        }
+        let mut coeffs = match self.dense.take() {
+            Some(d) if d.coeffs.len() == M::DENSE_LEN => d.coeffs,
+            _ => vec![vec![0.0; 2 * self.n]; M::DENSE_LEN],
+        };
+        M::dense_coefficients(h, &self.k, &self.y0, &self.y1, &mut coeffs);
+        self.dense = Some(DenseOutput {
+            t0: t,
+            h,
+            n: self.n,
+            y0: self.y0.clone(),
+            coeffs,
+            eval: M::dense_eval,
+        });
+        Ok(())
+    }
+
+    /// An initial step size for (t, state) by Hairer's `hinit`: h such that the explicit Euler step
+    /// and the second derivative estimate give a local error ≈ 0.01 in the scaled norm.
+    pub fn initial_step(&mut self, state: &State) -> Result<f64> {
+        self.check_parameters()?;
+        state.validate(self.n)?;
+        let n2 = 2 * self.n;
+        self.load(state);
+        if !self.eval(0, state.t, false)? {
+            return Err(Error::NonFiniteState { step: 0, t: state.t });
+        }
+        let sk: Vec<f64> = self.y0.iter().map(|y| self.atol + self.rtol * y.abs()).collect();
+        let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|v| v * v).sum::<f64>().sqrt();
+        let dnf = norm(&mut self.k[0].iter().zip(&sk).map(|(f, s)| f / s));
+        let dny = norm(&mut self.y0.iter().zip(&sk).map(|(y, s)| y / s));
+        let mut h = if dnf <= 1e-5 || dny <= 1e-5 {
+            1e-6
+        } else {
+            0.01 * dny / dnf
+        };
+        let k0 = self.k[0].clone();
+        self.tmp
+            .iter_mut()
+            .enumerate()
+            .for_each(|(i, y)| *y = self.y0[i] + h * k0[i]);
+        let last = self.k.len() - 1;
+        if !self.eval(last, state.t + h, true)? {
+            return Ok(h * 1e-3);
+        }
+        let der2 = norm(&mut (0..n2).map(|i| (self.k[last][i] - k0[i]) / sk[i])) / h;
+        let der12 = der2.abs().max(dnf);
+        let h1 = if der12 <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            (0.01 / der12).powf(1.0 / (M::ORDER as f64))
+        };
+        h = (100.0 * h).min(h1);
+        self.fsal = None;
+        Ok(h)
+    }
+
+    fn load(&mut self, state: &State) {
+        let n = self.n;
+        self.y0[..n].copy_from_slice(state.q.as_slice());
+        self.y0[n..].copy_from_slice(state.v.as_slice());
+    }
+
+    /// Integrates from `state` to `t_end` (adaptive steps, the last one shortened to land on t_end),
+    /// returning the states at the requested `times` (sorted, within [state.t, t_end]) from the dense
+    /// output. `state` ends at t_end.
+    pub fn integrate(&mut self, state: &mut State, t_end: f64, times: &[f64]) -> Result<Vec<State>> {
+        check_finite("t_end", &[t_end])?;
+        check_finite("sample times", times)?;
+        state.validate(self.n)?;
+        if t_end < state.t {
+            return Err(Error::InvalidParameter {
+                name: "t_end",
+                value: t_end,
+                reason: "integration runs forward in time: t_end must not precede the state's time",
+            });
+        }
+        if let Some(w) = times.windows(2).find(|w| w[1] < w[0]) {
+            return Err(Error::InvalidParameter {
+                name: "sample time",
+                value: w[1],
+                reason: "sample times must be sorted",
+            });
+        }
+        if let Some(&t) = times.iter().find(|&&t| t < state.t || t > t_end) {
+            return Err(Error::InvalidParameter {
+                name: "sample time",
+                value: t,
+                reason: "sample times must lie within [t0, t_end]",
+            });
+        }
+        let mut out = Vec::with_capacity(times.len());
+        let mut next = 0;
+        while next < times.len() && times[next] == state.t {
+            out.push(state.clone());
+            next += 1;
+        }
+        let mut h = self.initial_step(state)?;
+        let mut work = state.clone();
+        let mut steps = 0;
+        while work.t < t_end {
+            let remaining = t_end - work.t;
+            let last = h >= remaining || remaining <= 10.0 * f64::EPSILON * t_end.abs();
+            let info = self
+                .step(&mut work, if last { remaining } else { h })
+                .map_err(|e| match e {
+                    Error::NonFiniteState { t, .. } => Error::NonFiniteState { step: steps, t },
+                    other => other,
+                })?;
+            steps += 1;
+            if last && info.h == remaining {
+                work.t = t_end;
+            }
+            h = info.h_next;
+            let dense_ok = self.dense_enabled;
+            while next < times.len() && times[next] <= work.t {
+                let s = match (&self.dense, dense_ok) {
+                    (Some(d), true) => d.state_at(times[next]),
+                    _ => {
+                        return Err(Error::Unsupported(
+                            "sampling at requested times needs the dense output",
+                        ))
+                    }
+                };
+                out.push(s);
+                next += 1;
+            }
+        }
+        *state = work;
+        Ok(out)
+    }
+}
+
+impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
+    /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
+    /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
+    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+        check_step(h)?;
+        self.check_parameters()?;
+        state.validate(self.n)?;
+        let t = state.t;
+        let reuse = self.fsal == Some(t)
+            && self.y1[..self.n] == *state.q.as_slice()
+            && self.y1[self.n..] == *state.v.as_slice();
+        self.load(state);
+        if reuse {
+            let s = M::C.len();
+            self.k.swap(0, s);
+        } else if !self.eval(0, t, false)? {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        self.fsal = None;
+        let c = self.controller;
+        let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
+        let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
+        loop {
+            if h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs() {
+                self.stats.rejected += rejected;
+                return Err(Error::StepSizeUnderflow {
+                    t,
+                    h,
+                    error: last_err,
+                });
+            }
+            let err = self.attempt(t, h)?;
+            if err <= 1.0 {
+                let fac = if err == 0.0 {
+                    1.0 / c.fac_max
+                } else {
+                    let f = err.powf(alpha) / self.err_prev.powf(c.beta) / c.safety;
+                    f.clamp(1.0 / c.fac_max, 1.0 / c.fac_min)
+                };
+                let mut h_next = if self.fixed { h } else { h / fac };
+                if rejected > 0 {
+                    h_next = h_next.min(h);
+                }
+                self.err_prev = err.max(1e-4);
+                if self.dense_enabled {
+                    self.build_dense(t, h)?;
+                }
+                state.q.as_mut_slice().copy_from_slice(&self.y1[..self.n]);
+                state.v.as_mut_slice().copy_from_slice(&self.y1[self.n..]);
+                state.t = t + h;
+                self.fsal = Some(state.t);
+                self.stats.accepted += 1;
+                self.stats.rejected += rejected;
+                return Ok(StepInfo {
+                    h,
+                    h_next,
+                    newton_iterations: 0,
+                    rejected,
+                });
+            }
+            if self.fixed {
+                return Err(Error::NonFiniteState { step: 0, t });
+            }
+            rejected += 1;
+            last_err = err;
+            let shrink = if err.is_finite() {
+                (err.powf(1.0 / M::CONTROL_ORDER) / c.safety).min(1.0 / c.fac_min)
+            } else {
+                1.0 / c.fac_min
+            };
+            h /= shrink;
+        }
+    }
+    fn dof(&self) -> usize {
+        self.n
+    }
+    fn order(&self) -> u32 {
+        M::ORDER
+    }
+    fn name(&self) -> &'static str {
+        M::NAME
+    }
+}
