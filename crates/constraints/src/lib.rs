@@ -49,6 +49,7 @@ pub mod holonomic;
 pub mod jets;
 pub mod nonholonomic;
 pub mod projection;
+pub mod rattle;
 pub mod set;
 
 pub use dynamics::Constrained;
@@ -56,13 +57,14 @@ pub use forces::ConstraintForces;
 pub use holonomic::{Holonomic, HolonomicSet};
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
 pub use projection::{project, Projected, Projection, ProjectionReport};
+pub use rattle::{Rattle, RattleInfo};
 pub use set::ConstraintSet;
 
 /// Models, constraints, and the integrators to step them, in one import.
 pub mod prelude {
     pub use crate::{
         project, Constrained, ConstraintForces, ConstraintSet, Holonomic, HolonomicSet, Nonholonomic,
-        NonholonomicSet, Projected, Projection, ProjectionReport,
+        NonholonomicSet, Projected, Projection, ProjectionReport, Rattle, RattleInfo,
     };
     pub use noether_core::prelude::*;
 }

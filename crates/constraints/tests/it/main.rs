@@ -3,3 +3,4 @@
 mod bad_input;
 mod continuous;
 mod models;
+mod rattle;

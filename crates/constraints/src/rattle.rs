@@ -1,0 +1,448 @@
+//! A constrained variational integrator (RATTLE type) in position-momentum form.
+//!
+//! For a discrete Lagrangian L_d(q_k, q_{k+1}, h) (midpoint or trapezoidal rule of noether-discrete)
+//! and holonomic constraints φ(t, q) = 0 with Jacobian G = Φ_q, one step (t_k, q_k, p_k) ↦
+//! (t_{k+1}, q_{k+1}, p_{k+1}) solves, by Newton in (q_{k+1}, Λ),
+//!
+//! ```text
+//! p_k + D₁L_d(q_k, q_{k+1}) + G(t_k, q_k)ᵀ Λ = 0,      φ(t_{k+1}, q_{k+1}) = 0,
+//! ```
+//!
+//! then, by Newton in (q̇_{k+1}, Μ) (linear, one iteration, when L is quadratic in q̇),
+//!
+//! ```text
+//! ∂L/∂q̇(t_{k+1}, q_{k+1}, q̇_{k+1}) = D₂L_d(q_k, q_{k+1}) + G(t_{k+1}, q_{k+1})ᵀ Μ,
+//! G(t_{k+1}, q_{k+1}) q̇_{k+1} + φ_t(t_{k+1}, q_{k+1}) = 0,
+//! ```
+//!
+//! and sets p_{k+1} = D₂L_d + GᵀΜ. Positions and momenta stay on the constraint manifold (the second
+//! stage is the "hidden" velocity constraint), the map is symplectic on it, and for a symmetry with
+//! generator ξ that leaves L_d invariant and is tangent to the constraints (G ξ = 0) the discrete
+//! momentum p·ξ(q) is conserved: the multiplier terms vanish along ξ. With the trapezoidal L_d of
+//! L = ½ q̇ᵀMq̇ − V this is exactly RATTLE. The discrete multipliers Λ, Μ are impulses over half a step;
+//! λ ≈ 2Λ/h ≈ 2Μ/h estimates the continuous multiplier (constraint force Gᵀλ).
+//!
+//! # References
+//! E. Hairer, C. Lubich, G. Wanner, *Geometric Numerical Integration*, 2nd ed., §VII.1.4 (RATTLE);
+//! J. E. Marsden and M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001),
+//! §3.4 (constrained variational integrators).
+
+use crate::dynamics::{max_abs, rank_error, within};
+use crate::holonomic::{self, Holonomic};
+use nalgebra::{DMatrix, DVector};
+use noether_core::error::check_step;
+use noether_core::newton::{Dense, DenseProblem};
+use noether_core::{Error, EulerLagrange, Lagrangian, Newton, Result, State, StepInfo, Stepper};
+use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian};
+
+/// What the last step of a [`Rattle`] integrator did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RattleInfo {
+    /// ‖φ(t_{k+1}, q_{k+1})‖∞ after the step.
+    pub position_residual: f64,
+    /// ‖G q̇_{k+1} + φ_t‖∞ after the step.
+    pub velocity_residual: f64,
+    /// Newton iterations of the position stage.
+    pub iterations: usize,
+    /// Newton iterations of the momentum stage.
+    pub momentum_iterations: usize,
+}
+
+/// The constrained variational integrator (see the module docs). As a core [`Stepper`] it advances a
+/// [`State`] whose `v` holds the momenta p.
+pub struct Rattle<Ld, C> {
+    ld: Ld,
+    constraints: C,
+    newton: Newton,
+    violation: f64,
+    last: RattleInfo,
+    worst: (f64, f64),
+    multipliers: (DVector<f64>, DVector<f64>),
+    /// The last output (t, q, p) and its velocities: a state equal to it needs no re-validation.
+    cache: Option<(State, DVector<f64>)>,
+    mass_scale: Option<f64>,
+    symmetric: Option<(f64, DVector<f64>)>,
+}
+
+/// Absolute Newton tolerance; raised to the rounding floor 8ε‖p‖∞ of the momentum residual.
+const DEFAULT_TOL: f64 = 1e-14;
+
+impl<Ld, C> Rattle<Ld, C>
+where
+    Ld: DiscreteLagrangian + FromLagrangian,
+    C: Holonomic,
+{
+    /// The integrator of the discrete Lagrangian `ld` (built from a continuous Lagrangian, e.g.
+    /// `Midpoint::new(l)`) with holonomic `constraints`.
+    pub fn new(ld: Ld, constraints: C) -> Result<Self> {
+        if constraints.dof() != ld.dof() {
+            return Err(Error::Dimension {
+                what: "coordinates of the constraints",
+                expected: ld.dof(),
+                got: constraints.dof(),
+            });
+        }
+        if ld.has_discrete_force() {
+            return Err(Error::Unsupported(
+                "constrained variational integrator with discrete forces (non-conservative Q)",
+            ));
+        }
+        let m = constraints.count();
+        Ok(Rattle {
+            ld,
+            constraints,
+            newton: Newton::default().tol_residual(DEFAULT_TOL).tol_step(1e-15),
+            violation: 1e-9,
+            last: RattleInfo::default(),
+            worst: (0.0, 0.0),
+            multipliers: (DVector::zeros(m), DVector::zeros(m)),
+            cache: None,
+            mass_scale: None,
+            symmetric: None,
+        })
+    }
+
+    /// Replaces the Newton settings of both stages.
+    pub fn with_newton(mut self, newton: Newton) -> Self {
+        self.newton = newton;
+        self
+    }
+
+    /// Sets the largest constraint residual accepted in an incoming state (default 1e-9).
+    pub fn with_violation_tolerance(mut self, tol: f64) -> Self {
+        self.violation = tol;
+        self
+    }
+
+    /// The discrete Lagrangian.
+    pub fn discrete_lagrangian(&self) -> &Ld {
+        &self.ld
+    }
+
+    /// The constraints.
+    pub fn constraints(&self) -> &C {
+        &self.constraints
+    }
+
+    /// What the last step did.
+    pub fn last_step(&self) -> RattleInfo {
+        self.last
+    }
+
+    /// Largest (position, velocity) constraint residual after any step so far.
+    pub fn max_residual(&self) -> (f64, f64) {
+        self.worst
+    }
+
+    /// First-order estimates of the continuous multipliers λ at the start and at the end of the last
+    /// step, 2Λ/h and 2Μ/h (the constraint force is Gᵀλ).
+    pub fn multipliers(&self) -> (&DVector<f64>, &DVector<f64>) {
+        (&self.multipliers.0, &self.multipliers.1)
+    }
+
+    /// The second-order estimate of λ at the start t_k of the last step, (Μ_{k−1} + Λ_k)/h: the
+    /// impulses of the half steps on either side of t_k. `None` until two consecutive steps were taken.
+    pub fn multipliers_symmetric(&self) -> Option<(f64, &DVector<f64>)> {
+        self.symmetric.as_ref().map(|(t, l)| (*t, l))
+    }
+
+    /// The state (t, q, p = ∂L/∂q̇) of positions and velocities; both must satisfy the constraints
+    /// (see [`check_state`](Self::check_state)).
+    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
+        let mut p = vec![0.0; self.ld.dof()];
+        self.ld.continuous().momenta(t, q, v, &mut p)?;
+        Ok(State::new(t, q.to_vec(), p))
+    }
+
+    /// The velocities q̇ of a state (t, q, p) by the inverse Legendre map.
+    pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
+        self.ld
+            .continuous()
+            .velocities(state.t, state.q.as_slice(), state.v.as_slice())
+    }
+
+    /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a state (t, q, p).
+    pub fn energy(&self, state: &State) -> Result<f64> {
+        let v = self.velocities(state)?;
+        self.ld
+            .continuous()
+            .energy(state.t, state.q.as_slice(), v.as_slice())
+    }
+
+    /// Checks that a state (t, q, p) lies on the constraint manifold to within the violation tolerance:
+    /// φ(t, q) = 0 and G q̇ + φ_t = 0 with q̇ from p; returns q̇. The error names the residual.
+    pub fn check_state(&self, state: &State) -> Result<DVector<f64>> {
+        state.validate(self.ld.dof())?;
+        let (t, q) = (state.t, state.q.as_slice());
+        let mut r = vec![0.0; self.constraints.count()];
+        holonomic::values(&self.constraints, t, q, &mut r);
+        let res = max_abs(&r);
+        if !within(res, self.violation) {
+            return Err(Error::ConstraintViolated {
+                what: "position",
+                t,
+                residual: res,
+                tolerance: self.violation,
+            });
+        }
+        let v = self.velocities(state)?;
+        holonomic::velocity_residual(&self.constraints, t, q, v.as_slice(), &mut r);
+        let res = max_abs(&r);
+        if !within(res, self.violation) {
+            return Err(Error::ConstraintViolated {
+                what: "velocity",
+                t,
+                residual: res,
+                tolerance: self.violation,
+            });
+        }
+        Ok(v)
+    }
+
+    /// Newton settings for a residual whose terms have size `scale`: the tolerance is raised to the
+    /// rounding floor 8ε·scale when the requested one is below it.
+    fn newton_for(&self, scale: f64) -> Newton {
+        let floor = 8.0 * f64::EPSILON * scale;
+        self.newton.tol_residual(self.newton.tol_residual.max(floor))
+    }
+
+    /// The size of the largest mass-matrix entry (computed at the first step and kept: it only sets
+    /// the rounding floor of the momentum residual, whose difference quotient (q₁ − q₀)/h loses
+    /// ε‖q‖/h and is multiplied by M).
+    fn mass_scale(&mut self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        if let Some(s) = self.mass_scale {
+            return Ok(s);
+        }
+        let s = self.ld.continuous().mass_matrix(t, q, v)?.amax();
+        self.mass_scale = Some(s);
+        Ok(s)
+    }
+
+    /// One step from (t, q, p) with incoming velocities `v0`; returns the new (q, p, q̇).
+    fn advance(
+        &mut self,
+        state: &State,
+        v0: &DVector<f64>,
+        h: f64,
+        continued: bool,
+    ) -> Result<(State, DVector<f64>)> {
+        let (n, m) = (self.ld.dof(), self.constraints.count());
+        let (t0, t1) = (state.t, state.t + h);
+        let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
+        let mut g0 = DMatrix::zeros(m, n);
+        holonomic::jacobian(&self.constraints, t0, q0, &mut g0);
+        let floor1 = max_abs(p0) + self.mass_scale(t0, q0, v0.as_slice())? * max_abs(q0) / h.abs();
+
+        // Stage 1: (q₁, Λ).
+        let mut x = vec![0.0; n + m];
+        for i in 0..n {
+            x[i] = q0[i] + h * v0[i];
+        }
+        x[n..].copy_from_slice(self.multipliers.1.as_slice());
+        x[n..].iter_mut().for_each(|l| *l *= 0.5 * h);
+        let stage1 = PositionStage {
+            ld: &self.ld,
+            c: &self.constraints,
+            t0,
+            h,
+            q0,
+            p0,
+            g0: &g0,
+            d12: DMatrix::zeros(n, n),
+            g1: DMatrix::zeros(m, n),
+        };
+        let mut sys = Dense::new(stage1);
+        let info1 = self
+            .newton_for(floor1)
+            .solve(&mut sys, &mut x)
+            .map_err(|e| singular_as_rank(e, &g0, t0))?;
+        let q1 = DVector::from_column_slice(&x[..n]);
+        let big_lambda = DVector::from_column_slice(&x[n..]);
+
+        // Stage 2: (q̇₁, Μ) with p₁ = D₂L_d + G₁ᵀΜ.
+        let mut d2 = vec![0.0; n];
+        self.ld.d2(t0, h, q0, q1.as_slice(), &mut d2);
+        let mut g1 = DMatrix::zeros(m, n);
+        holonomic::jacobian(&self.constraints, t1, q1.as_slice(), &mut g1);
+        let mut phi_t = vec![0.0; m];
+        holonomic::partial_t(&self.constraints, t1, q1.as_slice(), &mut phi_t);
+        let mut y = vec![0.0; n + m];
+        for i in 0..n {
+            y[i] = (q1[i] - q0[i]) / h;
+        }
+        let stage2 = MomentumStage {
+            el: self.ld.continuous(),
+            t1,
+            q1: q1.as_slice(),
+            d2: &d2,
+            g1: &g1,
+            phi_t: &phi_t,
+        };
+        let mut sys = Dense::new(stage2);
+        let info2 = self
+            .newton_for(max_abs(&d2))
+            .solve(&mut sys, &mut y)
+            .map_err(|e| singular_as_rank(e, &g1, t1))?;
+        let v1 = DVector::from_column_slice(&y[..n]);
+        let big_mu = DVector::from_column_slice(&y[n..]);
+        let p1 = DVector::from_column_slice(&d2) + g1.tr_mul(&big_mu);
+
+        // Residuals left on the manifold.
+        let mut r = vec![0.0; m];
+        holonomic::values(&self.constraints, t1, q1.as_slice(), &mut r);
+        let pos = max_abs(&r);
+        let gv = &g1 * &v1;
+        let vel = gv
+            .iter()
+            .zip(&phi_t)
+            .fold(0.0_f64, |a, (x, y)| a.max((x + y).abs()));
+        if !q1.iter().chain(p1.iter()).all(|z| z.is_finite()) || !pos.is_finite() {
+            return Err(Error::NonFiniteState { step: 0, t: t0 });
+        }
+        self.last = RattleInfo {
+            position_residual: pos,
+            velocity_residual: vel,
+            iterations: info1.iterations,
+            momentum_iterations: info2.iterations,
+        };
+        self.worst = (self.worst.0.max(pos), self.worst.1.max(vel));
+        let start = big_lambda * (2.0 / h);
+        // Μ_{k−1}/h from the previous step (stored as 2Μ/h) plus Λ_k/h.
+        self.symmetric = continued.then(|| (t0, (&self.multipliers.1 + &start) * 0.5));
+        self.multipliers = (start, big_mu * (2.0 / h));
+        Ok((
+            State {
+                t: t1,
+                q: q1,
+                v: p1,
+            },
+            v1,
+        ))
+    }
+}
+
+/// A singular Newton Jacobian is reported as rank-deficient constraints when G has low rank.
+fn singular_as_rank(e: Error, g: &DMatrix<f64>, t: f64) -> Error {
+    match e {
+        Error::SingularMatrix { .. } => rank_error(g, t).unwrap_or(e),
+        e => e,
+    }
+}
+
+/// Stage 1: F(q₁, Λ) = (p₀ + D₁L_d(q₀, q₁) + G₀ᵀΛ, φ(t₁, q₁)).
+struct PositionStage<'a, Ld, C> {
+    ld: &'a Ld,
+    c: &'a C,
+    t0: f64,
+    h: f64,
+    q0: &'a [f64],
+    p0: &'a [f64],
+    g0: &'a DMatrix<f64>,
+    d12: DMatrix<f64>,
+    g1: DMatrix<f64>,
+}
+
+impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld, C> {
+    fn dim(&self) -> usize {
+        self.q0.len() + self.c.count()
+    }
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+        let n = self.q0.len();
+        let (q1, lam) = x.split_at(n);
+        let (ra, rb) = r.split_at_mut(n);
+        self.ld.d1(self.t0, self.h, self.q0, q1, ra);
+        for (i, ri) in ra.iter_mut().enumerate() {
+            let gl: f64 = (0..lam.len()).map(|k| self.g0[(k, i)] * lam[k]).sum();
+            *ri += self.p0[i] + gl;
+        }
+        holonomic::values(self.c, self.t0 + self.h, q1, rb);
+        Ok(())
+    }
+    fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.q0.len();
+        let m = self.c.count();
+        let q1 = &x[..n];
+        self.ld.d12(self.t0, self.h, self.q0, q1, &mut self.d12);
+        holonomic::jacobian(self.c, self.t0 + self.h, q1, &mut self.g1);
+        j.fill(0.0);
+        j.view_mut((0, 0), (n, n)).copy_from(&self.d12);
+        j.view_mut((0, n), (n, m)).copy_from(&self.g0.transpose());
+        j.view_mut((n, 0), (m, n)).copy_from(&self.g1);
+        Ok(())
+    }
+}
+
+/// Stage 2: F(q̇₁, Μ) = (∂L/∂q̇(t₁, q₁, q̇₁) − D₂L_d − G₁ᵀΜ, G₁ q̇₁ + φ_t).
+struct MomentumStage<'a, L> {
+    el: &'a EulerLagrange<L>,
+    t1: f64,
+    q1: &'a [f64],
+    d2: &'a [f64],
+    g1: &'a DMatrix<f64>,
+    phi_t: &'a [f64],
+}
+
+impl<L: Lagrangian> DenseProblem for MomentumStage<'_, L> {
+    fn dim(&self) -> usize {
+        self.q1.len() + self.phi_t.len()
+    }
+    fn residual(&mut self, y: &[f64], r: &mut [f64]) -> Result<()> {
+        let n = self.q1.len();
+        let (v, mu) = y.split_at(n);
+        let (ra, rb) = r.split_at_mut(n);
+        self.el.momenta(self.t1, self.q1, v, ra)?;
+        for (i, ri) in ra.iter_mut().enumerate() {
+            let gm: f64 = (0..mu.len()).map(|k| self.g1[(k, i)] * mu[k]).sum();
+            *ri -= self.d2[i] + gm;
+        }
+        for (k, rk) in rb.iter_mut().enumerate() {
+            *rk = (0..n).map(|i| self.g1[(k, i)] * v[i]).sum::<f64>() + self.phi_t[k];
+        }
+        Ok(())
+    }
+    fn jacobian(&mut self, y: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.q1.len();
+        let m = self.phi_t.len();
+        let mass = self.el.mass_matrix(self.t1, self.q1, &y[..n])?;
+        j.fill(0.0);
+        j.view_mut((0, 0), (n, n)).copy_from(&mass);
+        j.view_mut((0, n), (n, m)).copy_from(&(-self.g1.transpose()));
+        j.view_mut((n, 0), (m, n)).copy_from(self.g1);
+        Ok(())
+    }
+}
+
+impl<Ld, C> Stepper for Rattle<Ld, C>
+where
+    Ld: DiscreteLagrangian + FromLagrangian,
+    C: Holonomic,
+{
+    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+        check_step(h)?;
+        // A state that is exactly the last output is on the manifold; anything else is checked.
+        let (v0, continued) = match &self.cache {
+            Some((s, v)) if s == state => (v.clone(), true),
+            _ => {
+                let v = self.check_state(state)?;
+                self.multipliers.1.fill(0.0);
+                (v, false)
+            }
+        };
+        let (next, v1) = self.advance(state, &v0, h, continued)?;
+        *state = next;
+        self.cache = Some((state.clone(), v1));
+        Ok(StepInfo {
+            newton_iterations: self.last.iterations + self.last.momentum_iterations,
+            ..StepInfo::fixed(h)
+        })
+    }
+    fn dof(&self) -> usize {
+        self.ld.dof()
+    }
+    fn order(&self) -> u32 {
+        self.ld.order()
+    }
+    fn name(&self) -> &'static str {
+        "constrained variational (RATTLE)"
+    }
+}
