@@ -3,4 +3,5 @@
 mod bad_input;
 mod continuous;
 mod models;
+mod nonholonomic;
 mod rattle;
