@@ -62,6 +62,7 @@ pub struct Rattle<Ld, C> {
     cache: Option<(State, DVector<f64>)>,
     mass_scale: Option<f64>,
     symmetric: Option<(f64, DVector<f64>)>,
+    constant_mass: Option<DMatrix<f64>>,
 }
 
 /// Absolute Newton tolerance; raised to the rounding floor 8ε‖p‖∞ of the momentum residual.
@@ -99,6 +100,7 @@ where
             cache: None,
             mass_scale: None,
             symmetric: None,
+            constant_mass: None,
         })
     }
 
@@ -206,15 +208,19 @@ where
         self.newton.tol_residual(self.newton.tol_residual.max(floor))
     }
 
-    /// The size of the largest mass-matrix entry (computed at the first step and kept: it only sets
-    /// the rounding floor of the momentum residual, whose difference quotient (q₁ − q₀)/h loses
-    /// ε‖q‖/h and is multiplied by M).
+    /// The size of the largest mass-matrix entry (computed at the first step and kept: it only scales
+    /// the momentum residual, whose difference quotient (q₁ − q₀)/h loses ε‖q‖/h and is multiplied by
+    /// M, to position units).
     fn mass_scale(&mut self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         if let Some(s) = self.mass_scale {
             return Ok(s);
         }
-        let s = self.ld.continuous().mass_matrix(t, q, v)?.amax();
+        let mass = self.ld.continuous().mass_matrix(t, q, v)?;
+        let s = mass.amax();
         self.mass_scale = Some(s);
+        if self.ld.continuous().lagrangian().constant_mass_matrix() {
+            self.constant_mass = Some(mass);
+        }
         Ok(s)
     }
 
@@ -231,20 +237,24 @@ where
         let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
         let mut g0 = DMatrix::zeros(m, n);
         holonomic::jacobian(&self.constraints, t0, q0, &mut g0);
-        let floor1 = max_abs(p0) + self.mass_scale(t0, q0, v0.as_slice())? * max_abs(q0) / h.abs();
+        // Momentum rows scaled by w = h/s (s: mass scale) and Λ' = wΛ: both blocks then read in units
+        // of q, with rounding floor ~ε‖q‖, so the constraint rows converge to rounding as well.
+        let w = h / self.mass_scale(t0, q0, v0.as_slice())?;
+        let floor1 = max_abs(q0) + (w * max_abs(p0)).abs();
 
-        // Stage 1: (q₁, Λ).
+        // Stage 1: (q₁, Λ').
         let mut x = vec![0.0; n + m];
         for i in 0..n {
             x[i] = q0[i] + h * v0[i];
         }
         x[n..].copy_from_slice(self.multipliers.1.as_slice());
-        x[n..].iter_mut().for_each(|l| *l *= 0.5 * h);
+        x[n..].iter_mut().for_each(|l| *l *= 0.5 * h * w);
         let stage1 = PositionStage {
             ld: &self.ld,
             c: &self.constraints,
             t0,
             h,
+            w,
             q0,
             p0,
             g0: &g0,
@@ -257,7 +267,7 @@ where
             .solve(&mut sys, &mut x)
             .map_err(|e| singular_as_rank(e, &g0, t0))?;
         let q1 = DVector::from_column_slice(&x[..n]);
-        let big_lambda = DVector::from_column_slice(&x[n..]);
+        let big_lambda = DVector::from_column_slice(&x[n..]) / w;
 
         // Stage 2: (q̇₁, Μ) with p₁ = D₂L_d + G₁ᵀΜ.
         let mut d2 = vec![0.0; n];
@@ -272,6 +282,7 @@ where
         }
         let stage2 = MomentumStage {
             el: self.ld.continuous(),
+            mass: self.constant_mass.as_ref(),
             t1,
             q1: q1.as_slice(),
             d2: &d2,
@@ -329,12 +340,13 @@ fn singular_as_rank(e: Error, g: &DMatrix<f64>, t: f64) -> Error {
     }
 }
 
-/// Stage 1: F(q₁, Λ) = (p₀ + D₁L_d(q₀, q₁) + G₀ᵀΛ, φ(t₁, q₁)).
+/// Stage 1: F(q₁, Λ') = (w (p₀ + D₁L_d(q₀, q₁)) + G₀ᵀΛ', φ(t₁, q₁)) with Λ' = wΛ.
 struct PositionStage<'a, Ld, C> {
     ld: &'a Ld,
     c: &'a C,
     t0: f64,
     h: f64,
+    w: f64,
     q0: &'a [f64],
     p0: &'a [f64],
     g0: &'a DMatrix<f64>,
@@ -353,7 +365,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         self.ld.d1(self.t0, self.h, self.q0, q1, ra);
         for (i, ri) in ra.iter_mut().enumerate() {
             let gl: f64 = (0..lam.len()).map(|k| self.g0[(k, i)] * lam[k]).sum();
-            *ri += self.p0[i] + gl;
+            *ri = self.w * (*ri + self.p0[i]) + gl;
         }
         holonomic::values(self.c, self.t0 + self.h, q1, rb);
         Ok(())
@@ -365,7 +377,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         self.ld.d12(self.t0, self.h, self.q0, q1, &mut self.d12);
         holonomic::jacobian(self.c, self.t0 + self.h, q1, &mut self.g1);
         j.fill(0.0);
-        j.view_mut((0, 0), (n, n)).copy_from(&self.d12);
+        j.view_mut((0, 0), (n, n)).copy_from(&(&self.d12 * self.w));
         j.view_mut((0, n), (n, m)).copy_from(&self.g0.transpose());
         j.view_mut((n, 0), (m, n)).copy_from(&self.g1);
         Ok(())
@@ -375,6 +387,8 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
 /// Stage 2: F(q̇₁, Μ) = (∂L/∂q̇(t₁, q₁, q̇₁) − D₂L_d − G₁ᵀΜ, G₁ q̇₁ + φ_t).
 struct MomentumStage<'a, L> {
     el: &'a EulerLagrange<L>,
+    /// The mass matrix when the Lagrangian declares it constant.
+    mass: Option<&'a DMatrix<f64>>,
     t1: f64,
     q1: &'a [f64],
     d2: &'a [f64],
@@ -403,9 +417,14 @@ impl<L: Lagrangian> DenseProblem for MomentumStage<'_, L> {
     fn jacobian(&mut self, y: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
         let n = self.q1.len();
         let m = self.phi_t.len();
-        let mass = self.el.mass_matrix(self.t1, self.q1, &y[..n])?;
         j.fill(0.0);
-        j.view_mut((0, 0), (n, n)).copy_from(&mass);
+        match self.mass {
+            Some(mass) => j.view_mut((0, 0), (n, n)).copy_from(mass),
+            None => {
+                let mass = self.el.mass_matrix(self.t1, self.q1, &y[..n])?;
+                j.view_mut((0, 0), (n, n)).copy_from(&mass);
+            }
+        }
         j.view_mut((0, n), (n, m)).copy_from(&(-self.g1.transpose()));
         j.view_mut((n, 0), (m, n)).copy_from(self.g1);
         Ok(())

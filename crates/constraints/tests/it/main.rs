@@ -1,6 +1,7 @@
 //! Integration tests of noether-constraints, one binary with a module per topic.
 
 mod bad_input;
+mod chain;
 mod continuous;
 mod models;
 mod nonholonomic;
