@@ -321,14 +321,7 @@ where
         // Μ_{k−1}/h from the previous step (stored as 2Μ/h) plus Λ_k/h.
         self.symmetric = continued.then(|| (t0, (&self.multipliers.1 + &start) * 0.5));
         self.multipliers = (start, big_mu * (2.0 / h));
-        Ok((
-            State {
-                t: t1,
-                q: q1,
-                v: p1,
-            },
-            v1,
-        ))
+        Ok((State { t: t1, q: q1, v: p1 }, v1))
     }
 }
 

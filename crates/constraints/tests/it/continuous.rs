@@ -108,14 +108,19 @@ fn order_every_explicit_integrator_with_projection() {
         tr.run_until(1.0).unwrap().q[0]
     };
     fn error<S: Stepper>(stepper: S, h: f64, reference: f64, sys_set: impl ConstraintSet) -> (f64, f64) {
-        let mut tr = Trajectory::new(Projected::new(stepper, sys_set), pendulum_state(1.0, 1.0, 0.0), h).unwrap();
+        let mut tr =
+            Trajectory::new(Projected::new(stepper, sys_set), pendulum_state(1.0, 1.0, 0.0), h).unwrap();
         let end = tr.run_until(1.0).unwrap();
         (
             (end.q[0].atan2(-end.q[1]) - reference).abs(),
             tr.stepper().max_residual().0,
         )
     }
-    let cases: [(&str, f64, f64); 3] = [("Euler", 1.0, 0.02), ("Euler-Cromer", 1.0, 0.02), ("RK4", 4.0, 0.01)];
+    let cases: [(&str, f64, f64); 3] = [
+        ("Euler", 1.0, 0.02),
+        ("Euler-Cromer", 1.0, 0.02),
+        ("RK4", 4.0, 0.01),
+    ];
     for (name, order, h) in cases {
         let run = |h: f64| match name {
             "Euler" => error(Euler::new(&sys), h, reference, sys.constraints()),
@@ -125,6 +130,9 @@ fn order_every_explicit_integrator_with_projection() {
         let ((e1, r1), (e2, r2)) = (run(h), run(h / 2.0));
         let observed = (e1 / e2).log2();
         assert!(r1 < 1e-14 && r2 < 1e-14, "{name}: residuals {r1:e} {r2:e}");
-        assert!((observed - order).abs() < 0.3, "{name}: errors {e1:e} {e2:e}, order {observed}");
+        assert!(
+            (observed - order).abs() < 0.3,
+            "{name}: errors {e1:e} {e2:e}, order {observed}"
+        );
     }
 }

@@ -55,7 +55,10 @@ fn closed_form_knife_edge_on_incline() {
         let t = s.t;
         let x = g / (2.0 * w * w) * (w * t).sin().powi(2);
         let y = g / (2.0 * w) * (t - (2.0 * w * t).sin() / (2.0 * w));
-        dx = dx.max((s.q[0] - x).abs()).max((s.q[1] - y).abs()).max((s.q[2] - w * t).abs());
+        dx = dx
+            .max((s.q[0] - x).abs())
+            .max((s.q[1] - y).abs())
+            .max((s.q[2] - w * t).abs());
         de = de.max((sys.energy(t, s.q.as_slice(), s.v.as_slice()).unwrap() - e0).abs());
     }
     assert!(dx < 1e-9, "position error {dx:e}");
@@ -75,7 +78,12 @@ fn closed_form_knife_edge_side_force() {
         let q = [0.0, 0.0, phi];
         let v = [u * phi.cos(), u * phi.sin(), w];
         let f = sys.constraint_forces(t, &q, &v).unwrap();
-        assert!((f.lambda[0] - 2.0 * m * u * w).abs() < 1e-12, "λ = {} vs {}", f.lambda[0], 2.0 * m * u * w);
+        assert!(
+            (f.lambda[0] - 2.0 * m * u * w).abs() < 1e-12,
+            "λ = {} vs {}",
+            f.lambda[0],
+            2.0 * m * u * w
+        );
         // The force is perpendicular to the blade: (−sin φ, cos φ) λ.
         assert!((f.generalized[0] + phi.sin() * f.lambda[0]).abs() < 1e-12);
         assert!(f.generalized[2].abs() < 1e-15);

@@ -3,14 +3,17 @@
 
 use crate::models::*;
 use noether_constraints::prelude::*;
-use noether_discrete::momentum::{noether_momentum, PlanarRotation};
 use noether_core::Newton;
+use noether_discrete::momentum::{noether_momentum, PlanarRotation};
 use noether_discrete::{Midpoint, Trapezoidal};
 
 /// Spherical pendulum (one mass, 3D, rod from the origin) started off-plane with angular momentum.
 fn spherical_start(l: f64) -> (Vec<f64>, Vec<f64>) {
     let (th, om) = (1.0_f64, 2.5_f64);
-    (vec![l * th.sin(), 0.0, -l * th.cos()], vec![0.0, l * th.sin() * om, 0.0])
+    (
+        vec![l * th.sin(), 0.0, -l * th.cos()],
+        vec![0.0, l * th.sin() * om, 0.0],
+    )
 }
 
 /// Over 10⁴ steps: ‖φ‖ < 1e-12 after every step (Newton to rounding on (q, Λ)); L_z = x p_y − y p_x is
@@ -19,7 +22,13 @@ fn spherical_start(l: f64) -> (Vec<f64>, Vec<f64>) {
 /// and these add up like a random walk, ~ε·sqrt(10⁴)·(a few) ≈ 1e-13 relative; the test allows 1e-12.
 /// The energy error of a symplectic second-order method stays bounded, O(h²), with no drift.
 /// Runs `steps` steps of h and returns the states, their energies, and the largest residuals seen.
-fn run_rattle<Ld>(mut r: Rattle<Ld, Rod>, q: &[f64], v: &[f64], h: f64, steps: usize) -> (Vec<State>, f64, Vec<f64>, (f64, f64))
+fn run_rattle<Ld>(
+    mut r: Rattle<Ld, Rod>,
+    q: &[f64],
+    v: &[f64],
+    h: f64,
+    steps: usize,
+) -> (Vec<State>, f64, Vec<f64>, (f64, f64))
 where
     Ld: noether_discrete::DiscreteLagrangian + noether_discrete::FromLagrangian,
 {
@@ -45,9 +54,21 @@ fn conserves_l_z_and_constraint_spherical_pendulum() {
     let h = 1e-2;
     for midpoint in [true, false] {
         let (states, e0, energies, worst) = if midpoint {
-            run_rattle(Rattle::new(Midpoint::new(model()), rod()).unwrap(), &q, &v, h, 10_000)
+            run_rattle(
+                Rattle::new(Midpoint::new(model()), rod()).unwrap(),
+                &q,
+                &v,
+                h,
+                10_000,
+            )
         } else {
-            run_rattle(Rattle::new(Trapezoidal::new(model()), rod()).unwrap(), &q, &v, h, 10_000)
+            run_rattle(
+                Rattle::new(Trapezoidal::new(model()), rod()).unwrap(),
+                &q,
+                &v,
+                h,
+                10_000,
+            )
         };
         assert!(worst.0 < 1e-12 && worst.1 < 1e-12, "residuals {worst:?}");
         let rot = PlanarRotation::new(vec![(0, 1)]);
@@ -64,7 +85,10 @@ fn conserves_l_z_and_constraint_spherical_pendulum() {
         let max_first = de[..1000].iter().fold(0.0_f64, |a, x| a.max(x.abs()));
         eprintln!("midpoint {midpoint}: L_z {dl:e}, energy {max_first:e} {max_last:e}, residuals {worst:?}");
         assert!(max_all < 2e-3, "energy error {max_all:e}");
-        assert!(max_last < 1.5 * max_first, "energy drifts: {max_first:e} → {max_last:e}");
+        assert!(
+            max_last < 1.5 * max_first,
+            "energy drifts: {max_first:e} → {max_last:e}"
+        );
     }
 }
 
@@ -81,9 +105,15 @@ fn order_two_cartesian_pendulum() {
         tr.run_until(t_end).unwrap().q[0]
     };
     let err = |h: f64| {
-        let mut r = Rattle::new(Midpoint::new(Masses { n: 1, d: 2, m, g }), Rod { d: 2, l, copies: 1 }).unwrap();
+        let mut r = Rattle::new(
+            Midpoint::new(Masses { n: 1, d: 2, m, g }),
+            Rod { d: 2, l, copies: 1 },
+        )
+        .unwrap();
         let s = pendulum_state(l, th0, om0);
-        let mut s = r.state_from_velocities(0.0, s.q.as_slice(), s.v.as_slice()).unwrap();
+        let mut s = r
+            .state_from_velocities(0.0, s.q.as_slice(), s.v.as_slice())
+            .unwrap();
         let steps = (t_end / h).round() as usize;
         for _ in 0..steps {
             r.step(&mut s, h).unwrap();
@@ -95,45 +125,60 @@ fn order_two_cartesian_pendulum() {
     assert!((3.5..4.5).contains(&ratio), "errors {e1:e} {e2:e} ratio {ratio}");
 }
 
-/// The symmetric multiplier estimate (Μ_{k−1} + Λ_k)/h approaches the rod tension
-/// T = m g cos θ + m l θ̇² as O(h²): at h = 1e-3 the relative error is below 1e-5 (the one-sided
-/// estimates 2Λ/h, 2Μ/h are first order: error ~h, checked below 1e-2).
+/// Tension from the discrete multipliers against T = m g cos θ + m l θ̇² evaluated on the discrete
+/// state: the one-sided estimates 2Λ/h, 2Μ/h are first order (halving h halves the error), the
+/// symmetric one (Μ_{k−1} + Λ_k)/h is second order (halving h quarters it). Ratios within ±0.3 of 2
+/// and 4 (measured over 0.5 s, the error constants are smooth in h).
 #[test]
-fn closed_form_rattle_tension() {
+fn order_rattle_tension_estimates() {
     let (m, l, g) = (2.0, 0.5, 9.81);
-    let mut r = Rattle::new(Midpoint::new(Masses { n: 1, d: 2, m, g }), Rod { d: 2, l, copies: 1 }).unwrap();
-    let s0 = pendulum_state(l, 0.8, 1.0);
-    let mut s = r.state_from_velocities(0.0, s0.q.as_slice(), s0.v.as_slice()).unwrap();
     let tension = |s: &State, v: &[f64]| {
         let theta = s.q[0].atan2(-s.q[1]);
         let rate = (s.q[0] * v[1] - s.q[1] * v[0]) / (l * l);
         m * g * theta.cos() + m * l * rate * rate
     };
-    let (mut worst, mut worst_sym) = (0.0_f64, 0.0_f64);
-    for k in 0..500 {
-        let before = s.clone();
-        let v_before = r.velocities(&before).unwrap();
-        r.step(&mut s, 1e-3).unwrap();
-        let v = r.velocities(&s).unwrap();
-        let t_end = tension(&s, v.as_slice());
-        worst = worst.max((-r.multipliers().1[0] - t_end).abs() / t_end);
-        match r.multipliers_symmetric() {
-            Some((t, lam)) => {
-                assert_eq!(t, before.t);
-                let t_start = tension(&before, v_before.as_slice());
-                worst_sym = worst_sym.max((-lam[0] - t_start).abs() / t_start);
+    let errors = |h: f64| {
+        let mut r = Rattle::new(
+            Midpoint::new(Masses { n: 1, d: 2, m, g }),
+            Rod { d: 2, l, copies: 1 },
+        )
+        .unwrap();
+        let s0 = pendulum_state(l, 0.8, 1.0);
+        let mut s = r
+            .state_from_velocities(0.0, s0.q.as_slice(), s0.v.as_slice())
+            .unwrap();
+        let (mut one_sided, mut symmetric) = (0.0_f64, 0.0_f64);
+        for k in 0..(0.5 / h).round() as usize {
+            let before = s.clone();
+            let v_before = r.velocities(&before).unwrap();
+            r.step(&mut s, h).unwrap();
+            let v = r.velocities(&s).unwrap();
+            let t_end = tension(&s, v.as_slice());
+            one_sided = one_sided.max((-r.multipliers().1[0] - t_end).abs() / t_end);
+            match r.multipliers_symmetric() {
+                Some((t, lam)) => {
+                    assert_eq!(t, before.t);
+                    let t_start = tension(&before, v_before.as_slice());
+                    symmetric = symmetric.max((-lam[0] - t_start).abs() / t_start);
+                }
+                None => assert_eq!(k, 0),
             }
-            None => assert_eq!(k, 0),
         }
-    }
-    assert!(worst < 1e-2, "one-sided tension error {worst:e}");
-    assert!(worst_sym < 1e-5, "symmetric tension error {worst_sym:e}");
+        (one_sided, symmetric)
+    };
+    let ((a1, b1), (a2, b2)) = (errors(2e-3), errors(1e-3));
+    assert!((a1 / a2 - 2.0).abs() < 0.3, "one-sided {a1:e} {a2:e}");
+    assert!((b1 / b2 - 4.0).abs() < 0.3, "symmetric {b1:e} {b2:e}");
 }
 
 #[test]
 fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     let (m, l, g) = (1.0, 1.0, 9.81);
-    let mut r = Rattle::new(Midpoint::new(Masses { n: 1, d: 2, m, g }), Rod { d: 2, l, copies: 1 }).unwrap();
+    let mut r = Rattle::new(
+        Midpoint::new(Masses { n: 1, d: 2, m, g }),
+        Rod { d: 2, l, copies: 1 },
+    )
+    .unwrap();
     // Off the circle: error names the residual φ = (1.21 − 1)/2.
     let mut s = State::new(0.0, [0.0, -1.1], [0.0, 0.0]);
     let before = s.clone();
@@ -155,21 +200,34 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     let mut s = r.state_from_velocities(0.0, &[0.0, -1.0], &[1.0, 0.0]).unwrap();
     assert!(matches!(r.step(&mut s, -0.1), Err(Error::InvalidStep { .. })));
     // Newton capped at one iteration cannot solve the nonlinear constraint: the core error, state kept.
-    let mut capped = Rattle::new(Midpoint::new(Masses { n: 1, d: 2, m, g }), Rod { d: 2, l, copies: 1 })
-        .unwrap()
-        .with_newton(Newton::default().max_iterations(1));
+    let mut capped = Rattle::new(
+        Midpoint::new(Masses { n: 1, d: 2, m, g }),
+        Rod { d: 2, l, copies: 1 },
+    )
+    .unwrap()
+    .with_newton(Newton::default().max_iterations(1));
     let s0 = s.clone();
-    assert!(matches!(capped.step(&mut s, 0.1), Err(Error::NewtonDiverged { iterations: 1, .. })));
+    assert!(matches!(
+        capped.step(&mut s, 0.1),
+        Err(Error::NewtonDiverged { iterations: 1, .. })
+    ));
     assert_eq!(s, s0);
     // The same rod twice: rank 1 < 2 constraints.
-    let mut red = Rattle::new(Midpoint::new(Masses { n: 1, d: 2, m, g }), Rod { d: 2, l, copies: 2 }).unwrap();
+    let mut red = Rattle::new(
+        Midpoint::new(Masses { n: 1, d: 2, m, g }),
+        Rod { d: 2, l, copies: 2 },
+    )
+    .unwrap();
     match red.step(&mut s, 0.01).unwrap_err() {
         Error::RankDeficientConstraints { rank, count, .. } => assert_eq!((rank, count), (1, 2)),
         e => panic!("unexpected {e}"),
     }
     // Dimensions.
     assert!(matches!(
-        Rattle::new(Midpoint::new(Masses { n: 1, d: 3, m, g }), Rod { d: 2, l, copies: 1 }),
+        Rattle::new(
+            Midpoint::new(Masses { n: 1, d: 3, m, g }),
+            Rod { d: 2, l, copies: 1 }
+        ),
         Err(Error::Dimension { .. })
     ));
 }
@@ -184,9 +242,13 @@ fn conserves_rods_ten_link_chain_and_matches_angles() {
     let (n, m, l, g) = (10, 1.0, 0.5, 9.81);
     let (angles, cart) = chain_states(n, l);
     let mut r = Rattle::new(Midpoint::new(CartesianChain { n, m, g }), Rods { n, l }).unwrap();
-    let mut s = r.state_from_velocities(0.0, cart.q.as_slice(), cart.v.as_slice()).unwrap();
+    let mut s = r
+        .state_from_velocities(0.0, cart.q.as_slice(), cart.v.as_slice())
+        .unwrap();
     let mut vi = VariationalIntegrator::new(Midpoint::new(AngleChain { n, m, l, g }));
-    let mut a = vi.state_from_velocities(0.0, angles.q.as_slice(), angles.v.as_slice()).unwrap();
+    let mut a = vi
+        .state_from_velocities(0.0, angles.q.as_slice(), angles.v.as_slice())
+        .unwrap();
     for _ in 0..300 {
         r.step(&mut s, 1e-3).unwrap();
         vi.step(&mut a, 1e-3).unwrap();
