@@ -8,6 +8,16 @@
 //!   steps it, and [`Projected`] keeps the steps on the constraint manifold.
 //! - [`ConstraintForces`]: the multipliers as generalized forces Aᵀλ and as physical vectors.
 //! - [`project`]: puts a state on the manifold and reports the correction.
+//! - [`Rattle`]: the constrained variational integrator (discrete Euler-Lagrange equations with
+//!   multipliers, positions and momenta on the manifold, discrete Noether momenta conserved) on a
+//!   discrete Lagrangian of noether-discrete.
+//! - Nonholonomic constraints A(t, q) q̇ + a(t, q) = 0 ([`Nonholonomic`]) in the continuous equations
+//!   (Lagrange-d'Alembert).
+//!
+//! Bad input is an error, never a panic: a state off the constraints
+//! ([`Error::ConstraintViolated`](noether_core::Error::ConstraintViolated), naming the residual),
+//! redundant constraints ([`Error::RankDeficientConstraints`](noether_core::Error::RankDeficientConstraints),
+//! with the rank), Newton failures as in core.
 //!
 //! ```
 //! use noether_constraints::prelude::*;
