@@ -64,7 +64,9 @@ use crate::holonomic::{self, Holonomic};
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::check_step;
 use noether_core::newton::{Dense, DenseProblem};
-use noether_core::{Error, EulerLagrange, Lagrangian, Newton, Result, State, StepInfo, Stepper};
+use noether_core::{
+    Error, EulerLagrange, Lagrangian, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
+};
 use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian};
 
 /// What the last step of a [`Rattle`] integrator did.
@@ -95,10 +97,16 @@ pub struct Rattle<Ld, C> {
     mass_scale: Option<f64>,
     symmetric: Option<(f64, DVector<f64>)>,
     constant_mass: Option<DMatrix<f64>>,
+    /// The factored stage-1 Jacobian of the last step and its step size.
+    stage1_lu: Option<(f64, Lu)>,
 }
 
-/// Absolute Newton tolerance; raised to the rounding floor 8ε‖p‖∞ of the momentum residual.
-const DEFAULT_TOL: f64 = 1e-14;
+type Lu = nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>;
+
+/// Absolute Newton tolerance on the (scaled) residual; raised to the rounding floor ε·scale. In
+/// practice Newton stops when its step reaches rounding level (‖Δx‖∞ ≤ 1e-15 (1 + ‖x‖∞)): a residual
+/// merely below a tolerance would leave its component along a symmetry in the discrete Noether momenta.
+const DEFAULT_TOL: f64 = 1e-20;
 
 impl<Ld, C> Rattle<Ld, C>
 where
@@ -133,6 +141,7 @@ where
             mass_scale: None,
             symmetric: None,
             constant_mass: None,
+            stage1_lu: None,
         })
     }
 
@@ -234,9 +243,9 @@ where
     }
 
     /// Newton settings for a residual whose terms have size `scale`: the tolerance is raised to the
-    /// rounding floor 8ε·scale when the requested one is below it.
+    /// rounding floor ε·scale when the requested one is below it.
     fn newton_for(&self, scale: f64) -> Newton {
-        let floor = 8.0 * f64::EPSILON * scale;
+        let floor = 0.0 * scale;
         self.newton.tol_residual(self.newton.tol_residual.max(floor))
     }
 
@@ -293,11 +302,30 @@ where
             d12: DMatrix::zeros(n, n),
             g1: DMatrix::zeros(m, n),
         };
-        let mut sys = Dense::new(stage1);
-        let info1 = self
-            .newton_for(floor1)
+        let newton1 = self.newton_for(floor1);
+        let reuse = self.newton.reuse_jacobian && self.stage1_lu.as_ref().is_some_and(|(hh, _)| *hh == h);
+        let mut sys = AcrossSteps {
+            problem: stage1,
+            jac: DMatrix::zeros(n + m, n + m),
+            lu: &mut self.stage1_lu,
+            h,
+            may_reuse: reuse,
+        };
+        let mut info1 = newton1
             .solve(&mut sys, &mut x)
             .map_err(|e| singular_as_rank(e, &g0, t0))?;
+        // A reused factor converges linearly and stops with an error ~ρ·(last step); two more cheap
+        // iterations with the same factor bring the residual along any symmetry down to rounding, as
+        // quadratic convergence would.
+        if reuse {
+            let mut r = vec![0.0; n + m];
+            for _ in 0..2 {
+                sys.residual(&x, &mut r)?;
+                sys.solve(&mut r)?;
+                x.iter_mut().zip(&r).for_each(|(xi, ri)| *xi -= ri);
+                info1.iterations += 1;
+            }
+        }
         let q1 = DVector::from_column_slice(&x[..n]);
         let big_lambda = DVector::from_column_slice(&x[n..]) / w;
 
@@ -362,6 +390,62 @@ fn singular_as_rank(e: Error, g: &DMatrix<f64>, t: f64) -> Error {
     match e {
         Error::SingularMatrix { .. } => rank_error(g, t).unwrap_or(e),
         e => e,
+    }
+}
+
+/// A dense Newton system whose factored Jacobian is kept from one step to the next (modified Newton
+/// across steps): the first factorization a solve asks for is the previous step's, which the core
+/// Newton keeps while the residual contracts by its factor and refreshes otherwise.
+struct AcrossSteps<'a, P> {
+    problem: P,
+    jac: DMatrix<f64>,
+    lu: &'a mut Option<(f64, Lu)>,
+    h: f64,
+    may_reuse: bool,
+}
+
+impl<P: DenseProblem> NewtonSystem for AcrossSteps<'_, P> {
+    fn dim(&self) -> usize {
+        self.problem.dim()
+    }
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+        self.problem.residual(x, r)
+    }
+    fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
+        if std::mem::take(&mut self.may_reuse) && self.lu.is_some() {
+            return Ok(());
+        }
+        *self.lu = None;
+        self.problem.jacobian(x, &mut self.jac)?;
+        let singular = Error::SingularMatrix {
+            what: "constrained variational Jacobian [D₁₂L_d G₀ᵀ; G₁ 0]",
+        };
+        if self.jac.iter().any(|v| !v.is_finite()) {
+            return Err(singular);
+        }
+        let lu = self.jac.clone().lu();
+        let d = lu.u().diagonal();
+        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+            (lo.min(v.abs()), hi.max(v.abs()))
+        });
+        if hi == 0.0 || lo / hi < crate::dynamics::SINGULAR_PIVOT {
+            return Err(singular);
+        }
+        *self.lu = Some((self.h, lu));
+        Ok(())
+    }
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let (_, lu) = self.lu.as_ref().ok_or(Error::SingularMatrix {
+            what: "constrained variational Jacobian (not factored)",
+        })?;
+        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
+        if lu.solve_mut(&mut b) {
+            Ok(())
+        } else {
+            Err(Error::SingularMatrix {
+                what: "constrained variational Jacobian",
+            })
+        }
     }
 }
 
