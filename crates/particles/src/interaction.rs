@@ -32,8 +32,9 @@ pub trait Interaction: Sync + Send {
     /// Checks particle indices against the number of particles `n`.
     fn validate(&self, n: usize) -> Result<()>;
 
-    /// Number of terms (decides whether the parallel path pays off).
-    fn terms(&self) -> usize;
+    /// Number of terms (an estimate for neighbour-list groups) in a system of `n` particles: decides
+    /// whether [`Parallel::Auto`](crate::Parallel::Auto) goes parallel.
+    fn terms(&self, n: usize) -> usize;
 
     /// The potential energy of the group, generic over the scalar (the Lagrangian path).
     fn potential<D: Scalar>(&self, t: f64, x: &[D], ps: &[Particle]) -> D;
@@ -70,7 +71,7 @@ impl Interaction for () {
     fn validate(&self, _n: usize) -> Result<()> {
         Ok(())
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, _n: usize) -> usize {
         0
     }
     fn potential<D: Scalar>(&self, _t: f64, _x: &[D], _ps: &[Particle]) -> D {
@@ -90,8 +91,8 @@ impl<A: Interaction, B: Interaction> Interaction for (A, B) {
         self.0.validate(n)?;
         self.1.validate(n)
     }
-    fn terms(&self) -> usize {
-        self.0.terms().saturating_add(self.1.terms())
+    fn terms(&self, n: usize) -> usize {
+        self.0.terms(n).saturating_add(self.1.terms(n))
     }
     fn potential<D: Scalar>(&self, t: f64, x: &[D], ps: &[Particle]) -> D {
         self.0.potential(t, x, ps) + self.1.potential(t, x, ps)
@@ -268,7 +269,7 @@ impl<P: PairPotential> Interaction for Internal<P> {
     fn validate(&self, n: usize) -> Result<()> {
         validate_pairs(&self.pairs, n)
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, _n: usize) -> usize {
         self.pairs.len()
     }
     fn potential<D: Scalar>(&self, _t: f64, x: &[D], ps: &[Particle]) -> D {
@@ -351,7 +352,7 @@ impl<P: OnePotential> Interaction for External<P> {
         }
         Ok(())
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, _n: usize) -> usize {
         self.indices.len()
     }
     fn potential<D: Scalar>(&self, t: f64, x: &[D], ps: &[Particle]) -> D {
@@ -427,7 +428,7 @@ impl<F: OneBodyForce> Interaction for ExternalForce<F> {
         }
         Ok(())
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, _n: usize) -> usize {
         self.indices.len()
     }
     fn potential<D: Scalar>(&self, _: f64, _: &[D], _: &[Particle]) -> D {
@@ -472,7 +473,7 @@ impl<F: TwoBodyForce> Interaction for InternalForce<F> {
     fn validate(&self, n: usize) -> Result<()> {
         validate_pairs(&self.pairs, n)
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, _n: usize) -> usize {
         self.pairs.len()
     }
     fn potential<D: Scalar>(&self, _: f64, _: &[D], _: &[Particle]) -> D {

@@ -29,10 +29,10 @@ impl<P: PairPotential> Interaction for AllPairs<P> {
     fn validate(&self, _n: usize) -> Result<()> {
         Ok(())
     }
-    fn terms(&self) -> usize {
+    fn terms(&self, n: usize) -> usize {
         // The gather path doubles the work: only worth it with more than two threads.
         if rayon::current_num_threads() > 2 {
-            usize::MAX
+            n * n.saturating_sub(1) / 2
         } else {
             0
         }
@@ -230,19 +230,40 @@ const HALF_STENCIL: [(isize, isize, isize); 13] = [
     (1, 1, 1),
 ];
 
-/// Cells per parallel batch (fixed, independent of the number of threads).
-const BATCH: usize = 1024;
-
 #[derive(Default)]
 struct Scratch {
     cells: CellList,
-    slots: Vec<Vec<([u32; 2], Vec3)>>,
+}
+
+/// A raw pointer to the force array shared by the threads of one slab phase.
+#[derive(Clone, Copy)]
+struct SharedForces(*mut f64, usize);
+
+// SAFETY: threads write through the pointer only to the particles of two adjacent slabs (s, s + 1) of
+// cells, and the slabs processed at the same time are two apart (all even, then all odd), so no two
+// threads ever touch the same particle; every particle lies in exactly one cell.
+unsafe impl Send for SharedForces {}
+unsafe impl Sync for SharedForces {}
+
+impl SharedForces {
+    #[inline(always)]
+    fn add(&self, i: usize, g: Vec3, sign: f64) {
+        assert!(3 * i + 2 < self.1, "particle index out of the force array");
+        // SAFETY: in bounds (checked above); exclusive per particle within a phase (see the impl).
+        unsafe {
+            for (k, gk) in g.iter().enumerate() {
+                *self.0.add(3 * i + k) += sign * gk;
+            }
+        }
+    }
 }
 
 /// A short-range pair potential between all particles closer than its cutoff, V = Σ_{i<j, r<rc} U.
 /// Pairs are found with a [`CellList`] rebuilt at each evaluation, so a force evaluation costs O(N) at
-/// fixed density. The parallel path evaluates batches of cells on rayon's pool and adds the pair forces
-/// in the serial order (bit-identical results for any number of threads).
+/// fixed density. Cells are processed in z-slabs, first the even slabs then the odd ones; a slab's pairs
+/// reach only its own and the next slab, so the slabs of one phase run in parallel without conflicts
+/// and without extra work. The order of the additions to each particle is the same on one or many
+/// threads, so results are bit-identical.
 pub struct ShortRange<P> {
     potential: P,
     rc: f64,
@@ -276,8 +297,9 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
     fn validate(&self, _n: usize) -> Result<()> {
         Ok(())
     }
-    fn terms(&self) -> usize {
-        usize::MAX / 2
+    fn terms(&self, n: usize) -> usize {
+        // About 15 neighbours closer than the cutoff per particle at liquid density.
+        15 * n
     }
     fn potential<D: Scalar>(&self, _t: f64, x: &[D], ps: &[Particle]) -> D {
         let n = ps.len();
@@ -310,46 +332,30 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
         let s = &mut *guard;
         s.cells.build(x, self.rc);
         let rc2 = self.rc * self.rc;
-        let ncell = s.cells.cells();
-        let mut total = 0.0;
-        if !parallel {
-            for c in 0..ncell {
-                let mut e = 0.0;
-                s.cells.for_pairs_of_cell(c, x, rc2, |i, j, r| {
+        let cells = &s.cells;
+        let [nx, ny, nz] = cells.dims;
+        let shared = SharedForces(f.as_mut_ptr(), f.len());
+        // All pairs of the cells of slab z (pairs reach slabs z and z + 1 only).
+        let slab = |z: usize| -> f64 {
+            let mut e = 0.0;
+            for c in z * nx * ny..(z + 1) * nx * ny {
+                cells.for_pairs_of_cell(c, x, rc2, |i, j, r| {
                     let (u, g) = self.eval_pair(i, j, r, ps);
                     e += u;
-                    add3(f, i, g);
-                    sub3(f, j, g);
+                    shared.add(i, g, 1.0);
+                    shared.add(j, g, -1.0);
                 });
-                total += e;
             }
-            return total;
-        }
-        let cells = &s.cells;
-        s.slots.resize_with(BATCH.min(ncell), Vec::new);
-        for c0 in (0..ncell).step_by(BATCH) {
-            let m = BATCH.min(ncell - c0);
-            let energies: Vec<f64> = s.slots[..m]
-                .par_iter_mut()
-                .enumerate()
-                .map(|(k, slot)| {
-                    slot.clear();
-                    let mut e = 0.0;
-                    cells.for_pairs_of_cell(c0 + k, x, rc2, |i, j, r| {
-                        let (u, g) = self.eval_pair(i, j, r, ps);
-                        e += u;
-                        slot.push(([i as u32, j as u32], g));
-                    });
-                    e
-                })
-                .collect();
-            for (slot, e) in s.slots[..m].iter().zip(&energies) {
-                for &([i, j], g) in slot {
-                    add3(f, i as usize, g);
-                    sub3(f, j as usize, g);
-                }
-                total += e;
-            }
+            e
+        };
+        let mut total = 0.0;
+        for phase in 0..2 {
+            let energies: Vec<f64> = if parallel {
+                (phase..nz).into_par_iter().step_by(2).map(slab).collect()
+            } else {
+                (phase..nz).step_by(2).map(slab).collect()
+            };
+            total = energies.iter().fold(total, |a, e| a + e);
         }
         total
     }

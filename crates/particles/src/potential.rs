@@ -102,6 +102,12 @@ pub fn pair_gradient<P: PairPotential + ?Sized>(
     p1: &Particle,
     p2: &Particle,
 ) -> (f64, Vec3) {
+    if P::RADIAL {
+        let s = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+        let u = pot.radial(Dual64::new(s, 1.0), p1, p2);
+        let c = 2.0 * u.eps;
+        return (u.re, [c * r[0], c * r[1], c * r[2]]);
+    }
     let s = |k: usize| DualSVec64::<3>::from_re(r[k]).derivative(k);
     let u = pot.energy([s(0), s(1), s(2)], p1, p2);
     let g = u.eps.unwrap_generic(Const::<3>, U1);
@@ -125,15 +131,10 @@ pub fn pair_hessian<P: PairPotential + ?Sized>(
 /// V(t, r) and ∇_r V by one `DualSVec64<3>` evaluation.
 #[inline(always)]
 pub fn one_gradient<P: OnePotential + ?Sized>(pot: &P, t: f64, r: Vec3, p: &Particle) -> (f64, Vec3) {
-    let mut g = [0.0; 3];
-    let mut val = 0.0;
-    for (k, gk) in g.iter_mut().enumerate() {
-        let s = |i: usize| Dual64::new(r[i], if i == k { 1.0 } else { 0.0 });
-        let u = pot.energy(t, [s(0), s(1), s(2)], p);
-        val = u.re;
-        *gk = u.eps;
-    }
-    (val, g)
+    let s = |k: usize| DualSVec64::<3>::from_re(r[k]).derivative(k);
+    let u = pot.energy(t, [s(0), s(1), s(2)], p);
+    let g = u.eps.unwrap_generic(Const::<3>, U1);
+    (u.re, [g[0], g[1], g[2]])
 }
 
 /// The 3×3 Hessian ∂²V/∂r∂r of a one-body potential.

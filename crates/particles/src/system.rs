@@ -155,7 +155,7 @@ impl<I: Interaction> System<I> {
             Parallel::Serial => false,
             Parallel::Rayon => true,
             Parallel::Auto => {
-                rayon::current_num_threads() > 1 && self.interactions.terms() >= AUTO_PARALLEL_TERMS
+                rayon::current_num_threads() > 1 && self.interactions.terms(self.len()) >= AUTO_PARALLEL_TERMS
             }
         }
     }
