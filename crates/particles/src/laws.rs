@@ -250,13 +250,15 @@ pub struct Trap {
 
 impl OnePotential for Trap {
     #[inline(always)]
-    fn energy<D: Scalar>(&self, _t: f64, r: [D; 3], _p: &Particle) -> D {
-        let d = [
-            r[0] - self.center[0],
-            r[1] - self.center[1],
-            r[2] - self.center[2],
-        ];
-        let s = r2(&d);
+    fn energy<D: Scalar>(&self, t: f64, r: [D; 3], p: &Particle) -> D {
+        let c = self.center;
+        self.radial(t, r2(&[r[0] - c[0], r[1] - c[1], r[2] - c[2]]), p)
+    }
+    fn center(&self) -> Option<Vec3> {
+        Some(self.center)
+    }
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, _t: f64, s: D, _p: &Particle) -> D {
         s * (0.5 * self.k2) + s * s * (0.25 * self.k4)
     }
 }
@@ -287,12 +289,16 @@ impl<P> FixedEnd<P> {
 impl<P: PairPotential> OnePotential for FixedEnd<P> {
     #[inline(always)]
     fn energy<D: Scalar>(&self, _t: f64, r: [D; 3], p: &Particle) -> D {
-        let d = [
-            r[0] - self.anchor[0],
-            r[1] - self.anchor[1],
-            r[2] - self.anchor[2],
-        ];
-        self.potential.energy(d, &self.anchor_particle, p)
+        let a = self.anchor;
+        self.potential
+            .energy([r[0] - a[0], r[1] - a[1], r[2] - a[2]], &self.anchor_particle, p)
+    }
+    fn center(&self) -> Option<Vec3> {
+        P::RADIAL.then_some(self.anchor)
+    }
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, _t: f64, s: D, p: &Particle) -> D {
+        self.potential.radial(s, &self.anchor_particle, p)
     }
 }
 

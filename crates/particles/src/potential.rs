@@ -63,6 +63,20 @@ pub trait OnePotential: Sync + Send {
     /// `true` when V depends on t explicitly (symplectic split methods then refuse the system).
     const TIME_DEPENDENT: bool = false;
 
+    /// For a potential of the distance to a fixed centre c, V = V(t, |r − c|²): the centre. Forces then
+    /// come from one `Dual64` evaluation of [`radial`](OnePotential::radial) (the fast path).
+    fn center(&self) -> Option<Vec3> {
+        None
+    }
+
+    /// V as a function of s = |r − c|² (used when [`center`](OnePotential::center) is `Some(c)`). The
+    /// default evaluates [`energy`](OnePotential::energy) at r = c + (√s, 0, 0).
+    #[inline(always)]
+    fn radial<D: Scalar>(&self, t: f64, s: D, p: &Particle) -> D {
+        let c = self.center().unwrap_or([0.0; 3]);
+        self.energy(t, [s.sqrt() + c[0], D::from(c[1]), D::from(c[2])], p)
+    }
+
     /// V at time `t` and position `r` of a particle with parameters `p`.
     fn energy<D: Scalar>(&self, t: f64, r: [D; 3], p: &Particle) -> D;
 }
@@ -128,9 +142,16 @@ pub fn pair_hessian<P: PairPotential + ?Sized>(
     std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)]))
 }
 
-/// V(t, r) and ∇_r V by one `DualSVec64<3>` evaluation.
+/// V(t, r) and ∇_r V by one `DualSVec64<3>` evaluation (one `Dual64` in |r − c|² for potentials with a
+/// [`center`](OnePotential::center)).
 #[inline(always)]
 pub fn one_gradient<P: OnePotential + ?Sized>(pot: &P, t: f64, r: Vec3, p: &Particle) -> (f64, Vec3) {
+    if let Some(c) = pot.center() {
+        let d = [r[0] - c[0], r[1] - c[1], r[2] - c[2]];
+        let u = pot.radial(t, Dual64::new(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0), p);
+        let k = 2.0 * u.eps;
+        return (u.re, [k * d[0], k * d[1], k * d[2]]);
+    }
     let s = |k: usize| DualSVec64::<3>::from_re(r[k]).derivative(k);
     let u = pot.energy(t, [s(0), s(1), s(2)], p);
     let g = u.eps.unwrap_generic(Const::<3>, U1);

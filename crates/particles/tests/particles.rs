@@ -551,3 +551,29 @@ fn ad_vs_ad_radial_path_matches_vector_path() {
     both(LennardJones::with_cutoff(1.0, 0.9, 2.0));
     both(GaussianCoupling { k2: 0.4, sigma: 0.6 });
 }
+
+/// The centred one-body fast path agrees with the 3-slot dual path (trap, spring to a wall, gravity).
+#[test]
+fn ad_vs_ad_centred_one_body_path_matches_vector_path() {
+    struct Vector<P>(P);
+    impl<P: OnePotential> OnePotential for Vector<P> {
+        fn energy<D: Scalar>(&self, t: f64, r: [D; 3], p: &Particle) -> D {
+            self.0.energy(t, r, p)
+        }
+    }
+    fn both<P: OnePotential + Copy>(pot: P) {
+        let p = Particle::new(2.0);
+        let r = [0.6, -0.3, 0.9];
+        let (u, g) = noether_particles::potential::one_gradient(&pot, 0.0, r, &p);
+        let (v, h) = noether_particles::potential::one_gradient(&Vector(pot), 0.0, r, &p);
+        assert!((u - v).abs() <= 1e-14 * u.abs());
+        close(g, h, 1e-14);
+    }
+    both(Trap {
+        k2: 0.7,
+        k4: 0.2,
+        center: [0.1, 0.2, -0.3],
+    });
+    both(FixedEnd::new(Spring { k: 3.0, re: 0.5 }, [1.0, -1.0, 0.5]));
+    both(FixedEnd::new(Gravity { g: 2.0 }, [1.0, -1.0, 0.5]));
+}
