@@ -1,10 +1,19 @@
 //! AD-derived accelerations against hand-written ones, side by side in one run, for the double pendulum,
 //! the heavy symmetric top (Euler angles) and a 10-link pendulum chain.
 //!
+//! - `hand`: the hand-derived equations of motion of `tests/ad/systems.rs` (closed forms; Cramer's rule
+//!   for the double pendulum, the cyclic-coordinate closed form for the top, a stack Cholesky of the
+//!   hand-built mass matrix for the chain);
+//! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation, stack Cholesky);
+//! - `ad_split`: the earlier scheme from the public kernels (gradient, one Hessian-vector product, the
+//!   Hessian in q̇, a heap `MassFactor`), kept as the reference point of the optimisation.
+//!
 //! `cargo bench -p noether-core --bench accelerations`; results in docs/benchmarks.md.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use noether_core::EulerLagrange;
+use nalgebra::DMatrix;
+use noether_core::ad::{self, Block, Field};
+use noether_core::{EulerLagrange, Lagrangian, MassFactor, Scalar};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -13,65 +22,75 @@ use std::time::Duration;
 mod systems;
 use systems::{Chain, DoublePendulum, HeavyTop};
 
-fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("double_pendulum");
-    let dp = DoublePendulum::default();
-    let el = EulerLagrange::new(dp);
-    let (q, v) = ([0.7, -1.9], [1.3, 0.4]);
-    g.bench_function("hand", |b| {
-        b.iter(|| dp.hand_accelerations(black_box(&q), black_box(&v)))
-    });
+struct AsField<L>(L);
+impl<L: Lagrangian> Field for AsField<L> {
+    fn eval<D: Scalar>(&self, t: D, x: &[D], y: &[D]) -> D {
+        self.0.lagrangian(t, x, y)
+    }
+}
+
+/// The three-kernel scheme: M q̈ = ∇_q L − ∇_q̇(∂_t L + q̇·∇_q L), M = ∂²L/∂q̇² (Dual2Vec), heap factor.
+fn ad_split<L: Lagrangian>(f: &AsField<L>, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) {
+    let n = q.len();
+    ad::gradient(f, t, q, v, Block::X, a);
+    let mut mixed = vec![0.0; n];
+    ad::directional_gradient(f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+    a.iter_mut().zip(&mixed).for_each(|(ai, mi)| *ai -= mi);
+    let mut m = DMatrix::zeros(n, n);
+    ad::hessian(f, t, q, v, Block::Y, Block::Y, &mut m);
+    MassFactor::new(m, t).unwrap().solve_in_place(a);
+}
+
+fn group<L: Lagrangian + Copy, const N: usize>(
+    c: &mut Criterion,
+    name: &str,
+    l: L,
+    q: [f64; N],
+    v: [f64; N],
+    hand: impl Fn(&[f64; N], &[f64; N]) -> [f64; N],
+) {
+    let el = EulerLagrange::new(l);
+    let f = AsField(l);
+    let mut g = c.benchmark_group(name);
+    g.bench_function("hand", |b| b.iter(|| hand(black_box(&q), black_box(&v))));
     g.bench_function("ad", |b| {
-        let mut a = [0.0; 2];
+        let mut a = [0.0; N];
         b.iter(|| {
             el.accelerations(black_box(0.0), black_box(&q), black_box(&v), &mut a)
                 .unwrap();
             a
         })
     });
-    g.finish();
-
-    let mut g = c.benchmark_group("heavy_top");
-    let top = HeavyTop::default();
-    let el = EulerLagrange::new(top);
-    let (q, v) = ([0.8, 0.3, -1.2], [0.4, 1.1, 7.5]);
-    g.bench_function("hand", |b| {
-        b.iter(|| top.hand_accelerations(black_box(&q), black_box(&v)))
-    });
-    g.bench_function("ad", |b| {
-        let mut a = [0.0; 3];
+    g.bench_function("ad_split", |b| {
+        let mut a = [0.0; N];
         b.iter(|| {
-            el.accelerations(black_box(0.0), black_box(&q), black_box(&v), &mut a)
-                .unwrap();
-            a
-        })
-    });
-    g.finish();
-
-    let mut g = c.benchmark_group("chain10");
-    let chain = Chain::<10>::default();
-    let el = EulerLagrange::new(chain);
-    let q: [f64; 10] = std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1);
-    let v: [f64; 10] = std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos());
-    g.bench_function("hand", |b| {
-        b.iter(|| chain.hand_accelerations(black_box(&q), black_box(&v)))
-    });
-    g.bench_function("ad", |b| {
-        let mut a = [0.0; 10];
-        b.iter(|| {
-            el.accelerations(black_box(0.0), black_box(&q), black_box(&v), &mut a)
-                .unwrap();
+            ad_split(&f, black_box(0.0), black_box(&q), black_box(&v), &mut a);
             a
         })
     });
     g.finish();
 }
 
+fn bench(c: &mut Criterion) {
+    let dp = DoublePendulum::default();
+    group(c, "double_pendulum", dp, [0.7, -1.9], [1.3, 0.4], |q, v| {
+        dp.hand_accelerations(q, v)
+    });
+    let top = HeavyTop::default();
+    group(c, "heavy_top", top, [0.8, 0.3, -1.2], [0.4, 1.1, 7.5], |q, v| {
+        top.hand_accelerations(q, v)
+    });
+    let chain = Chain::<10>::default();
+    let q: [f64; 10] = std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1);
+    let v: [f64; 10] = std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos());
+    group(c, "chain10", chain, q, v, |q, v| chain.hand_accelerations(q, v));
+}
+
 fn config() -> Criterion {
     // Short runs: the machine is shared. Ratios are what matter, measured in one run.
     Criterion::default()
         .warm_up_time(Duration::from_millis(300))
-        .measurement_time(Duration::from_millis(1200))
+        .measurement_time(Duration::from_millis(1500))
         .sample_size(20)
 }
 

@@ -366,15 +366,7 @@ pub fn lagrange_terms<F: Field, const N: usize>(
         grad_x: row(r.gx),
         grad_y: row(r.gw),
         mixed: row(r.hsw),
-        hess_yy: r.hww.0.map_or_else(SMatrix::zeros, |mut h| {
-            // Only the upper triangle is maintained: mirror it.
-            for j in 0..N {
-                for i in j + 1..N {
-                    h[(i, j)] = h[(j, i)];
-                }
-            }
-            h
-        }),
+        hess_yy: r.hww.0.unwrap_or_else(SMatrix::zeros),
     }
 }
 

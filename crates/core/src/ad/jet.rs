@@ -35,38 +35,17 @@ use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
 
 /// One derivative part of a [`LagrangeJet`]: `None` means identically zero (and costs nothing).
-/// With `SYM = true` the part is a symmetric square matrix of which only the upper triangle
-/// (row ≤ column) is kept up to date; the reader mirrors it.
 #[derive(Clone, Debug)]
-pub struct Part<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool = false>(
-    pub Option<OMatrix<T, R, C>>,
-    PhantomData<F>,
-)
+pub struct Part<T: DualNum<F>, F, R: Dim, C: Dim>(pub Option<OMatrix<T, R, C>>, PhantomData<F>)
 where
     DefaultAllocator: Allocator<R, C>;
 
-impl<T: DualNum<F> + Copy, F: Copy, const R: usize, const C: usize, const SYM: bool> Copy
-    for Part<T, F, nalgebra::Const<R>, nalgebra::Const<C>, SYM>
+impl<T: DualNum<F> + Copy, F: Copy, const R: usize, const C: usize> Copy
+    for Part<T, F, nalgebra::Const<R>, nalgebra::Const<C>>
 {
 }
 
-/// Calls `f` with every storage index a part of `len` entries and `n` rows keeps up to date.
-#[inline(always)]
-fn each<const SYM: bool>(len: usize, n: usize, mut f: impl FnMut(usize)) {
-    if SYM {
-        for j in 0..n {
-            for i in 0..=j {
-                f(j * n + i);
-            }
-        }
-    } else {
-        for k in 0..len {
-            f(k);
-        }
-    }
-}
-
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -86,15 +65,7 @@ where
     #[inline(always)]
     fn lin(x: &Self, alpha: &T, y: &Self, beta: &T) -> Self {
         match (&x.0, &y.0) {
-            (Some(a), Some(b)) => {
-                let mut m = a.clone();
-                let n = m.nrows();
-                let (ms, bs) = (m.as_mut_slice(), b.as_slice());
-                each::<SYM>(ms.len(), n, |k| {
-                    ms[k] = ms[k].clone() * alpha.clone() + bs[k].clone() * beta.clone()
-                });
-                Part::some(m)
-            }
+            (Some(a), Some(b)) => Part::some(a.zip_map(b, |ai, bi| ai * alpha.clone() + bi * beta.clone())),
             (Some(_), None) => Part::scale(x, alpha),
             (None, Some(_)) => Part::scale(y, beta),
             (None, None) => Part::none(),
@@ -105,13 +76,7 @@ where
     #[inline(always)]
     fn sum(x: &Self, y: &Self, sign: &T) -> Self {
         match (&x.0, &y.0) {
-            (Some(a), Some(b)) => {
-                let mut m = a.clone();
-                let n = m.nrows();
-                let (ms, bs) = (m.as_mut_slice(), b.as_slice());
-                each::<SYM>(ms.len(), n, |k| ms[k] += bs[k].clone() * sign.clone());
-                Part::some(m)
-            }
+            (Some(a), Some(b)) => Part::some(a.zip_map(b, |ai, bi| ai + bi * sign.clone())),
             (Some(_), None) => Part(x.0.clone(), PhantomData),
             (None, Some(_)) => Part::scale(y, sign),
             (None, None) => Part::none(),
@@ -121,16 +86,7 @@ where
     /// `α x`.
     #[inline(always)]
     fn scale(x: &Self, alpha: &T) -> Self {
-        match &x.0 {
-            Some(a) => {
-                let mut m = a.clone();
-                let n = m.nrows();
-                let ms = m.as_mut_slice();
-                each::<SYM>(ms.len(), n, |k| ms[k] *= alpha.clone());
-                Part::some(m)
-            }
-            None => Part::none(),
-        }
+        Part(x.0.as_ref().map(|a| a.map(|ai| ai * alpha.clone())), PhantomData)
     }
 
     /// `self += α x`.
@@ -138,18 +94,14 @@ where
     fn axpy(&mut self, alpha: &T, x: &Self) {
         if let Some(b) = &x.0 {
             match &mut self.0 {
-                Some(a) => {
-                    let n = a.nrows();
-                    let (ms, bs) = (a.as_mut_slice(), b.as_slice());
-                    each::<SYM>(ms.len(), n, |k| ms[k] += bs[k].clone() * alpha.clone());
-                }
+                Some(a) => a.zip_apply(b, |ai, bi| *ai += bi * alpha.clone()),
                 None => *self = Part::scale(x, alpha),
             }
         }
     }
 }
 
-impl<T: DualNum<F>, F, C: Dim> Part<T, F, C, C, true>
+impl<T: DualNum<F>, F, C: Dim> Part<T, F, C, C>
 where
     DefaultAllocator: Allocator<C, C> + Allocator<U1, C>,
 {
@@ -166,14 +118,14 @@ where
         for j in 0..n {
             let (uj, vj) = (u[j].clone() * alpha.clone(), v[j].clone() * alpha.clone());
             let col = &mut m[j * n..(j + 1) * n];
-            for i in 0..=j {
+            for i in 0..n {
                 col[i] += u[i].clone() * vj.clone() + v[i].clone() * uj.clone();
             }
         }
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Add<&Part<T, F, R, C, SYM>> for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Add<&Part<T, F, R, C>> for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -184,7 +136,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Sub<&Part<T, F, R, C, SYM>> for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Sub<&Part<T, F, R, C>> for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -195,7 +147,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> AddAssign for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> AddAssign for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -205,7 +157,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> SubAssign for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> SubAssign for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -215,7 +167,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> Neg for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> Neg for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -226,7 +178,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> MulAssign<T> for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> MulAssign<T> for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -236,7 +188,7 @@ where
     }
 }
 
-impl<T: DualNum<F>, F, R: Dim, C: Dim, const SYM: bool> DivAssign<T> for Part<T, F, R, C, SYM>
+impl<T: DualNum<F>, F, R: Dim, C: Dim> DivAssign<T> for Part<T, F, R, C>
 where
     DefaultAllocator: Allocator<R, C>,
 {
@@ -264,7 +216,7 @@ where
     /// ∂²/∂s∂w: the mixed term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
     pub hsw: Part<T, F, U1, D>,
     /// ∂²/∂w²: the Hessian in q̇ (the mass matrix).
-    pub hww: Part<T, F, D, D, true>,
+    pub hww: Part<T, F, D, D>,
     f: PhantomData<F>,
 }
 
@@ -285,7 +237,7 @@ where
         gs: T,
         gw: Part<T, F, U1, D>,
         hsw: Part<T, F, U1, D>,
-        hww: Part<T, F, D, D, true>,
+        hww: Part<T, F, D, D>,
     ) -> Self {
         LagrangeJet {
             re,
