@@ -15,8 +15,11 @@
 //! that the constraints tie to the others, as in the cycloid example). The generalized constraint force
 //! is Aᵀλ.
 //!
-//! [`Constrained`] implements core's [`Dynamics`], so every continuous integrator of core steps it;
-//! wrap the stepper in [`Projected`](crate::Projected) to stay on the constraint manifold.
+//! [`Constrained`] implements core's [`Dynamics`], so every continuous integrator of core for a general
+//! vector field steps it (Euler, Euler-Cromer, RK4, the adaptive Dormand-Prince pairs; tested); wrap
+//! the stepper in [`Projected`](crate::Projected) to stay on the constraint manifold. The split
+//! symplectic methods need a separable system, which the constrained field is not: use
+//! [`Rattle`](crate::Rattle) for a structure-preserving constrained integrator.
 
 use crate::forces::ConstraintForces;
 use crate::holonomic::{Holonomic, HolonomicSet};
