@@ -33,7 +33,7 @@
 //! assert!((end.q[0] - 1f64.cos()).abs() < 1e-4);
 //! ```
 
-use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow, Predictor};
+use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow, Predictor};
 use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
@@ -58,7 +58,7 @@ struct DelSystem<'a, Ld: ?Sized> {
     q0: &'a [f64],
     p0: &'a [f64],
     jac: &'a mut DMatrix<f64>,
-    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    lu: &'a mut Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
     fm: &'a mut [f64],
     fp: &'a mut [f64],
 }
@@ -90,7 +90,7 @@ impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
                 what: "discrete Euler-Lagrange Jacobian D₁₂L_d",
             });
         }
-        self.lu = Some(lu);
+        *self.lu = Some(lu);
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
@@ -119,7 +119,10 @@ pub struct VariationalIntegrator<Ld> {
     fm: Vec<f64>,
     fp: Vec<f64>,
     jac: DMatrix<f64>,
+    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
     last: NewtonInfo,
+    /// Step size of the Jacobian factor kept from the last step.
+    factor_h: f64,
 }
 
 impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
@@ -136,7 +139,9 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
             fm: vec![0.0; n],
             fp: vec![0.0; n],
             jac: DMatrix::zeros(n, n),
+            lu: None,
             last: NewtonInfo::default(),
+            factor_h: f64::NAN,
         }
     }
 
@@ -247,12 +252,20 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
             q0: q,
             p0: p,
             jac: &mut self.jac,
-            lu: None,
+            lu: &mut self.lu,
             fm: &mut self.fm,
             fp: &mut self.fp,
         };
         let newton = effective_newton(&self.newton, p);
         let info = newton.solve(&mut sys, &mut self.q1)?;
+        if info.iterations > 0 {
+            self.factor_h = h;
+        }
+        if info.iterations == 0 {
+            let factored = self.factor_h == h && sys.lu.is_some();
+            self.factor_h = h;
+            correct_once(&mut sys, &mut self.q1, factored)?;
+        }
         self.ld.d2(t, h, q, &self.q1, &mut self.p1);
         if self.ld.has_discrete_force() {
             self.ld

@@ -15,6 +15,9 @@
 //! - [`Midpoint`], [`Trapezoidal`]: second-order discrete Lagrangians of a continuous L.
 //! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
+//! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
+//!   [`MechanicalMidpoint`] (Newton with a banded or dense Jacobian assembled term by term, O(N) for
+//!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton).
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -41,25 +44,32 @@
 //! ```
 
 pub mod banded;
+pub mod chains;
 pub mod composition;
 pub mod flow;
 pub mod integrator;
 pub mod lagrangian;
+pub mod mechanical;
+pub mod mechanical_midpoint;
 pub mod momentum;
 pub mod quadrature;
+pub mod verlet;
 
 pub use composition::Composition;
 pub use flow::DiscreteFlow;
 pub use integrator::VariationalIntegrator;
 pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
+pub use mechanical::{LocalPotential, Mass, Mechanical};
+pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};
 pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
+pub use verlet::Verlet;
 
 /// Everything needed to build and step a discrete model, in one import.
 pub mod prelude {
     pub use crate::momentum::{noether_momentum, PlanarRotation, Symmetry, Translation};
     pub use crate::{
-        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Midpoint,
-        Trapezoidal, VariationalIntegrator,
+        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, LocalPotential,
+        Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator, Verlet,
     };
 }

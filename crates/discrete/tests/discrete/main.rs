@@ -3,6 +3,7 @@
 
 mod bad_input;
 mod conserves;
+mod mechanical;
 mod models;
 mod order;
 mod regress;

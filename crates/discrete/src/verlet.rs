@@ -1,0 +1,134 @@
+//! The trapezoidal variational integrator of a [`Mechanical`] system: Störmer-Verlet, no Newton.
+//!
+//! For L = ½ q̇ᵀMq̇ − V(q) the trapezoidal discrete Lagrangian `L_d = (h/2)[L(q₀, v) + L(q₁, v)]`,
+//! v = (q₁ − q₀)/h, with discrete damping forces f⁻ = f⁺ = −(h/2) C v, gives a position-momentum step
+//! that is linear in v:
+//!
+//! ```text
+//! (M + (h/2) C) v = p_k − (h/2) ∇V(q_k),     q_{k+1} = q_k + h v,     p_{k+1} = M v − (h/2) ∇V(q_{k+1}) − (h/2) C v,
+//! ```
+//!
+//! i.e. velocity Verlet (exactly, when C = 0). One linear solve with a factor of M + (h/2)C computed once
+//! per step size, and one gradient per step (∇V(q_{k+1}) is reused by the next step).
+
+use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow};
+use crate::mechanical::{LocalPotential, Mass, Mechanical};
+use noether_core::{Error, MassFactor, Result};
+
+/// Störmer-Verlet as the trapezoidal variational integrator of a [`Mechanical`] system.
+pub struct Verlet<P> {
+    sys: Mechanical<P>,
+    /// Factor of M + (h/2)C for the step size `factor_h` (only with damping and a dense M).
+    factor: Option<(f64, MassFactor)>,
+    /// ∇V at `cached_q` (first-same-as-last).
+    cached_q: Vec<f64>,
+    cached_grad: Vec<f64>,
+    v: Vec<f64>,
+    q1: Vec<f64>,
+    g1: Vec<f64>,
+}
+
+impl<P: LocalPotential> Verlet<P> {
+    /// Störmer-Verlet for `sys`.
+    pub fn new(sys: Mechanical<P>) -> Self {
+        let n = sys.dof();
+        Verlet {
+            sys,
+            factor: None,
+            cached_q: Vec::new(),
+            cached_grad: vec![0.0; n],
+            v: vec![0.0; n],
+            q1: vec![0.0; n],
+            g1: vec![0.0; n],
+        }
+    }
+
+    /// The system.
+    pub fn system(&self) -> &Mechanical<P> {
+        &self.sys
+    }
+
+    /// Overwrites `b` with (M + (h/2)C)⁻¹ b.
+    fn solve_velocity(&mut self, h: f64, b: &mut [f64]) -> Result<()> {
+        match (self.sys.damping(), self.sys.mass()) {
+            (None, _) => self.sys.mass_solve(b),
+            (Some(c), Mass::Diagonal(m)) => {
+                for ((x, mi), ci) in b.iter_mut().zip(m).zip(c) {
+                    let d = mi + 0.5 * h * ci;
+                    if d <= 0.0 {
+                        return Err(Error::SingularMatrix {
+                            what: "M + (h/2)C in the damped Verlet step",
+                        });
+                    }
+                    *x /= d;
+                }
+            }
+            (Some(c), Mass::Dense(m)) => {
+                if self.factor.as_ref().is_none_or(|(fh, _)| *fh != h) {
+                    let mut a = m.clone();
+                    for (i, ci) in c.iter().enumerate() {
+                        a[(i, i)] += 0.5 * h * ci;
+                    }
+                    self.factor = Some((h, MassFactor::new(a, 0.0)?));
+                }
+                if let Some((_, f)) = &self.factor {
+                    f.solve_in_place(b);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<P: LocalPotential> DiscreteFlow for Verlet<P> {
+    fn dof(&self) -> usize {
+        self.sys.dof()
+    }
+    fn order(&self) -> u32 {
+        2
+    }
+    fn name(&self) -> &'static str {
+        "Störmer-Verlet (trapezoidal variational)"
+    }
+
+    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+        check_flow_args(self.sys.dof(), t, h, q, p)?;
+        if self.cached_q.as_slice() != q {
+            self.sys.gradient(q, &mut self.cached_grad);
+            self.cached_q.clear();
+            self.cached_q.extend_from_slice(q);
+        }
+        let mut v = std::mem::take(&mut self.v);
+        for ((vi, pi), gi) in v.iter_mut().zip(p.iter()).zip(&self.cached_grad) {
+            *vi = pi - 0.5 * h * gi;
+        }
+        let solved = self.solve_velocity(h, &mut v);
+        self.v = v;
+        solved?;
+        for ((q1, q0), vi) in self.q1.iter_mut().zip(q.iter()).zip(&self.v) {
+            *q1 = q0 + h * vi;
+        }
+        self.sys.gradient(&self.q1, &mut self.g1);
+        let mut p1 = vec![0.0; q.len()];
+        self.sys.mass_mul(&self.v, &mut p1);
+        for (pi, gi) in p1.iter_mut().zip(&self.g1) {
+            *pi -= 0.5 * h * gi;
+        }
+        if let Some(c) = self.sys.damping() {
+            for ((pi, ci), vi) in p1.iter_mut().zip(c).zip(&self.v) {
+                *pi -= 0.5 * h * ci * vi;
+            }
+        }
+        if self.q1.iter().chain(&p1).any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        q.copy_from_slice(&self.q1);
+        p.copy_from_slice(&p1);
+        self.cached_q.clear();
+        self.cached_q.extend_from_slice(&self.q1);
+        std::mem::swap(&mut self.cached_grad, &mut self.g1);
+        Ok(0)
+    }
+}
+
+stepper_via_flow!(Verlet<P: LocalPotential>);
