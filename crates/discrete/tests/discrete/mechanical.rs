@@ -182,7 +182,7 @@ fn order_damped_oscillator_lagrange_dalembert() {
         }
         (st.q[0] - exact).abs()
     }
-    type ErrorOf = Box<dyn Fn(usize) -> f64>;
+    type ErrorOf<'a> = Box<dyn Fn(usize) -> f64 + 'a>;
     let cases: [(&str, ErrorOf); 3] = [
         (
             "mechanical midpoint",
