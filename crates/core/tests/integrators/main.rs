@@ -4,5 +4,6 @@
 mod adaptive;
 mod bad_input;
 mod conserves;
+mod implicit;
 mod order;
 mod problems;

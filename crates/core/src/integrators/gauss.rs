@@ -1,0 +1,413 @@
+//! Implicit midpoint and Gauss-Legendre collocation (s = 1, 2, 3 stages; orders 2, 4, 6): symplectic
+//! for every Hamiltonian, separable or not, and symmetric.
+//!
+//! One step solves the stage equations for Z_i = Y_i − y₀ (i = 1..s, each of length 2n)
+//!
+//! ```text
+//! Z_i = h Σ_j a_ij F(t + c_j h, y₀ + Z_j),        y₁ = y₀ + h Σ_i b_i F(Y_i) = y₀ + Σ_i d_i Z_i,
+//! ```
+//!
+//! with dᵀ = bᵀA⁻¹ (no extra evaluation of F), by the core [`Newton`] solver on the s·2n unknowns with
+//! the exact Jacobian δ_ij I − h a_ij J(Y_j), J = ∂F/∂y from [`LinearizedDynamics`] (for a Hamiltonian:
+//! J = Ω ∇²H with the Hessian by dual numbers). The LU factor is reused across iterations while the
+//! residual contracts well (modified Newton). The starting guess extrapolates the collocation
+//! polynomial of the previous step (Hairer-Lubich-Wanner VIII.6.1) when the step continues from where
+//! the last one ended, and is Z_i = c_i h F(y₀) otherwise. The residual tolerance of the solver is
+//! relative: ‖residual‖∞ ≤ tol_residual · (1 + ‖y₀‖∞).
+//!
+//! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`] on (q, p), a
+//! `SeparableHamiltonian` on (q, p) and a [`Natural`] system on (q, q̇). A general Lagrangian is
+//! best written as a Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
+//! a configuration-dependent mass matrix is not symplectic in any case).
+//!
+//! A failed Newton solve returns [`Error::NewtonDiverged`] with the iteration count and the last
+//! residual norm, and leaves the state untouched.
+//!
+//! # References
+//! - E. Hairer, C. Lubich, G. Wanner, *Geometric Numerical Integration*, 2nd ed., II.1.3 (collocation),
+//!   VI.4 (symplecticity), VIII.6 (implementation).
+//! - E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, IV.8 (stage values as unknowns).
+
+use crate::error::check_step;
+use crate::natural::{Natural, Potential, PotentialField};
+use crate::newton::{max_norm, Dense, DenseProblem, Newton};
+use crate::{
+    ad, Dynamics, Error, HamiltonEquations, Hamiltonian, Result, Scalar, Separable, SeparableHamiltonian,
+    State, StepInfo, Stepper,
+};
+use nalgebra::{DMatrix, DVector};
+
+/// A [`Dynamics`] that also provides the Jacobian of its vector field.
+pub trait LinearizedDynamics: Dynamics {
+    /// J = ∂(q̇, v̇)/∂(q, v) at (t, q, v), written into the 2n × 2n matrix `out`.
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()>;
+}
+
+/// J = [[H_pq, H_pp], [−H_qq, −H_qp]] for q̇ = ∂H/∂p, ṗ = −∂H/∂q.
+impl<H: Hamiltonian> LinearizedDynamics for HamiltonEquations<H> {
+    fn jacobian(&self, t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.dof();
+        let hess = self.hessian(t, q, p)?;
+        for i in 0..n {
+            for j in 0..n {
+                out[(i, j)] = hess[(n + i, j)];
+                out[(i, n + j)] = hess[(n + i, n + j)];
+                out[(n + i, j)] = -hess[(i, j)];
+                out[(n + i, n + j)] = -hess[(i, n + j)];
+            }
+        }
+        Ok(())
+    }
+}
+
+struct KineticOf<'a, S: ?Sized>(&'a S);
+impl<S: Separable + ?Sized> ad::Field for KineticOf<'_, S> {
+    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+        self.0.kinetic(x)
+    }
+}
+struct PotentialOfSep<'a, S: ?Sized>(&'a S);
+impl<S: Separable + ?Sized> ad::Field for PotentialOfSep<'_, S> {
+    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+        self.0.potential(x)
+    }
+}
+
+/// J = [[0, ∇²T(p)], [−∇²V(q), 0]].
+impl<S: Separable> LinearizedDynamics for SeparableHamiltonian<S> {
+    fn jacobian(&self, _t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.0.dof();
+        let mut block = DMatrix::zeros(n, n);
+        out.fill(0.0);
+        ad::hessian(
+            &KineticOf(&self.0),
+            0.0,
+            p,
+            &[],
+            ad::Block::X,
+            ad::Block::X,
+            &mut block,
+        );
+        out.view_mut((0, n), (n, n)).copy_from(&block);
+        ad::hessian(
+            &PotentialOfSep(&self.0),
+            0.0,
+            q,
+            &[],
+            ad::Block::X,
+            ad::Block::X,
+            &mut block,
+        );
+        out.view_mut((n, 0), (n, n)).copy_from(&(-&block));
+        Ok(())
+    }
+}
+
+/// On (q, q̇): J = [[0, I], [−M⁻¹∇²V(q), 0]].
+impl<P: Potential> LinearizedDynamics for Natural<P> {
+    fn jacobian(&self, _t: f64, q: &[f64], _v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.dof();
+        let mut hess = DMatrix::zeros(n, n);
+        ad::hessian(
+            &PotentialField(self.potential_model()),
+            0.0,
+            q,
+            &[],
+            ad::Block::X,
+            ad::Block::X,
+            &mut hess,
+        );
+        let minv_hess = -self.inverse_mass_matrix() * hess;
+        out.fill(0.0);
+        out.view_mut((0, n), (n, n)).fill_with_identity();
+        out.view_mut((n, 0), (n, n)).copy_from(&minv_hess);
+        Ok(())
+    }
+}
+
+impl<S: LinearizedDynamics + ?Sized> LinearizedDynamics for &S {
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        (**self).jacobian(t, q, v, out)
+    }
+}
+
+/// The last accepted step, for the extrapolated starting guess.
+struct LastStep {
+    t_end: f64,
+    h: f64,
+    y_start: Vec<f64>,
+    y_end: Vec<f64>,
+    /// Stage values Y_j = y_start + Z_j, stage after stage.
+    stages: Vec<f64>,
+}
+
+/// Gauss-Legendre collocation with s stages (see the [module](self) docs).
+pub struct Gauss<S> {
+    system: S,
+    s: usize,
+    a: Vec<f64>,
+    c: Vec<f64>,
+    d: Vec<f64>,
+    newton: Newton,
+    last: Option<LastStep>,
+}
+
+impl<S: LinearizedDynamics> Gauss<S> {
+    /// Gauss-Legendre collocation with `stages` = 1, 2 or 3 (orders 2, 4, 6).
+    pub fn new(system: S, stages: usize) -> Result<Self> {
+        let r3 = 3f64.sqrt();
+        let r15 = 15f64.sqrt();
+        let (a, b, c): (Vec<f64>, Vec<f64>, Vec<f64>) = match stages {
+            1 => (vec![0.5], vec![1.0], vec![0.5]),
+            2 => (
+                vec![0.25, 0.25 - r3 / 6.0, 0.25 + r3 / 6.0, 0.25],
+                vec![0.5, 0.5],
+                vec![0.5 - r3 / 6.0, 0.5 + r3 / 6.0],
+            ),
+            3 => (
+                vec![
+                    5.0 / 36.0,
+                    2.0 / 9.0 - r15 / 15.0,
+                    5.0 / 36.0 - r15 / 30.0,
+                    5.0 / 36.0 + r15 / 24.0,
+                    2.0 / 9.0,
+                    5.0 / 36.0 - r15 / 24.0,
+                    5.0 / 36.0 + r15 / 30.0,
+                    2.0 / 9.0 + r15 / 15.0,
+                    5.0 / 36.0,
+                ],
+                vec![5.0 / 18.0, 4.0 / 9.0, 5.0 / 18.0],
+                vec![0.5 - r15 / 10.0, 0.5, 0.5 + r15 / 10.0],
+            ),
+            _ => {
+                return Err(Error::InvalidParameter {
+                    name: "Gauss stages",
+                    value: stages as f64,
+                    reason: "Gauss-Legendre collocation is provided with 1, 2 or 3 stages",
+                })
+            }
+        };
+        // dᵀ = bᵀ A⁻¹, i.e. Aᵀ d = b.
+        let at = DMatrix::from_row_slice(stages, stages, &a).transpose();
+        let d = at
+            .lu()
+            .solve(&DVector::from_vec(b))
+            .ok_or(Error::SingularMatrix {
+                what: "Gauss matrix A",
+            })?;
+        Ok(Gauss {
+            system,
+            s: stages,
+            a,
+            c,
+            d: d.as_slice().to_vec(),
+            newton: Newton::default()
+                .tol_residual(1e-14)
+                .tol_step(1e-15)
+                .max_iterations(20),
+            last: None,
+        })
+    }
+
+    /// The implicit midpoint rule y₁ = y₀ + h F((y₀ + y₁)/2), order 2 (Gauss with one stage).
+    pub fn implicit_midpoint(system: S) -> Self {
+        Self::new(system, 1).expect("one stage is supported")
+    }
+    /// Two-stage Gauss-Legendre collocation, order 4.
+    pub fn gauss4(system: S) -> Self {
+        Self::new(system, 2).expect("two stages are supported")
+    }
+    /// Three-stage Gauss-Legendre collocation, order 6.
+    pub fn gauss6(system: S) -> Self {
+        Self::new(system, 3).expect("three stages are supported")
+    }
+
+    /// Sets the Newton solver (its `tol_residual` is relative to 1 + ‖y₀‖∞).
+    pub fn newton(mut self, newton: Newton) -> Self {
+        self.newton = newton;
+        self
+    }
+
+    /// The system stepped.
+    pub fn system(&self) -> &S {
+        &self.system
+    }
+
+    /// Starting guess for Z at step (t, y0, h).
+    fn guess(&self, t: f64, y0: &[f64], h: f64, z: &mut [f64]) -> Result<()> {
+        let (s, m) = (self.s, y0.len());
+        if let Some(last) = self.last.as_ref().filter(|l| l.t_end == t && l.y_end == y0) {
+            // u(τ) through (0, y_start), (c_j, Y_j); Z_i = u(1 + c_i h/h_old) − y₀.
+            let mut nodes = vec![0.0];
+            nodes.extend(&self.c);
+            for i in 0..s {
+                let tau = 1.0 + self.c[i] * h / last.h;
+                let zi = &mut z[i * m..(i + 1) * m];
+                zi.iter_mut().zip(y0).for_each(|(z, y)| *z = -y);
+                for (k, xk) in nodes.iter().enumerate() {
+                    let w: f64 = nodes
+                        .iter()
+                        .enumerate()
+                        .filter(|(l, _)| *l != k)
+                        .map(|(_, xl)| (tau - xl) / (xk - xl))
+                        .product();
+                    let vals = if k == 0 {
+                        &last.y_start[..]
+                    } else {
+                        &last.stages[(k - 1) * m..k * m]
+                    };
+                    zi.iter_mut().zip(vals).for_each(|(z, v)| *z += w * v);
+                }
+            }
+            if z.iter().all(|x| x.is_finite()) {
+                return Ok(());
+            }
+        }
+        let n = m / 2;
+        let mut f = vec![0.0; m];
+        let (fq, fv) = f.split_at_mut(n);
+        self.system.rates(t, &y0[..n], &y0[n..], fq, fv)?;
+        for i in 0..s {
+            for k in 0..m {
+                z[i * m + k] = self.c[i] * h * f[k];
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The stage equations of one step as a Newton problem in Z.
+struct Stages<'a, S> {
+    system: &'a S,
+    t: f64,
+    h: f64,
+    y0: &'a [f64],
+    a: &'a [f64],
+    c: &'a [f64],
+    s: usize,
+    f: Vec<f64>,
+    y: Vec<f64>,
+    jac: DMatrix<f64>,
+}
+
+impl<S: LinearizedDynamics> Stages<'_, S> {
+    /// Y_j = y₀ + Z_j into self.y.
+    fn stage(&mut self, z: &[f64], j: usize) {
+        let m = self.y0.len();
+        self.y
+            .iter_mut()
+            .enumerate()
+            .for_each(|(k, y)| *y = self.y0[k] + z[j * m + k]);
+    }
+}
+
+impl<S: LinearizedDynamics> DenseProblem for Stages<'_, S> {
+    fn dim(&self) -> usize {
+        self.s * self.y0.len()
+    }
+    fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<()> {
+        let (s, m, n) = (self.s, self.y0.len(), self.y0.len() / 2);
+        for j in 0..s {
+            self.stage(z, j);
+            let (fq, fv) = self.f[j * m..(j + 1) * m].split_at_mut(n);
+            self.system
+                .rates(self.t + self.c[j] * self.h, &self.y[..n], &self.y[n..], fq, fv)?;
+        }
+        for i in 0..s {
+            for k in 0..m {
+                let sum: f64 = (0..s).map(|j| self.a[i * s + j] * self.f[j * m + k]).sum();
+                r[i * m + k] = z[i * m + k] - self.h * sum;
+            }
+        }
+        Ok(())
+    }
+    fn jacobian(&mut self, z: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let (s, m, n) = (self.s, self.y0.len(), self.y0.len() / 2);
+        out.fill_with_identity();
+        for j in 0..s {
+            self.stage(z, j);
+            self.system.jacobian(
+                self.t + self.c[j] * self.h,
+                &self.y[..n],
+                &self.y[n..],
+                &mut self.jac,
+            )?;
+            for i in 0..s {
+                let w = -self.h * self.a[i * s + j];
+                let mut blk = out.view_mut((i * m, j * m), (m, m));
+                blk += &self.jac * w;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<S: LinearizedDynamics> Stepper for Gauss<S> {
+    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+        check_step(h)?;
+        let n = self.system.dof();
+        state.validate(n)?;
+        let (s, m, t) = (self.s, 2 * n, state.t);
+        let mut y0 = Vec::with_capacity(m);
+        y0.extend_from_slice(state.q.as_slice());
+        y0.extend_from_slice(state.v.as_slice());
+        let mut z = vec![0.0; s * m];
+        self.guess(t, &y0, h, &mut z)?;
+        let newton = self
+            .newton
+            .tol_residual(self.newton.tol_residual * (1.0 + max_norm(&y0)));
+        let mut sys = Dense::new(Stages {
+            system: &self.system,
+            t,
+            h,
+            y0: &y0,
+            a: &self.a,
+            c: &self.c,
+            s,
+            f: vec![0.0; s * m],
+            y: vec![0.0; m],
+            jac: DMatrix::zeros(m, m),
+        });
+        let info = newton.solve(&mut sys, &mut z).map_err(|e| match e {
+            Error::NonFiniteState { .. } => Error::NonFiniteState { step: 0, t },
+            other => other,
+        })?;
+        let mut y1 = y0.clone();
+        for i in 0..s {
+            for k in 0..m {
+                y1[k] += self.d[i] * z[i * m + k];
+            }
+        }
+        if y1.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        state.q.as_mut_slice().copy_from_slice(&y1[..n]);
+        state.v.as_mut_slice().copy_from_slice(&y1[n..]);
+        state.t = t + h;
+        let stages = (0..s * m).map(|k| y0[k % m] + z[k]).collect();
+        self.last = Some(LastStep {
+            t_end: state.t,
+            h,
+            y_start: y0,
+            y_end: y1,
+            stages,
+        });
+        Ok(StepInfo {
+            newton_iterations: info.iterations,
+            ..StepInfo::fixed(h)
+        })
+    }
+    fn dof(&self) -> usize {
+        self.system.dof()
+    }
+    fn order(&self) -> u32 {
+        2 * self.s as u32
+    }
+    fn name(&self) -> &'static str {
+        match self.s {
+            1 => "implicit midpoint",
+            2 => "Gauss-Legendre 4 (2 stages)",
+            _ => "Gauss-Legendre 6 (3 stages)",
+        }
+    }
+}
