@@ -27,6 +27,7 @@
 //! dependent mass matrix on main when this was written; the runs are short, a few thousand nutation
 //! steps, and RK4's drift at these steps is ~1e-11 in the conserved quantities, well below the checks).
 
+use super::plot::Figure;
 use super::{Check, Options, Report};
 use noether_core::prelude::*;
 use noether_core::ChartGuard;
@@ -222,7 +223,7 @@ fn nutation_quadrature(
 }
 
 /// Runs the heavy-top checks.
-pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>> {
+pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>> {
     let top = HeavyTop {
         i1: 1.0,
         i3: 0.5,
@@ -347,10 +348,45 @@ pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send +
     // 4. A run through the pole of the Euler-angle chart is stopped with a clear error.
     pole_approach(top, &mut checks)?;
 
-    Ok(Report {
+    let mut report = Report {
         checks,
         figures: vec![],
-    })
+    };
+    // Pictures: the apex of the axis seen from above, (sin θ cos φ, sin θ sin φ), looping between the
+    // two nutation circles; and θ(t) between the roots of the cubic.
+    let apex = |r: &EulerRun| -> Vec<(f64, f64)> {
+        r.theta
+            .iter()
+            .zip(&r.phi)
+            .map(|(t, p)| (t.sin() * p.cos(), t.sin() * p.sin()))
+            .collect()
+    };
+    let circle = |th: f64| -> Vec<(f64, f64)> {
+        (0..=200)
+            .map(|k| 2.0 * PI * k as f64 / 200.0)
+            .map(|a| (th.sin() * a.cos(), th.sin() * a.sin()))
+            .collect()
+    };
+    Figure::new("Heavy top: the apex of the axis seen from above (θ₀ = 0.8, φ̇₀ = 0.5, ψ̇₀ = 8)")
+        .x_label("sin θ cos φ")
+        .y_label("sin θ sin φ")
+        .equal_aspect()
+        .series("apex path (RK4, 12 time units)", apex(&run))
+        .series("θ = acos u₁ (cubic root)", circle(theta_max))
+        .series("θ = acos u₂ (cubic root)", circle(theta_min))
+        .save_in(opts, "heavy_top_apex.svg", &mut report)?;
+    let flat = |th: f64| vec![(0.0, th), (run.ts[run.ts.len() - 1], th)];
+    Figure::new("Heavy top: nutation of θ between the roots of the cubic in cos θ")
+        .x_label("t")
+        .y_label("θ")
+        .series(
+            "θ(t)",
+            run.ts.iter().copied().zip(run.theta.iter().copied()).collect(),
+        )
+        .series("acos u₁", flat(theta_max))
+        .series("acos u₂", flat(theta_min))
+        .save_in(opts, "heavy_top_nutation.svg", &mut report)?;
+    Ok(report)
 }
 
 /// Tilt of the symmetry axis from the vertical in the Cardan chart: cos(tilt) = cos α cos β.

@@ -19,6 +19,7 @@
 //! Integrator: RK4 at h = 10⁻³ (the Lagrangian is not separable, the runs are ~10 orbits; the Jacobi
 //! drift is ~1e-13 at this step).
 
+use super::plot::Figure;
 use super::{Check, Options, Report};
 use nalgebra::Complex;
 use noether_analysis::{linear_stability, EffectivePotential, EquilibriumFinder, Kind};
@@ -91,8 +92,9 @@ fn l4_lambda(mu: f64) -> [Complex<f64>; 2] {
 }
 
 /// Runs the checks.
-pub fn run(_opts: &Options) -> Result<Report, BoxError> {
+pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let mut checks = Vec::new();
+    let mut paths = Vec::new();
     // Newton converges quadratically: asking ‖∇Ω‖ ≤ 1e-14 of its scale costs one more iteration and takes
     // the points to the rounding floor, so that positions can be checked to 1e-12 even where the
     // Hessian is ill-conditioned (L4 at μ = 0.05: condition ≈ 27).
@@ -165,7 +167,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
                         1e-10,
                     ));
                 }
-                l4_orbit(sys, eq.q.as_slice(), stable_expected, &mut checks)?;
+                paths.push((mu, l4_orbit(sys, eq.q.as_slice(), stable_expected, &mut checks)?));
             }
         }
         // L1 (between the primaries), L2 (beyond the small one), L3 (beyond the large one).
@@ -208,10 +210,32 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
             ));
         }
     }
-    Ok(Report {
+    let mut report = Report {
         checks,
         figures: vec![],
-    })
+    };
+    let mut fig = Figure::new("Restricted three-body problem, rotating frame: orbits started 0.01 from L4")
+        .x_label("x")
+        .y_label("y")
+        .equal_aspect();
+    for (mu, path) in paths {
+        let label = if mu < routh {
+            "stable tadpole"
+        } else {
+            "unstable, leaves"
+        };
+        fig = fig.series(format!("μ = {mu} < 0.0385? {label}"), path);
+    }
+    let ring = |cx: f64, r: f64| -> Vec<(f64, f64)> {
+        (0..=60)
+            .map(|k| 2.0 * std::f64::consts::PI * k as f64 / 60.0)
+            .map(|a| (cx + r * a.cos(), r * a.sin()))
+            .collect()
+    };
+    fig.series("primary 1 − μ (μ = 0.01)", ring(-0.01, 0.02))
+        .series("primary μ (μ = 0.01)", ring(0.99, 0.01))
+        .save_in(opts, "three_body_l4.svg", &mut report)?;
+    Ok(report)
 }
 
 /// A tadpole orbit: start at rest 0.01 from L4 and integrate 60 time units (≈ 10 orbits of the
@@ -221,14 +245,16 @@ fn l4_orbit(
     l4: &[f64],
     stable: bool,
     checks: &mut Vec<Check>,
-) -> Result<(), BoxError> {
+) -> Result<Vec<(f64, f64)>, BoxError> {
     let start = State::new(0.0, [l4[0] + 0.01, l4[1]], [0.0, 0.0]);
     let c0 = jacobi(&sys, &start);
     let h = 1e-3;
     let traj = Trajectory::new(Rk4::new(EulerLagrange::new(sys)), start, h)?;
     let (mut drift, mut far): (f64, f64) = (0.0, 0.0);
+    let mut path = Vec::new();
     for s in traj.take((60.0 / h) as usize) {
         let s = s?;
+        path.push((s.q[0], s.q[1]));
         drift = drift.max((jacobi(&sys, &s) - c0).abs());
         far = far.max(((s.q[0] - l4[0]).powi(2) + (s.q[1] - l4[1]).powi(2)).sqrt());
         if far > 0.5 {
@@ -259,5 +285,5 @@ fn l4_orbit(
         1.0,
         0.0,
     ));
-    Ok(())
+    Ok(path)
 }
