@@ -33,6 +33,10 @@ fn steppers() -> Vec<Box<dyn Stepper>> {
         Box::new(Composition::kahan_li8(SeparableHamiltonian(Natural::unit(
             PendulumV,
         )))),
+        Box::new(Dopri5::new(EulerLagrange::new(PendulumL))),
+        Box::new(Dop853::new(Natural::unit(PendulumV))),
+        Box::new(Gauss::gauss4(HamiltonEquations::new(PendulumH))),
+        Box::new(Gauss::implicit_midpoint(Natural::unit(PendulumV))),
     ]
 }
 
@@ -135,6 +139,10 @@ fn bad_input_nan_mid_run_names_step_and_time() {
     check(Composition::stormer_verlet(Natural::unit(Fragile)));
     check(Composition::yoshida4(SeparableHamiltonian(Natural::unit(
         Fragile,
+    ))));
+    check(Gauss::implicit_midpoint(Natural::unit(Fragile)));
+    check(Gauss::gauss6(HamiltonEquations::new(SeparableHamiltonian(
+        Natural::unit(Fragile),
     ))));
 }
 

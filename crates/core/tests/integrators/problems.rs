@@ -26,7 +26,6 @@ impl Lagrangian for PendulumL {
 }
 
 /// Pendulum Hamiltonian H = ½ p² − cos θ.
-#[allow(dead_code)] // used by the implicit-method tests
 pub struct PendulumH;
 impl Hamiltonian for PendulumH {
     fn dof(&self) -> usize {
@@ -71,7 +70,6 @@ impl Lagrangian for KeplerL {
 }
 
 /// Kepler Hamiltonian H = ½ |p|² − 1/|q|.
-#[allow(dead_code)] // used by the implicit-method tests
 pub struct KeplerH;
 impl Hamiltonian for KeplerH {
     fn dof(&self) -> usize {
