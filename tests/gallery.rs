@@ -152,3 +152,8 @@ fn closed_form_bertrand() {
 fn closed_form_cyclotron() {
     assert_example_passes("cyclotron");
 }
+
+#[test]
+fn closed_form_coupled_chains() {
+    assert_example_passes("coupled_chains");
+}

@@ -19,6 +19,7 @@ pub mod bertrand;
 pub mod billiard;
 pub mod binary_star;
 pub mod charged_particle;
+pub mod coupled_chains;
 pub mod cyclotron;
 pub mod double_pendulum;
 pub mod harmonic_oscillator;
@@ -279,6 +280,11 @@ pub fn all() -> Vec<Example> {
             name: "cyclotron",
             about: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
             run: cyclotron::run,
+        },
+        Example {
+            name: "coupled_chains",
+            about: "coupled mass-spring chains (midpoint variational): momentum to rounding, transfer, heat",
+            run: coupled_chains::run,
         },
     ]
 }
