@@ -30,9 +30,30 @@
 
 use crate::banded::Banded;
 use nalgebra::DMatrix;
+use nalgebra::{Const, U1};
 use noether_core::ad::{self, Block, Field};
 use noether_core::error::{check_finite, check_len};
 use noether_core::{Error, Lagrangian, MassFactor, Result, Scalar};
+use num_dual::{Dual2Vec, DualVec};
+
+/// Gradient of a two-variable term by one `DualVec<2>` evaluation (the common case: springs, pairs).
+#[inline]
+fn grad2<P: LocalPotential>(p: &P, k: usize, x: [f64; 2]) -> (f64, [f64; 2]) {
+    type D = DualVec<f64, f64, Const<2>>;
+    let xs = [D::from_re(x[0]).derivative(0), D::from_re(x[1]).derivative(1)];
+    let r = p.term(k, &xs);
+    let g = r.eps.unwrap_generic(Const::<2>, U1);
+    (r.re, [g[0], g[1]])
+}
+
+/// Hessian of a two-variable term by one `Dual2Vec<2>` evaluation.
+#[inline]
+fn hess2<P: LocalPotential>(p: &P, k: usize, x: [f64; 2]) -> [[f64; 2]; 2] {
+    type D = Dual2Vec<f64, f64, Const<2>>;
+    let xs = [D::from_re(x[0]).derivative(0), D::from_re(x[1]).derivative(1)];
+    let h = p.term(k, &xs).v2.unwrap_generic(Const::<2>, Const::<2>);
+    [[h[(0, 0)], h[(0, 1)]], [h[(1, 0)], h[(1, 1)]]]
+}
 
 /// A potential that is a sum of terms, each depending on a few coordinates (its support).
 pub trait LocalPotential {
@@ -284,6 +305,13 @@ impl<P: LocalPotential> Mechanical<P> {
         for k in 0..self.potential.terms() {
             let s = self.support(k);
             let m = s.len();
+            if m == 2 {
+                let (val, gk) = grad2(&self.potential, k, [q[s[0]], q[s[1]]]);
+                v += val;
+                out[s[0]] += gk[0];
+                out[s[1]] += gk[1];
+                continue;
+            }
             for (xi, &i) in x.iter_mut().zip(s) {
                 *xi = q[i];
             }
@@ -306,6 +334,15 @@ impl<P: LocalPotential> Mechanical<P> {
         for k in 0..self.potential.terms() {
             let s = self.support(k);
             let m = s.len();
+            if m == 2 {
+                let hk = hess2(&self.potential, k, [q[s[0]], q[s[1]]]);
+                for (a, &i) in s.iter().enumerate() {
+                    for (b, &j) in s.iter().enumerate() {
+                        out.add(i, j, scale * hk[a][b]);
+                    }
+                }
+                continue;
+            }
             for (xi, &i) in x.iter_mut().zip(s) {
                 *xi = q[i];
             }
