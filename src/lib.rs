@@ -16,6 +16,11 @@ pub mod prelude {
 
 pub mod gallery;
 
+/// The README's example, compiled and run as a doctest so that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 /// The code blocks of `docs/guide.md` run as doc-tests, so the guide stays true.
 #[cfg(doctest)]
 #[doc = include_str!("../docs/guide.md")]
