@@ -112,14 +112,15 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.0,
         1e-8,
     ));
-    Figure::new(format!(
-        "Double pendulum (θ1 = θ2 = 2 rad): lower bob, t ≤ 20 ({flips} flips over the top by t = {T_END})"
-    ))
-    .x_label("x / l")
-    .y_label("y / l")
-    .equal_aspect()
-    .series("lower bob", path)
-    .save_in(opts, "double_pendulum_path.svg", &mut report)?;
+    Figure::new("Double pendulum from θ1 = θ2 = 2 rad: path of the lower bob, t ≤ 20")
+        .x_label("x / l")
+        .y_label("y / l")
+        .equal_aspect()
+        .series(
+            format!("lower bob ({flips} flips over the top by t = {T_END})"),
+            path,
+        )
+        .save_in(opts, "double_pendulum_path.svg", &mut report)?;
     Figure::new("Double pendulum: relative energy error, RK4 (h = 5e-4)")
         .x_label("t")
         .y_label("|E − E0| / |E0|")

@@ -5,13 +5,16 @@
 //! ℓ = sqrt(m k a (1 − e²)), and the Runge-Lenz vector A = p × ℓ ẑ − m k r/|r| = m k e x̂ when the
 //! periapsis is on the +x axis (its fixed direction is why Kepler orbits close).
 
-use super::measure::UpCrossings;
+use super::measure::{drive, Envelope, UpCrossings};
 use super::plot::{BoxError, Figure};
 use super::{Check, Options, Report};
 use noether_core::prelude::*;
 use std::f64::consts::PI;
 
-/// A body of mass `m` attracted to the origin by the potential −k/r.
+/// A body of mass `m` attracted to the origin by the potential V = −k/r.
+///
+/// The model is the potential; [`Kepler::system`] makes it the natural system
+/// L = ½ m |ṙ|² + k/r, which is at once a Lagrangian and the split form explicit symplectic methods need.
 #[derive(Debug, Clone, Copy)]
 pub struct Kepler {
     /// Mass.
@@ -20,20 +23,21 @@ pub struct Kepler {
     pub k: f64,
 }
 
-impl Lagrangian for Kepler {
+impl Potential for Kepler {
     fn dof(&self) -> usize {
         2
     }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
-        (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m) + r.recip() * self.k
-    }
-    fn constant_mass_matrix(&self) -> bool {
-        true
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip() * self.k
     }
 }
 
 impl Kepler {
+    /// L = ½ m |ṙ|² − V(r) as a natural system with M = m I.
+    pub fn system(self) -> Result<Natural<Kepler>, Error> {
+        Natural::diagonal(self, &[self.m, self.m])
+    }
+
     /// Start at periapsis (a(1 − e), 0) moving in +y with the vis-viva speed sqrt(k(1 + e)/(m a(1 − e))).
     pub fn periapsis_state(&self, a: f64, e: f64) -> State {
         let rp = a * (1.0 - e);
@@ -61,96 +65,120 @@ impl Kepler {
 /// Orbits simulated.
 pub const ORBITS: usize = 100;
 
-/// Steps per orbit.
+/// Steps per orbit of the order-8 composition.
+const STEPS_PER_ORBIT_HIGH: usize = 250;
+
+/// Steps per orbit of RK4 and Störmer-Verlet.
 const STEPS_PER_ORBIT: usize = 4000;
 
 /// Runs the example.
 ///
-/// Method: classical RK4 with h = T/4000. At periapsis (r = 0.4 a, speed 2 sqrt(k/(m a))) the local time
-/// scale r/v is T/31, so h is 1/125 of it. RK4 is not symplectic: its energy error drifts linearly in
-/// time, ≈ 2e-12 relative per orbit at this step (measured: 2.1e-10 after 100 orbits), and the other
-/// invariants drift in the same way. Each tolerance below is ~10x the error measured at this step: as
-/// RK4's error scales as h⁴, that margin is crossed by a step only 1.8x larger, so a loss of order or a
-/// wrong force shows at once.
+/// Method for the checks: Kahan-Li's order-8 symmetric composition of Störmer-Verlet with h = T/250
+/// (17 force evaluations per step). Symplectic, so the energy error stays bounded over the 100 orbits
+/// instead of drifting; and, like every composition of Störmer-Verlet, it conserves the angular
+/// momentum of a central force exactly (ℓ = m (x ẏ − y ẋ) is a quadratic invariant such methods keep), so
+/// only rounding remains in ℓ. A fixed step has to resolve periapsis (r = 0.4 a, local time scale r/v =
+/// T/31, so 8 steps there). RK4 and Störmer-Verlet at h = T/4000 are run for the energy-error picture.
+///
+/// Errors measured at this step are given with each check. Where the method's error shows (period,
+/// precession angle), the tolerance is ~10x the measured error: as that error scales as h⁸ (measured:
+/// the angle drops 276x when h is halved), a step only 1.35x larger, a loss of order or a wrong force
+/// crosses the margin. Where it is below rounding (energy, |A|, ℓ), the tolerance is 1e-12: rounding
+/// errors of either sign over N = 2.5·10⁴ steps × 17 stages add up like a random walk, sqrt(17 N) ε ≈ 7e-14.
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let kep = Kepler { m: 1.0, k: 1.0 };
     let (a, e) = (1.0, 0.6);
     let period = 2.0 * PI * (kep.m * a * a * a / kep.k).sqrt();
-    let h = period / STEPS_PER_ORBIT as f64;
-    let el = EulerLagrange::new(kep);
+    let system = kep.system()?;
     let start = kep.periapsis_state(a, e);
-    let e0 = el.energy(0.0, start.q.as_slice(), start.v.as_slice())?;
-    let mut run = Trajectory::new(Rk4::new(el), start, h)?;
+    let e0 = system.energy(start.q.as_slice(), start.v.as_slice());
+    let rel_energy_error = |s: &State| ((system.energy(s.q.as_slice(), s.v.as_slice()) - e0) / e0).abs();
 
     // y crosses zero upwards once per orbit, at periapsis.
     let mut crossings = UpCrossings::new();
     let mut orbit = Vec::new();
-    let mut energy_err = Vec::new();
-    for step in 1..=ORBITS * STEPS_PER_ORBIT {
-        let s = run.next().ok_or("trajectory ended")??;
-        crossings.push(s.t, s.q[1], s.v[1]);
-        if step <= STEPS_PER_ORBIT {
-            orbit.push((s.q[0], s.q[1]));
-        }
-        if step % 200 == 0 {
-            let en = run
-                .stepper()
-                .system()
-                .energy(s.t, s.q.as_slice(), s.v.as_slice())?;
-            energy_err.push((s.t / period, ((en - e0) / e0).abs()));
-        }
-    }
-    let end = run.state().clone();
+    let mut err8 = Envelope::new(STEPS_PER_ORBIT_HIGH);
+    let end = drive(
+        Composition::kahan_li8(system.clone()),
+        start.clone(),
+        period / STEPS_PER_ORBIT_HIGH as f64,
+        ORBITS * STEPS_PER_ORBIT_HIGH,
+        |step, s, _| {
+            crossings.push(s.t, s.q[1], s.v[1]);
+            if step <= STEPS_PER_ORBIT_HIGH {
+                orbit.push((s.q[0], s.q[1]));
+            }
+            err8.push(step, s.t / period, rel_energy_error(s));
+            Ok(())
+        },
+    )?;
     let (q, v) = (end.q.as_slice(), end.v.as_slice());
     let mut report = Report::default();
     let ex = "kepler";
-    // T = 2π sqrt(m a³/k), the mean over 100 orbits of the periapsis-to-periapsis time. An energy error
-    // δE/E shifts T by (3/2) δE/E (T ∝ |E|^(-3/2)): the mean over the drift ≈ 1.5 × 1e-10 (measured
-    // 2.2e-10); tolerance 2e-9.
+    // T = 2π sqrt(m a³/k), the mean over 100 orbits of the periapsis-to-periapsis time (measured 1.6e-12,
+    // tolerance 2e-11).
     report.checks.push(Check::rel(
         ex,
         "period (mean of 100 orbits)",
         crossings.period().ok_or("no full orbit")?,
         period,
-        2e-9,
+        TOL_PERIOD,
     ));
-    // E = −k/(2a): RK4's energy drift (measured 2.1e-10); tolerance 2e-9.
-    let energy = run.stepper().system().energy(end.t, q, v)?;
+    // E = −k/(2a); bounded error, below rounding at this step (measured 1.1e-13, tolerance 1e-12).
     report.checks.push(Check::rel(
         ex,
         "energy after 100 orbits",
-        energy,
+        system.energy(q, v),
         -kep.k / (2.0 * a),
-        2e-9,
+        TOL_ENERGY,
     ));
-    // ℓ = sqrt(m k a (1 − e²)): the force is central, but RK4 does not conserve ℓ exactly either
-    // (measured 2.3e-11); tolerance 3e-10.
-    let l_exact = (kep.m * kep.k * a * (1.0 - e * e)).sqrt();
+    // ℓ = sqrt(m k a (1 − e²)), conserved exactly by the method: only rounding (measured 3.4e-14,
+    // tolerance 1e-12).
     report.checks.push(Check::rel(
         ex,
         "angular momentum after 100 orbits",
         kep.angular_momentum(q, v),
-        l_exact,
-        3e-10,
+        (kep.m * kep.k * a * (1.0 - e * e)).sqrt(),
+        1e-12,
     ));
     // A = m k e x̂: |A| = m k e, and its direction stays on the periapsis (A_y/|A| is the precession
-    // angle of the orbit, which only the integrator's error can create). Measured 1.4e-10 and 1.1e-8;
-    // tolerances 1.5e-9 and 1e-7.
+    // angle of the orbit, which only the integrator's error creates, growing linearly). Measured 3.9e-14
+    // (|A|, tolerance 1e-12) and 4.0e-10 (angle, tolerance 4e-9).
     let rl = kep.runge_lenz(q, v);
     report.checks.push(Check::rel(
         ex,
         "Runge-Lenz A_x after 100 orbits",
         rl[0],
         kep.m * kep.k * e,
-        1.5e-9,
+        TOL_RL,
     ));
     report.checks.push(Check::abs(
         ex,
         "Runge-Lenz angle A_y/|A| after 100 orbits",
         rl[1] / rl[0].hypot(rl[1]),
         0.0,
-        1e-7,
+        TOL_ANGLE,
     ));
+
+    // Non-symplectic against symplectic: RK4 and Störmer-Verlet at the same step.
+    let h = period / STEPS_PER_ORBIT as f64;
+    let n = ORBITS * STEPS_PER_ORBIT;
+    let mut err_rk4 = Envelope::new(STEPS_PER_ORBIT);
+    drive(Rk4::new(system.clone()), start.clone(), h, n, |step, s, _| {
+        err_rk4.push(step, s.t / period, rel_energy_error(s));
+        Ok(())
+    })?;
+    let mut err_sv = Envelope::new(STEPS_PER_ORBIT);
+    drive(
+        Composition::stormer_verlet(system.clone()),
+        start,
+        h,
+        n,
+        |step, s, _| {
+            err_sv.push(step, s.t / period, rel_energy_error(s));
+            Ok(())
+        },
+    )?;
 
     Figure::new("Kepler orbit, e = 0.6 (first orbit)")
         .x_label("x / a")
@@ -159,14 +187,24 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .series("orbit", orbit)
         .series("focus (attracting centre)", cross(0.0, 0.0, 0.05))
         .save_in(opts, "kepler_orbit.svg", &mut report)?;
-    Figure::new("Kepler, e = 0.6: relative energy error, RK4 (h = T/4000)")
+    Figure::new("Kepler, e = 0.6: energy error (largest in each orbit)")
         .x_label("t / T")
-        .y_label("|E − E0| / |E0|")
+        .y_label("max |E − E0| / |E0| over the orbit")
         .log_y()
-        .series("RK4", energy_err)
+        .series("RK4, h = T/4000 (drifts)", err_rk4.points)
+        .series("Störmer-Verlet, h = T/4000 (bounded)", err_sv.points)
+        .series(
+            format!("Kahan-Li order 8, h = T/{STEPS_PER_ORBIT_HIGH}"),
+            err8.points,
+        )
         .save_in(opts, "kepler_energy_error.svg", &mut report)?;
     Ok(report)
 }
+
+const TOL_PERIOD: f64 = 2e-11;
+const TOL_ENERGY: f64 = 1e-12;
+const TOL_RL: f64 = 1e-12;
+const TOL_ANGLE: f64 = 4e-9;
 
 /// A small "+" centred at (x, y) drawn as one polyline.
 fn cross(x: f64, y: f64, d: f64) -> Vec<(f64, f64)> {

@@ -1,5 +1,55 @@
-//! Measuring things on a simulated trajectory: zero crossings located between steps, periods, and the
-//! complete elliptic integral K used by the pendulum's closed form.
+//! Measuring things on a simulated trajectory: a driver loop with an observer, zero crossings located
+//! between steps, periods, and the complete elliptic integral K used by the pendulum's closed form.
+
+use super::plot::BoxError;
+use noether_core::{State, Stepper, Trajectory};
+
+/// Takes `n` steps of size `h` with `stepper` from `start`, calling `observe(step, state)` after each
+/// (step = 1, …, n); returns the final state.
+pub fn drive<S: Stepper>(
+    stepper: S,
+    start: State,
+    h: f64,
+    n: usize,
+    mut observe: impl FnMut(usize, &State, &S) -> Result<(), BoxError>,
+) -> Result<State, BoxError> {
+    let mut run = Trajectory::new(stepper, start, h)?;
+    for step in 1..=n {
+        let s = run.next().ok_or("trajectory ended")??;
+        observe(step, &s, run.stepper())?;
+    }
+    Ok(run.state().clone())
+}
+
+/// The largest value of a sampled signal in each window of `window` samples: the envelope of an
+/// oscillating error, which is what a plot of "bounded" against "drifting" should show.
+#[derive(Debug, Clone)]
+pub struct Envelope {
+    window: usize,
+    max: f64,
+    /// (x at the end of each window, largest value in it).
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Envelope {
+    /// Windows of `window` samples (at least 1).
+    pub fn new(window: usize) -> Self {
+        Envelope {
+            window: window.max(1),
+            max: f64::NEG_INFINITY,
+            points: Vec::new(),
+        }
+    }
+
+    /// Adds sample number `i` (counting from 1) at abscissa `x` with value `y`.
+    pub fn push(&mut self, i: usize, x: f64, y: f64) {
+        self.max = self.max.max(y);
+        if i.is_multiple_of(self.window) {
+            self.points.push((x, self.max));
+            self.max = f64::NEG_INFINITY;
+        }
+    }
+}
 
 /// Upward zero crossings of a signal x(t) sampled at the ends of each step together with its time
 /// derivative ẋ(t).

@@ -111,6 +111,17 @@ impl Figure {
     /// Writes the figure as SVG to `path`.
     pub fn save(&self, path: &Path) -> Result<PathBuf, BoxError> {
         let (mut x0, mut x1, mut y0, mut y1) = self.bounds()?;
+        let named = self.series.iter().any(|s| !s.name.is_empty());
+        let (mut legend, covered) = self.legend_corner((x0, x1, y0, y1));
+        if named && covered > 0 {
+            // Every corner has curves in it: add headroom so the data fill the lower 72%.
+            if self.log_y {
+                y1 = y0 * (y1 / y0).powf(1.0 / 0.72);
+            } else {
+                y1 = y0 + (y1 - y0) / 0.72;
+            }
+            legend = SeriesLabelPosition::UpperRight;
+        }
         if self.equal_aspect {
             // Widen the shorter side so one unit has the same length on both axes (plot area ≈ size − margins).
             let (w, h) = (self.size.0 as f64 - 110.0, self.size.1 as f64 - 110.0);
@@ -122,9 +133,9 @@ impl Figure {
         let root = SVGBackend::new(path, self.size).into_drawing_area();
         root.fill(&WHITE)?;
         if self.log_y {
-            self.draw(&root, x0..x1, (y0..y1).log_scale())?;
+            self.draw(&root, x0..x1, (y0..y1).log_scale(), legend)?;
         } else {
-            self.draw(&root, x0..x1, y0..y1)?;
+            self.draw(&root, x0..x1, y0..y1, legend)?;
         }
         root.present()?;
         Ok(path.to_path_buf())
@@ -173,11 +184,51 @@ impl Figure {
         Ok((x0, x1, y0, y1))
     }
 
+    /// The corner of the plot area whose legend-sized box covers the fewest curve points (and how many).
+    fn legend_corner(&self, (x0, x1, y0, y1): (f64, f64, f64, f64)) -> (SeriesLabelPosition, usize) {
+        let ny = |y: f64| {
+            if self.log_y {
+                (y.ln() - y0.ln()) / (y1.ln() - y0.ln())
+            } else {
+                (y - y0) / (y1 - y0)
+            }
+        };
+        let corners = [
+            (SeriesLabelPosition::UpperRight, true, true),
+            (SeriesLabelPosition::UpperLeft, false, true),
+            (SeriesLabelPosition::LowerRight, true, false),
+            (SeriesLabelPosition::LowerLeft, false, false),
+        ];
+        // Legend size estimated from its text (14 px font, ~7.5 px per character, 20 px per entry).
+        let named: Vec<_> = self.series.iter().filter(|s| !s.name.is_empty()).collect();
+        let chars = named.iter().map(|s| s.name.chars().count()).max().unwrap_or(0);
+        let (w, h) = (self.size.0 as f64 - 110.0, self.size.1 as f64 - 110.0);
+        let bw = ((chars as f64 * 7.5 + 60.0) / w).min(1.0);
+        let bh = ((named.len() as f64 * 20.0 + 25.0) / h).min(1.0);
+        let count = |right: bool, upper: bool| {
+            self.visible()
+                .filter(|&(x, y)| {
+                    let (u, v) = ((x - x0) / (x1 - x0), ny(y));
+                    (if right { u > 1.0 - bw } else { u < bw }) && (if upper { v > 1.0 - bh } else { v < bh })
+                })
+                .count()
+        };
+        let mut best = (SeriesLabelPosition::UpperRight, usize::MAX);
+        for (pos, right, upper) in corners {
+            let c = count(right, upper);
+            if c < best.1 {
+                best = (pos, c);
+            }
+        }
+        best
+    }
+
     fn draw<Y>(
         &self,
         root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
         xr: std::ops::Range<f64>,
         yr: Y,
+        legend: SeriesLabelPosition,
     ) -> Result<(), BoxError>
     where
         Y: AsRangedCoord<Value = f64>,
@@ -213,7 +264,7 @@ impl Figure {
         if self.series.iter().any(|s| !s.name.is_empty()) {
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(legend)
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.4))
                 .label_font(("sans-serif", 14))
