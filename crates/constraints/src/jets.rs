@@ -28,7 +28,6 @@ pub trait VectorField {
 /// Which block of variables a Jacobian is taken with respect to.
 pub use noether_core::ad::Block;
 
-const CHUNK: usize = 8;
 const STACK: usize = 16;
 
 /// A short buffer of scalars: on the stack up to 16 entries, on the heap beyond.
@@ -75,26 +74,6 @@ pub fn values<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], out: &mut [f6
     f.eval(t, x, y, out);
 }
 
-macro_rules! with_width {
-    ($n:expr, $f:ident :: <$($g:ty),*> ($($a:expr),*)) => {
-        match $n {
-            0 | 1 => $f::<$($g,)* 1>($($a),*),
-            2 => $f::<$($g,)* 2>($($a),*),
-            3 => $f::<$($g,)* 3>($($a),*),
-            4 => $f::<$($g,)* 4>($($a),*),
-            5 => $f::<$($g,)* 5>($($a),*),
-            6 => $f::<$($g,)* 6>($($a),*),
-            7 => $f::<$($g,)* 7>($($a),*),
-            8 => $f::<$($g,)* 8>($($a),*),
-            9 => $f::<$($g,)* 9>($($a),*),
-            10 => $f::<$($g,)* 10>($($a),*),
-            11 => $f::<$($g,)* 11>($($a),*),
-            12 => $f::<$($g,)* 12>($($a),*),
-            _ => $f::<$($g,)* CHUNK>($($a),*),
-        }
-    };
-}
-
 /// Jacobian ∂g/∂(block) (rows: outputs, columns: the block's variables) into `out`, which must be
 /// `outputs() × len(block)`.
 pub fn jacobian<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut DMatrix<f64>) {
@@ -106,7 +85,7 @@ pub fn jacobian<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], block: Bloc
     if n == 0 || f.outputs() == 0 {
         return;
     }
-    with_width!(n, jacobian_w::<F>(f, t, x, y, block, out))
+    noether_core::with_width!(n, jacobian_w::<F>(f, t, x, y, block, out))
 }
 
 fn jacobian_w<F: VectorField, const W: usize>(

@@ -39,9 +39,13 @@ pub enum Block {
 
 /// Largest block length differentiated in a single evaluation.
 pub const MAX_FIXED: usize = 12;
-const CHUNK: usize = 8;
+/// Chunk width used for blocks longer than [`MAX_FIXED`].
+pub const CHUNK: usize = 8;
 
-/// Calls `$f::<…, W>` with the chunk width W for a block of length `$n`.
+/// Calls `$f::<…, W>` with the chunk width W for a block of length `$n`: W = n for n ≤ [`MAX_FIXED`],
+/// W = [`CHUNK`] beyond. Exported for the vector-valued kernels of other noether crates.
+#[doc(hidden)]
+#[macro_export]
 macro_rules! with_width {
     ($n:expr, $f:ident :: <$($g:ty),*> ($($a:expr),*)) => {
         match $n {
@@ -57,7 +61,7 @@ macro_rules! with_width {
             10 => $f::<$($g,)* 10>($($a),*),
             11 => $f::<$($g,)* 11>($($a),*),
             12 => $f::<$($g,)* 12>($($a),*),
-            _ => $f::<$($g,)* CHUNK>($($a),*),
+            _ => $f::<$($g,)* { $crate::ad::CHUNK }>($($a),*),
         }
     };
 }
