@@ -28,45 +28,9 @@ pub trait VectorField {
 /// Which block of variables a Jacobian is taken with respect to.
 pub use noether_core::ad::Block;
 
+/// Buffers of up to 16 lifted scalars live on the stack.
 const STACK: usize = 16;
-
-/// A short buffer of scalars: on the stack up to 16 entries, on the heap beyond.
-enum Buf<D> {
-    Stack([D; STACK], usize),
-    Heap(Vec<D>),
-}
-
-impl<D: Scalar> Buf<D> {
-    #[inline]
-    fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
-        if n <= STACK {
-            Buf::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
-        } else {
-            Buf::Heap((0..n).map(f).collect())
-        }
-    }
-}
-
-impl<D> std::ops::Deref for Buf<D> {
-    type Target = [D];
-    #[inline]
-    fn deref(&self) -> &[D] {
-        match self {
-            Buf::Stack(a, n) => &a[..*n],
-            Buf::Heap(v) => v,
-        }
-    }
-}
-
-impl<D> std::ops::DerefMut for Buf<D> {
-    #[inline]
-    fn deref_mut(&mut self) -> &mut [D] {
-        match self {
-            Buf::Stack(a, n) => &mut a[..*n],
-            Buf::Heap(v) => v,
-        }
-    }
-}
+type Buf<D> = noether_core::ad::Buf<D, STACK>;
 
 /// g at real arguments.
 #[inline]
@@ -77,10 +41,7 @@ pub fn values<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], out: &mut [f6
 /// Jacobian ∂g/∂(block) (rows: outputs, columns: the block's variables) into `out`, which must be
 /// `outputs() × len(block)`.
 pub fn jacobian<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut DMatrix<f64>) {
-    let n = match block {
-        Block::X => x.len(),
-        Block::Y => y.len(),
-    };
+    let n = block.pick(x, y).len();
     debug_assert_eq!(out.shape(), (f.outputs(), n));
     if n == 0 || f.outputs() == 0 {
         return;
@@ -100,16 +61,7 @@ fn jacobian_w<F: VectorField, const W: usize>(
     let (m, n) = out.shape();
     let mut g = Buf::<D<W>>::new(m, |_| D::<W>::from_re(0.0));
     for c0 in (0..n).step_by(W) {
-        let seed = |b: Block, vals: &[f64], i: usize| {
-            let d = D::<W>::from_re(vals[i]);
-            if b == block && i >= c0 && i < c0 + W {
-                d.derivative(i - c0)
-            } else {
-                d
-            }
-        };
-        let xs = Buf::<D<W>>::new(x.len(), |i| seed(Block::X, x, i));
-        let ys = Buf::<D<W>>::new(y.len(), |i| seed(Block::Y, y, i));
+        let (xs, ys) = noether_core::ad::seed_chunk::<W, STACK>(x, y, block, c0);
         f.eval(D::<W>::from_re(t), &xs, &ys, &mut g);
         let w = W.min(n - c0);
         for (k, gk) in g.iter().enumerate() {

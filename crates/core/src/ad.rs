@@ -37,6 +37,17 @@ pub enum Block {
     Y,
 }
 
+impl Block {
+    /// This block's variables among (x, y).
+    #[inline]
+    pub fn pick<'a, T>(self, x: &'a [T], y: &'a [T]) -> &'a [T] {
+        match self {
+            Block::X => x,
+            Block::Y => y,
+        }
+    }
+}
+
 /// Largest block length differentiated in a single evaluation.
 pub const MAX_FIXED: usize = 12;
 /// Chunk width used for blocks longer than [`MAX_FIXED`].
@@ -66,16 +77,21 @@ macro_rules! with_width {
     };
 }
 
-/// A buffer of lifted variables: on the stack when it fits `W`, on the heap otherwise.
-pub(crate) enum Buf<D, const W: usize> {
-    Stack([D; W], usize),
+/// A short buffer of lifted variables: on the stack when its length fits `S`, on the heap otherwise.
+/// Derefs to a slice of exactly the requested length. Exported for the vector-valued kernels of other
+/// noether crates (which also write into it through `DerefMut`).
+pub enum Buf<D, const S: usize> {
+    /// Up to `S` entries inline; the `usize` is the length in use.
+    Stack([D; S], usize),
+    /// More than `S` entries.
     Heap(Vec<D>),
 }
 
-impl<D: Scalar, const W: usize> Buf<D, W> {
+impl<D: Scalar, const S: usize> Buf<D, S> {
+    /// The buffer `[f(0), …, f(n-1)]`.
     #[inline]
-    pub(crate) fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
-        if n <= W {
+    pub fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
+        if n <= S {
             Buf::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
         } else {
             Buf::Heap((0..n).map(f).collect())
@@ -83,7 +99,7 @@ impl<D: Scalar, const W: usize> Buf<D, W> {
     }
 }
 
-impl<D, const W: usize> std::ops::Deref for Buf<D, W> {
+impl<D, const S: usize> std::ops::Deref for Buf<D, S> {
     type Target = [D];
     #[inline]
     fn deref(&self) -> &[D] {
@@ -92,6 +108,43 @@ impl<D, const W: usize> std::ops::Deref for Buf<D, W> {
             Buf::Heap(v) => v,
         }
     }
+}
+
+impl<D, const S: usize> std::ops::DerefMut for Buf<D, S> {
+    #[inline]
+    fn deref_mut(&mut self) -> &mut [D] {
+        match self {
+            Buf::Stack(a, n) => &mut a[..*n],
+            Buf::Heap(v) => v,
+        }
+    }
+}
+
+/// The arguments (x, y) lifted to `DualVec<W>` for one chunk of a gradient or Jacobian: the variables
+/// `c0..c0+W` of `block` carry the unit directions `0..W` (∂/∂block_{c0+k} is derivative k of the
+/// result), every other variable is a constant. Buffers hold up to `S` entries on the stack.
+#[allow(clippy::type_complexity)]
+pub fn seed_chunk<const W: usize, const S: usize>(
+    x: &[f64],
+    y: &[f64],
+    block: Block,
+    c0: usize,
+) -> (
+    Buf<DualVec<f64, f64, Const<W>>, S>,
+    Buf<DualVec<f64, f64, Const<W>>, S>,
+) {
+    let seed = |b: Block, vals: &[f64], i: usize| {
+        let d = DualVec::<f64, f64, Const<W>>::from_re(vals[i]);
+        if b == block && i >= c0 && i < c0 + W {
+            d.derivative(i - c0)
+        } else {
+            d
+        }
+    };
+    (
+        Buf::new(x.len(), |i| seed(Block::X, x, i)),
+        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
+    )
 }
 
 /// Value of f at real arguments.
@@ -113,10 +166,7 @@ fn partial_t_w<F: Field, const W: usize>(f: &F, t: f64, x: &[f64], y: &[f64]) ->
 
 /// Gradient of f with respect to `block`, written into `out`; returns the value of f.
 pub fn gradient<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
-    let n = match block {
-        Block::X => x.len(),
-        Block::Y => y.len(),
-    };
+    let n = block.pick(x, y).len();
     debug_assert_eq!(out.len(), n);
     if n == 0 {
         return f.eval(t, x, y);
@@ -136,16 +186,7 @@ fn gradient_w<F: Field, const W: usize>(
     let n = out.len();
     let mut val = 0.0;
     for c0 in (0..n).step_by(W) {
-        let seed = |b: Block, vals: &[f64], i: usize| {
-            let d = D::<W>::from_re(vals[i]);
-            if b == block && i >= c0 && i < c0 + W {
-                d.derivative(i - c0)
-            } else {
-                d
-            }
-        };
-        let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
-        let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+        let (xs, ys) = seed_chunk::<W, W>(x, y, block, c0);
         let r = f.eval(D::<W>::from_re(t), &xs, &ys);
         val = r.re;
         let g = r.eps.unwrap_generic(Const::<W>, U1);
@@ -157,11 +198,7 @@ fn gradient_w<F: Field, const W: usize>(
 
 /// Hessian block ∂²f/∂a∂b (rows: block `a`, columns: block `b`) written into `out`.
 pub fn hessian<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, b: Block, out: &mut DMatrix<f64>) {
-    let len = |blk| match blk {
-        Block::X => x.len(),
-        Block::Y => y.len(),
-    };
-    let (na, nb) = (len(a), len(b));
+    let (na, nb) = (a.pick(x, y).len(), b.pick(x, y).len());
     debug_assert_eq!(out.shape(), (na, nb));
     if na == 0 || nb == 0 {
         return;
@@ -265,15 +302,13 @@ pub fn directional_gradient<F: Field>(
     if n == 0 {
         return;
     }
-    with_width!(n, directional_gradient_w::<F>(f, t, x, y, dir, b, out, grad_b))
+    with_width!(n, directional_gradient_w::<F>(f, (t, x, y), dir, b, out, grad_b))
 }
 
-#[allow(clippy::too_many_arguments)]
+/// [`directional_gradient`] with chunk width W at the point `at` = (t, x, y).
 fn directional_gradient_w<F: Field, const W: usize>(
     f: &F,
-    t: f64,
-    x: &[f64],
-    y: &[f64],
+    at: (f64, &[f64], &[f64]),
     dir: (f64, &[f64], &[f64]),
     b: Block,
     out: &mut [f64],
@@ -293,6 +328,7 @@ fn directional_gradient_w<F: Field, const W: usize>(
         }
     };
     let n = out.len();
+    let (t, x, y) = at;
     let (dt, dx, dy) = dir;
     for c0 in (0..n).step_by(W) {
         let seed = |blk: Block, vals: &[f64], dirs: &[f64], i: usize| {
