@@ -150,29 +150,4 @@ impl<Ld: DiscreteLagrangian + ?Sized> DiscreteDerivatives for Ld {}
 
 /// A short vector of scalars on the stack (up to 16), on the heap beyond: scratch space for generic
 /// model code that must not allocate per evaluation for small systems.
-pub(crate) enum Scratch<D> {
-    Stack([D; 16], usize),
-    Heap(Vec<D>),
-}
-
-impl<D: Scalar> Scratch<D> {
-    #[inline]
-    pub(crate) fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
-        if n <= 16 {
-            Scratch::Stack(std::array::from_fn(|i| if i < n { f(i) } else { D::zero() }), n)
-        } else {
-            Scratch::Heap((0..n).map(f).collect())
-        }
-    }
-}
-
-impl<D> std::ops::Deref for Scratch<D> {
-    type Target = [D];
-    #[inline]
-    fn deref(&self) -> &[D] {
-        match self {
-            Scratch::Stack(a, n) => &a[..*n],
-            Scratch::Heap(v) => v,
-        }
-    }
-}
+pub(crate) type Scratch<D> = noether_core::ad::Buf<D, 16>;
