@@ -55,6 +55,18 @@ pub trait EmbeddedPair {
     fn dense_eval(theta: f64, y0: &[f64], coeffs: &[Vec<f64>], out: &mut [f64]);
 }
 
+/// Σ_j w_j k_j[i]: component i of a weighted sum of the stages k_j (j over the weights given).
+#[inline]
+pub(super) fn weighted_stages(w: &[f64], k: &[Vec<f64>], i: usize) -> f64 {
+    w.iter().zip(k).map(|(w, k)| w * k[i]).sum()
+}
+
+/// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
+#[inline]
+pub(super) fn error_scale(atol: f64, rtol: f64, y0: f64, y1: f64) -> f64 {
+    atol + rtol * y0.abs().max(y1.abs())
+}
+
 /// Step-size controller parameters (Hairer's `safe`, `fac1`, `fac2`, `beta`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Controller {

@@ -12,7 +12,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
 //!   II.5 and II.10 (code DOP853, error estimate (10.x), dense output).
 
-use super::adaptive::{Adaptive, Controller, EmbeddedPair};
+use super::adaptive::{error_scale, weighted_stages, Adaptive, Controller, EmbeddedPair};
 
 /// The DOP853 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -37,6 +37,16 @@ const BHH: [f64; 12] = [
     0.0,
     0.220588235294117647058823529412e-1,
 ];
+/// Weights b − BHH of the third-order error estimate.
+const E3: [f64; 12] = {
+    let mut e = [0.0; 12];
+    let mut j = 0;
+    while j < 12 {
+        e[j] = <Dp853 as EmbeddedPair>::B[j] - BHH[j];
+        j += 1;
+    }
+    e
+};
 /// Weights of the fifth-order error estimate.
 #[allow(clippy::excessive_precision)]
 const E5: [f64; 12] = [
@@ -326,9 +336,9 @@ impl EmbeddedPair for Dp853 {
         let n = y0.len();
         let (mut err5, mut err3) = (0.0, 0.0);
         for i in 0..n {
-            let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
-            let e5: f64 = (0..12).map(|j| E5[j] * k[j][i]).sum();
-            let e3: f64 = (0..12).map(|j| (Self::B[j] - BHH[j]) * k[j][i]).sum();
+            let sk = error_scale(atol, rtol, y0[i], y1[i]);
+            let e5 = weighted_stages(&E5, k, i);
+            let e3 = weighted_stages(&E3, k, i);
             err5 += (e5 / sk) * (e5 / sk);
             err3 += (e3 / sk) * (e3 / sk);
         }
@@ -346,7 +356,7 @@ impl EmbeddedPair for Dp853 {
             out[1][i] = h * k[0][i] - dy;
             out[2][i] = 2.0 * dy - h * (k[0][i] + k[12][i]);
             for r in 0..4 {
-                out[3 + r][i] = h * (0..16).map(|j| D[r][j] * k[j][i]).sum::<f64>();
+                out[3 + r][i] = h * weighted_stages(&D[r], k, i);
             }
         }
     }

@@ -8,7 +8,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Table
 //!   II.5.2 (coefficients), II.6 (dense output, code DOPRI5).
 
-use super::adaptive::{Adaptive, Controller, EmbeddedPair};
+use super::adaptive::{error_scale, weighted_stages, Adaptive, Controller, EmbeddedPair};
 
 /// The DOPRI5 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -81,12 +81,13 @@ impl EmbeddedPair for Dp5 {
     const DENSE_LEN: usize = 4;
     const DENSE_ORDER: u32 = 4;
 
+    /// err = sqrt((1/n) Σ_i (h Σ_j e_j k_j,i / sk_i)²) over the n components of y.
     fn error_norm(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
         let n = y0.len();
         let mut sum = 0.0;
         for i in 0..n {
-            let e: f64 = h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>();
-            let sk = atol + rtol * y0[i].abs().max(y1[i].abs());
+            let e = h * weighted_stages(&E, k, i);
+            let sk = error_scale(atol, rtol, y0[i], y1[i]);
             sum += (e / sk) * (e / sk);
         }
         (sum / n as f64).sqrt()
@@ -100,7 +101,7 @@ impl EmbeddedPair for Dp5 {
             out[0][i] = dy;
             out[1][i] = bspl;
             out[2][i] = dy - h * k[6][i] - bspl;
-            out[3][i] = h * (0..7).map(|j| D[j] * k[j][i]).sum::<f64>();
+            out[3][i] = h * weighted_stages(&D, k, i);
         }
     }
 
