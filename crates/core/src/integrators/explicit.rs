@@ -5,37 +5,53 @@
 use crate::error::check_step;
 use crate::{Dynamics, Error, Result, State, StepInfo, Stepper};
 
-/// Checks `q`, `v` are finite, then writes them and t + h into `state`.
-fn commit(state: &mut State, q: &[f64], v: &[f64], h: f64) -> Result<StepInfo> {
-    if q.iter().chain(v).any(|x| !x.is_finite()) {
-        return Err(Error::NonFiniteState { step: 0, t: state.t });
-    }
-    state.q.as_mut_slice().copy_from_slice(q);
-    state.v.as_mut_slice().copy_from_slice(v);
-    state.t += h;
-    Ok(StepInfo::fixed(h))
+/// A pair of work vectors (q-part, v-part) of a one-step method: rates F = (q̇, v̇) or a new state.
+struct Pair {
+    q: Vec<f64>,
+    v: Vec<f64>,
 }
 
-/// Checks the dimensions of `state` against the system.
-fn check_state(state: &State, n: usize) -> Result<()> {
-    state.validate(n)
+impl Pair {
+    fn new(n: usize) -> Self {
+        Pair {
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+        }
+    }
+
+    /// Checks this new (q, v) is finite, then writes it and t + h into `state`.
+    fn commit(&self, state: &mut State, h: f64) -> Result<StepInfo> {
+        if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t: state.t });
+        }
+        state.q.as_mut_slice().copy_from_slice(&self.q);
+        state.v.as_mut_slice().copy_from_slice(&self.v);
+        state.t += h;
+        Ok(StepInfo::fixed(h))
+    }
+}
+
+/// The stage argument y + a·k on both halves: `out = (q + a k_q, v + a k_v)`.
+fn shifted(out: &mut Pair, q: &[f64], v: &[f64], a: f64, k: &Pair) {
+    for i in 0..q.len() {
+        out.q[i] = q[i] + a * k.q[i];
+        out.v[i] = v[i] + a * k.v[i];
+    }
 }
 
 /// Forward Euler, order 1: (q, v) ← (q, v) + h F(t, q, v).
 pub struct Euler<S> {
     system: S,
-    dq: Vec<f64>,
-    dv: Vec<f64>,
+    /// The rates F, then the new state.
+    y: Pair,
 }
 
 impl<S: Dynamics> Euler<S> {
     /// Forward Euler for `system`.
     pub fn new(system: S) -> Self {
-        let n = system.dof();
         Euler {
+            y: Pair::new(system.dof()),
             system,
-            dq: vec![0.0; n],
-            dv: vec![0.0; n],
         }
     }
 
@@ -48,15 +64,13 @@ impl<S: Dynamics> Euler<S> {
 impl<S: Dynamics> Stepper for Euler<S> {
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
         check_step(h)?;
-        check_state(state, self.system.dof())?;
+        state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        self.system.rates(t, q, v, &mut self.dq, &mut self.dv)?;
-        self.dq.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        self.dv.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        let (nq, nv) = (std::mem::take(&mut self.dq), std::mem::take(&mut self.dv));
-        let res = commit(state, &nq, &nv, h);
-        (self.dq, self.dv) = (nq, nv);
-        res
+        let y = &mut self.y;
+        self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
+        y.q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
+        y.v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
+        y.commit(state, h)
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -78,18 +92,16 @@ impl<S: Dynamics> Stepper for Euler<S> {
 /// property. It costs one vector field and one [`Dynamics::position_rates`] per step.
 pub struct EulerCromer<S> {
     system: S,
-    dq: Vec<f64>,
-    dv: Vec<f64>,
+    /// The rates F, then the new state.
+    y: Pair,
 }
 
 impl<S: Dynamics> EulerCromer<S> {
     /// Euler-Cromer for `system`.
     pub fn new(system: S) -> Self {
-        let n = system.dof();
         EulerCromer {
+            y: Pair::new(system.dof()),
             system,
-            dq: vec![0.0; n],
-            dv: vec![0.0; n],
         }
     }
 
@@ -102,19 +114,17 @@ impl<S: Dynamics> EulerCromer<S> {
 impl<S: Dynamics> Stepper for EulerCromer<S> {
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
         check_step(h)?;
-        check_state(state, self.system.dof())?;
+        state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        self.system.rates(t, q, v, &mut self.dq, &mut self.dv)?;
-        self.dv.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        if self.dv.iter().any(|x| !x.is_finite()) {
+        let y = &mut self.y;
+        self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
+        y.v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
+        if y.v.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t });
         }
-        self.system.position_rates(t, q, &self.dv, &mut self.dq)?;
-        self.dq.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        let (nq, nv) = (std::mem::take(&mut self.dq), std::mem::take(&mut self.dv));
-        let res = commit(state, &nq, &nv, h);
-        (self.dq, self.dv) = (nq, nv);
-        res
+        self.system.position_rates(t, q, &y.v, &mut y.q)?;
+        y.q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
+        y.commit(state, h)
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -133,9 +143,9 @@ impl<S: Dynamics> Stepper for EulerCromer<S> {
 /// y ← y + h (k₁ + 2k₂ + 2k₃ + k₄)/6.
 pub struct Rk4<S> {
     system: S,
-    k: [Vec<f64>; 8],
-    tmp_q: Vec<f64>,
-    tmp_v: Vec<f64>,
+    k: [Pair; 4],
+    /// The stage arguments y + a h k, then the new state.
+    y: Pair,
 }
 
 impl<S: Dynamics> Rk4<S> {
@@ -144,9 +154,8 @@ impl<S: Dynamics> Rk4<S> {
         let n = system.dof();
         Rk4 {
             system,
-            k: std::array::from_fn(|_| vec![0.0; n]),
-            tmp_q: vec![0.0; n],
-            tmp_v: vec![0.0; n],
+            k: std::array::from_fn(|_| Pair::new(n)),
+            y: Pair::new(n),
         }
     }
 
@@ -159,39 +168,22 @@ impl<S: Dynamics> Rk4<S> {
 impl<S: Dynamics> Stepper for Rk4<S> {
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
         check_step(h)?;
-        let n = self.system.dof();
-        check_state(state, n)?;
+        state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        let [k1q, k1v, k2q, k2v, k3q, k3v, k4q, k4v] = &mut self.k;
-        self.system.rates(t, q, v, k1q, k1v)?;
-        for i in 0..n {
-            self.tmp_q[i] = q[i] + 0.5 * h * k1q[i];
-            self.tmp_v[i] = v[i] + 0.5 * h * k1v[i];
+        let (sys, y) = (&self.system, &mut self.y);
+        let [k1, k2, k3, k4] = &mut self.k;
+        sys.rates(t, q, v, &mut k1.q, &mut k1.v)?;
+        shifted(y, q, v, 0.5 * h, k1);
+        sys.rates(t + 0.5 * h, &y.q, &y.v, &mut k2.q, &mut k2.v)?;
+        shifted(y, q, v, 0.5 * h, k2);
+        sys.rates(t + 0.5 * h, &y.q, &y.v, &mut k3.q, &mut k3.v)?;
+        shifted(y, q, v, h, k3);
+        sys.rates(t + h, &y.q, &y.v, &mut k4.q, &mut k4.v)?;
+        for i in 0..q.len() {
+            y.q[i] = q[i] + h / 6.0 * (k1.q[i] + 2.0 * (k2.q[i] + k3.q[i]) + k4.q[i]);
+            y.v[i] = v[i] + h / 6.0 * (k1.v[i] + 2.0 * (k2.v[i] + k3.v[i]) + k4.v[i]);
         }
-        self.system
-            .rates(t + 0.5 * h, &self.tmp_q, &self.tmp_v, k2q, k2v)?;
-        for i in 0..n {
-            self.tmp_q[i] = q[i] + 0.5 * h * k2q[i];
-            self.tmp_v[i] = v[i] + 0.5 * h * k2v[i];
-        }
-        self.system
-            .rates(t + 0.5 * h, &self.tmp_q, &self.tmp_v, k3q, k3v)?;
-        for i in 0..n {
-            self.tmp_q[i] = q[i] + h * k3q[i];
-            self.tmp_v[i] = v[i] + h * k3v[i];
-        }
-        self.system.rates(t + h, &self.tmp_q, &self.tmp_v, k4q, k4v)?;
-        for i in 0..n {
-            self.tmp_q[i] = q[i] + h / 6.0 * (k1q[i] + 2.0 * (k2q[i] + k3q[i]) + k4q[i]);
-            self.tmp_v[i] = v[i] + h / 6.0 * (k1v[i] + 2.0 * (k2v[i] + k3v[i]) + k4v[i]);
-        }
-        if self.tmp_q.iter().chain(&self.tmp_v).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        state.q.as_mut_slice().copy_from_slice(&self.tmp_q);
-        state.v.as_mut_slice().copy_from_slice(&self.tmp_v);
-        state.t = t + h;
-        Ok(StepInfo::fixed(h))
+        y.commit(state, h)
     }
     fn dof(&self) -> usize {
         self.system.dof()
