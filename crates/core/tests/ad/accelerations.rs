@@ -2,56 +2,63 @@
 //! hand-derived equations of motion stated next to each model in `systems.rs`.
 
 use crate::systems::*;
-use crate::{assert_rel, draw, rng};
-use noether_core::EulerLagrange;
+use crate::{assert_rel, draw, for_states, rng, Sample};
+use noether_core::{EulerLagrange, Lagrangian};
+use rand::rngs::StdRng;
 use rand::Rng;
 
 const STATES: usize = 200;
 
+/// q̈ of `model` by AD against `hand(t, q, v)` at `count` states drawn by `state` (seeded with `seed`).
+fn check_accelerations<L: Lagrangian, const N: usize>(
+    what: &str,
+    model: L,
+    (seed, count): (u64, usize),
+    state: impl FnMut(&mut StdRng) -> Sample<N>,
+    hand: impl Fn(f64, &[f64; N], &[f64; N]) -> [f64; N],
+) {
+    let el = EulerLagrange::new(model);
+    for_states(seed, count, state, |t, q, v| {
+        let mut a = [0.0; N];
+        el.accelerations(t, q, v, &mut a).unwrap();
+        assert_rel(what, &a, &hand(t, q, v), 1.0);
+    });
+}
+
 #[test]
 fn ad_vs_hand_double_pendulum() {
     let dp = DoublePendulum::default();
-    let el = EulerLagrange::new(dp);
-    let mut r = rng(1);
-    for _ in 0..STATES {
-        let (q, v) = (draw::<2>(&mut r, -3.0, 3.0), draw::<2>(&mut r, -4.0, 4.0));
-        let mut a = [0.0; 2];
-        el.accelerations(0.0, &q, &v, &mut a).unwrap();
-        assert_rel("double pendulum q̈", &a, &dp.hand_accelerations(&q, &v), 1.0);
-    }
+    let state = |r: &mut StdRng| (0.0, draw(r, -3.0, 3.0), draw(r, -4.0, 4.0));
+    check_accelerations("double pendulum q̈", dp, (1, STATES), state, |_, q, v| {
+        dp.hand_accelerations(q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_heavy_top() {
     let top = HeavyTop::default();
-    let el = EulerLagrange::new(top);
-    let mut r = rng(2);
-    for _ in 0..STATES {
-        // θ away from the chart singularities θ = 0, π (where φ̈ has sin θ in the denominator).
+    // θ away from the chart singularities θ = 0, π (where φ̈ has sin θ in the denominator).
+    let state = |r: &mut StdRng| {
         let q = [
             r.random_range(0.3..2.8),
             r.random_range(-3.0..3.0),
             r.random_range(-3.0..3.0),
         ];
-        let v = draw::<3>(&mut r, -5.0, 5.0);
-        let mut a = [0.0; 3];
-        el.accelerations(0.0, &q, &v, &mut a).unwrap();
-        assert_rel("heavy top q̈", &a, &top.hand_accelerations(&q, &v), 1.0);
-    }
+        (0.0, q, draw(r, -5.0, 5.0))
+    };
+    check_accelerations("heavy top q̈", top, (2, STATES), state, |_, q, v| {
+        top.hand_accelerations(q, v)
+    });
 }
 
 /// A chain of N links through `EulerLagrange` (static path for N ≤ 12, chunked beyond).
 fn chain<const N: usize>(seed: u64) {
     let chain = Chain::<N>::default();
-    let el = EulerLagrange::new(chain);
-    let mut r = rng(seed);
-    for _ in 0..STATES / 4 {
-        // Moderate angles keep M well conditioned (cond ≲ 1e4), so the two Cholesky solves agree.
-        let (q, v) = (draw::<N>(&mut r, -0.8, 0.8), draw::<N>(&mut r, -1.5, 1.5));
-        let mut a = [0.0; N];
-        el.accelerations(0.0, &q, &v, &mut a).unwrap();
-        assert_rel("chain q̈", &a, &chain.hand_accelerations(&q, &v), 1.0);
-    }
+    // Moderate angles keep M well conditioned (cond ≲ 1e4), so the two Cholesky solves agree.
+    let state = |r: &mut StdRng| (0.0, draw(r, -0.8, 0.8), draw(r, -1.5, 1.5));
+    check_accelerations("chain q̈", chain, (seed, STATES / 4), state, |_, q, v| {
+        chain.hand_accelerations(q, v)
+    });
 }
 
 #[test]
@@ -73,60 +80,47 @@ fn ad_vs_hand_chain_15_links_chunked() {
 fn ad_vs_hand_charge_in_time_dependent_field() {
     // Exercises ∂²L/∂q̇∂t = e ∂A/∂t (the induced electric field −∂A/∂t) and ∂²L/∂q̇∂q.
     let sys = ChargeInField::default();
-    let el = EulerLagrange::new(sys);
-    let mut r = rng(6);
-    for _ in 0..STATES {
-        let t = r.random_range(-5.0..5.0);
-        let (q, v) = (draw::<3>(&mut r, -2.0, 2.0), draw::<3>(&mut r, -3.0, 3.0));
-        let mut a = [0.0; 3];
-        el.accelerations(t, &q, &v, &mut a).unwrap();
-        assert_rel("charge q̈", &a, &sys.hand_accelerations(t, &q, &v), 1.0);
-    }
+    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
+    check_accelerations("charge q̈", sys, (6, STATES), state, |t, q, v| {
+        sys.hand_accelerations(t, q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_damped_driven_oscillator() {
     let osc = DrivenOscillator::default();
-    let el = EulerLagrange::new(osc);
-    let mut r = rng(7);
-    for _ in 0..STATES {
-        let (t, q, v) = (
-            r.random_range(-10.0..10.0),
-            r.random_range(-2.0..2.0),
-            r.random_range(-3.0..3.0),
-        );
-        let mut a = [0.0];
-        el.accelerations(t, &[q], &[v], &mut a).unwrap();
-        assert_rel("oscillator q̈", &a, &[osc.hand_acceleration(t, q, v)], 1.0);
-    }
+    let state = |r: &mut StdRng| {
+        let t = r.random_range(-10.0..10.0);
+        let q = r.random_range(-2.0..2.0);
+        (t, [q], [r.random_range(-3.0..3.0)])
+    };
+    check_accelerations("oscillator q̈", osc, (7, STATES), state, |t, q, v| {
+        [osc.hand_acceleration(t, q[0], v[0])]
+    });
 }
 
 #[test]
 fn ad_vs_hand_spherical_pendulum() {
     let sp = SphericalPendulum::default();
-    let el = EulerLagrange::new(sp);
-    let mut r = rng(8);
-    for _ in 0..STATES {
+    let state = |r: &mut StdRng| {
         let q = [r.random_range(0.3..2.8), r.random_range(-3.0..3.0)];
-        let v = draw::<2>(&mut r, -3.0, 3.0);
-        let mut a = [0.0; 2];
-        el.accelerations(0.0, &q, &v, &mut a).unwrap();
-        assert_rel("spherical pendulum q̈", &a, &sp.hand_accelerations(&q, &v), 1.0);
-    }
+        (0.0, q, draw(r, -3.0, 3.0))
+    };
+    check_accelerations("spherical pendulum q̈", sp, (8, STATES), state, |_, q, v| {
+        sp.hand_accelerations(q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_kepler_polar() {
     let k = KeplerPolar::default();
-    let el = EulerLagrange::new(k);
-    let mut r = rng(9);
-    for _ in 0..STATES {
+    let state = |r: &mut StdRng| {
         let q = [r.random_range(0.5..3.0), r.random_range(-3.0..3.0)];
-        let v = draw::<2>(&mut r, -2.0, 2.0);
-        let mut a = [0.0; 2];
-        el.accelerations(0.0, &q, &v, &mut a).unwrap();
-        assert_rel("Kepler q̈", &a, &k.hand_accelerations(&q, &v), 1.0);
-    }
+        (0.0, q, draw(r, -2.0, 2.0))
+    };
+    check_accelerations("Kepler q̈", k, (9, STATES), state, |_, q, v| {
+        k.hand_accelerations(q, v)
+    });
 }
 
 /// A model that declares its (truly constant) mass matrix: `accelerations` then skips ∂²L/∂q̇²

@@ -31,6 +31,23 @@ pub fn draw<const N: usize>(rng: &mut StdRng, lo: f64, hi: f64) -> [f64; N] {
     std::array::from_fn(|_| rng.random_range(lo..hi))
 }
 
+/// A drawn state (t, q, v).
+pub type Sample<const N: usize> = (f64, [f64; N], [f64; N]);
+
+/// Calls `check(t, q, v)` at `count` states drawn by `state` from a generator seeded with `seed`.
+pub fn for_states<const N: usize>(
+    seed: u64,
+    count: usize,
+    mut state: impl FnMut(&mut StdRng) -> Sample<N>,
+    mut check: impl FnMut(f64, &[f64; N], &[f64; N]),
+) {
+    let mut r = rng(seed);
+    for _ in 0..count {
+        let (t, q, v) = state(&mut r);
+        check(t, &q, &v);
+    }
+}
+
 /// Asserts max_i |ad_i − hand_i| ≤ TOL · max(max_i |hand_i|, floor).
 #[track_caller]
 pub fn assert_rel(what: &str, ad: &[f64], hand: &[f64], floor: f64) {

@@ -2,71 +2,66 @@
 //! the hand formulas stated in `systems.rs`.
 
 use crate::systems::*;
-use crate::{assert_rel, draw, rng};
-use noether_core::EulerLagrange;
+use crate::{assert_rel, draw, for_states, rng, Sample};
+use noether_core::{EulerLagrange, Lagrangian};
+use rand::rngs::StdRng;
 use rand::Rng;
 
-fn check_pe(what: &str, ad_p: &[f64], ad_h: f64, hand: (&[f64], f64)) {
-    assert_rel(&format!("{what} momenta"), ad_p, hand.0, 1.0);
-    assert_rel(&format!("{what} energy"), &[ad_h], &[hand.1], 1.0);
+/// Momenta and energy of `model` by AD against `hand(t, q, v) = (p, h)` at 50 states drawn by
+/// `state` (seeded with `seed`).
+fn check_momenta_energy<L: Lagrangian, const N: usize>(
+    what: &str,
+    model: L,
+    seed: u64,
+    state: impl FnMut(&mut StdRng) -> Sample<N>,
+    hand: impl Fn(f64, &[f64; N], &[f64; N]) -> ([f64; N], f64),
+) {
+    let el = EulerLagrange::new(model);
+    for_states(seed, 50, state, |t, q, v| {
+        let mut p = [0.0; N];
+        el.momenta(t, q, v, &mut p).unwrap();
+        let (hp, hh) = hand(t, q, v);
+        let h = el.energy(t, q, v).unwrap();
+        assert_rel(&format!("{what} momenta"), &p, &hp, 1.0);
+        assert_rel(&format!("{what} energy"), &[h], &[hh], 1.0);
+    });
 }
 
 #[test]
 fn ad_vs_hand_momenta_energy_double_pendulum() {
     let dp = DoublePendulum::default();
-    let el = EulerLagrange::new(dp);
-    let mut r = rng(11);
-    for _ in 0..50 {
-        let (q, v) = (draw::<2>(&mut r, -3.0, 3.0), draw::<2>(&mut r, -4.0, 4.0));
-        let mut p = [0.0; 2];
-        el.momenta(0.0, &q, &v, &mut p).unwrap();
-        let (hp, hh) = dp.hand_momenta_energy(&q, &v);
-        check_pe("double pendulum", &p, el.energy(0.0, &q, &v).unwrap(), (&hp, hh));
-    }
+    let state = |r: &mut StdRng| (0.0, draw(r, -3.0, 3.0), draw(r, -4.0, 4.0));
+    check_momenta_energy("double pendulum", dp, 11, state, |_, q, v| {
+        dp.hand_momenta_energy(q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_momenta_energy_heavy_top() {
     let top = HeavyTop::default();
-    let el = EulerLagrange::new(top);
-    let mut r = rng(12);
-    for _ in 0..50 {
-        let (q, v) = (draw::<3>(&mut r, -3.0, 3.0), draw::<3>(&mut r, -5.0, 5.0));
-        let mut p = [0.0; 3];
-        el.momenta(0.0, &q, &v, &mut p).unwrap();
-        let (hp, hh) = top.hand_momenta_energy(&q, &v);
-        check_pe("heavy top", &p, el.energy(0.0, &q, &v).unwrap(), (&hp, hh));
-    }
+    let state = |r: &mut StdRng| (0.0, draw(r, -3.0, 3.0), draw(r, -5.0, 5.0));
+    check_momenta_energy("heavy top", top, 12, state, |_, q, v| {
+        top.hand_momenta_energy(q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_momenta_energy_charge_in_field() {
     let sys = ChargeInField::default();
-    let el = EulerLagrange::new(sys);
-    let mut r = rng(13);
-    for _ in 0..50 {
-        let t = r.random_range(-5.0..5.0);
-        let (q, v) = (draw::<3>(&mut r, -2.0, 2.0), draw::<3>(&mut r, -3.0, 3.0));
-        let mut p = [0.0; 3];
-        el.momenta(t, &q, &v, &mut p).unwrap();
-        let (hp, hh) = sys.hand_momenta_energy(t, &q, &v);
-        check_pe("charge", &p, el.energy(t, &q, &v).unwrap(), (&hp, hh));
-    }
+    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
+    check_momenta_energy("charge", sys, 13, state, |t, q, v| {
+        sys.hand_momenta_energy(t, q, v)
+    });
 }
 
 #[test]
 fn ad_vs_hand_momenta_energy_kepler() {
     let k = KeplerPolar::default();
-    let el = EulerLagrange::new(k);
-    let mut r = rng(14);
-    for _ in 0..50 {
+    let state = |r: &mut StdRng| {
         let q = [r.random_range(0.5..3.0), r.random_range(-3.0..3.0)];
-        let v = draw::<2>(&mut r, -2.0, 2.0);
-        let mut p = [0.0; 2];
-        el.momenta(0.0, &q, &v, &mut p).unwrap();
-        let (hp, hh) = k.hand_momenta_energy(&q, &v);
-        check_pe("Kepler", &p, el.energy(0.0, &q, &v).unwrap(), (&hp, hh));
-    }
+        (0.0, q, draw(r, -2.0, 2.0))
+    };
+    check_momenta_energy("Kepler", k, 14, state, |_, q, v| k.hand_momenta_energy(q, v));
 }
 
 /// Column-major flattening of a hand matrix, to compare with nalgebra's storage.
