@@ -1,64 +1,24 @@
 //! Implicit midpoint and Gauss-Legendre collocation: orders, energy behaviour on separable and
 //! non-separable Hamiltonians, the Jacobian against a hand-written one, Newton failure.
 
-use super::order::{assert_order, errors};
+use super::conserves::{energy_errors, STEPS};
+use super::order::order_tests;
 use super::problems::*;
 use noether_core::integrators::LinearizedDynamics;
 use noether_core::prelude::*;
 
-#[test]
-fn order_implicit_midpoint() {
-    let e = errors(
-        || Gauss::implicit_midpoint(HamiltonEquations::new(PendulumH)),
-        &super::order::pendulum_start(),
-        super::order::T_PENDULUM,
-        &[80, 160, 320],
-    );
-    assert_order("implicit midpoint / pendulum", 2, &e);
-    let e = errors(
-        || Gauss::implicit_midpoint(HamiltonEquations::new(KeplerH)),
-        &kepler_start(super::order::ECC),
-        super::order::T_KEPLER,
-        &[320, 640, 1280],
-    );
-    assert_order("implicit midpoint / Kepler e=0.5", 2, &e);
-}
-
-#[test]
-fn order_gauss4() {
-    let e = errors(
-        || Gauss::gauss4(HamiltonEquations::new(PendulumH)),
-        &super::order::pendulum_start(),
-        super::order::T_PENDULUM,
-        &[40, 80, 160],
-    );
-    assert_order("Gauss 4 / pendulum", 4, &e);
-    // Kepler as a Natural system on (q, q̇): the Jacobian [[0, I], [−∇²V, 0]] path.
-    let e = errors(
-        || Gauss::gauss4(Natural::unit(KeplerV)),
-        &kepler_start(super::order::ECC),
-        super::order::T_KEPLER,
-        &[160, 320, 640],
-    );
-    assert_order("Gauss 4 / Kepler e=0.5 (Natural)", 4, &e);
-}
-
-#[test]
-fn order_gauss6() {
-    let e = errors(
-        || Gauss::gauss6(HamiltonEquations::new(PendulumH)),
-        &super::order::pendulum_start(),
-        super::order::T_PENDULUM,
-        &[20, 40, 80],
-    );
-    assert_order("Gauss 6 / pendulum", 6, &e);
-    let e = errors(
-        || Gauss::gauss6(SeparableHamiltonian(Natural::unit(KeplerV))),
-        &kepler_start(super::order::ECC),
-        super::order::T_KEPLER,
-        &[40, 80, 160],
-    );
-    assert_order("Gauss 6 / Kepler e=0.5 (separable H)", 6, &e);
+order_tests! {
+    order_implicit_midpoint: "implicit midpoint", order 2, Gauss::implicit_midpoint,
+        HamiltonEquations::new(PendulumH), [80, 160, 320],
+        HamiltonEquations::new(KeplerH), [320, 640, 1280];
+    /// Kepler as a Natural system on (q, q̇): the Jacobian [[0, I], [−∇²V, 0]] path.
+    order_gauss4: "Gauss 4", order 4, Gauss::gauss4,
+        HamiltonEquations::new(PendulumH), [40, 80, 160],
+        Natural::unit(KeplerV), [160, 320, 640];
+    /// Kepler as a separable Hamiltonian on (q, p).
+    order_gauss6: "Gauss 6", order 6, Gauss::gauss6,
+        HamiltonEquations::new(PendulumH), [20, 40, 80],
+        SeparableHamiltonian(Natural::unit(KeplerV)), [40, 80, 160];
 }
 
 #[test]
@@ -67,36 +27,27 @@ fn ad_vs_hand_jacobians() {
     let (q, p) = (0.7_f64, -0.4);
     let expect = [0.0, 1.0, -q.cos(), 0.0];
     let mut j = nalgebra::DMatrix::zeros(2, 2);
+    let assert_expected = |j: &nalgebra::DMatrix<f64>| {
+        assert!(
+            j.transpose()
+                .iter()
+                .zip(&expect)
+                .all(|(a, b)| (a - b).abs() < 1e-14),
+            "{j}"
+        )
+    };
     HamiltonEquations::new(PendulumH)
         .jacobian(0.0, &[q], &[p], &mut j)
         .unwrap();
-    assert!(
-        j.transpose()
-            .iter()
-            .zip(&expect)
-            .all(|(a, b)| (a - b).abs() < 1e-14),
-        "{j}"
-    );
+    assert_expected(&j);
     SeparableHamiltonian(Natural::unit(PendulumV))
         .jacobian(0.0, &[q], &[p], &mut j)
         .unwrap();
-    assert!(
-        j.transpose()
-            .iter()
-            .zip(&expect)
-            .all(|(a, b)| (a - b).abs() < 1e-14),
-        "{j}"
-    );
+    assert_expected(&j);
     Natural::unit(PendulumV)
         .jacobian(0.0, &[q], &[p], &mut j)
         .unwrap();
-    assert!(
-        j.transpose()
-            .iter()
-            .zip(&expect)
-            .all(|(a, b)| (a - b).abs() < 1e-14),
-        "{j}"
-    );
+    assert_expected(&j);
 }
 
 /// A non-separable Hamiltonian H = ½ p² (1 + ½ q²) + ½ q² (a position-dependent mass).
@@ -108,17 +59,6 @@ impl Hamiltonian for NonSeparable {
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         p[0] * p[0] * (q[0] * q[0] * 0.5 + 1.0) * 0.5 + q[0] * q[0] * 0.5
     }
-}
-
-/// (max |ΔE| over the first tenth, over the last tenth) of `steps` steps.
-fn energy_errors<S: Stepper, D: Dynamics>(
-    stepper: &mut S,
-    sys: &D,
-    start: State,
-    steps: usize,
-    h: f64,
-) -> (f64, f64) {
-    super::conserves::energy_errors(stepper, sys, start, steps, h)
 }
 
 #[test]
@@ -134,7 +74,7 @@ fn conserves_energy_gauss_pendulum() {
         ("Gauss 4", 0.2, Gauss::gauss4(&sys), 1e-4),
         ("Gauss 6", 0.4, Gauss::gauss6(&sys), 1e-5),
     ] {
-        let (first, last) = energy_errors(&mut s, &sys, start(), super::conserves::STEPS, h);
+        let (first, last) = energy_errors(&mut s, &sys, start(), STEPS, h);
         eprintln!("{name}: max |ΔE| first tenth {first:.3e}, last tenth {last:.3e}");
         assert!(last <= 1.1 * first + 1e-12, "{name}: {first:e} -> {last:e}");
         assert!(last <= bound, "{name}: {last:e}");

@@ -79,7 +79,7 @@ pub fn pendulum_start() -> State {
 }
 
 /// Asserts the observed order on the pendulum (steps `np`) and on Kepler (steps `nk`).
-fn check_both<S: Stepper, T: Stepper>(
+pub fn check_both<S: Stepper, T: Stepper>(
     what: &str,
     nominal: u32,
     pend: impl FnMut() -> S,
@@ -93,135 +93,55 @@ fn check_both<S: Stepper, T: Stepper>(
     assert_order(&format!("{what} / Kepler e=0.5"), nominal, &e);
 }
 
-// Explicit methods step the Euler-Lagrange equations of a Lagrangian written by the user (AD path).
+/// One `order_*` test per row: `name: "label", order p, constructor, pendulum system [step counts],
+/// Kepler system [step counts];` runs [`check_both`] (observed order within 0.1 of p on both).
+macro_rules! order_tests {
+    ($($(#[$note:meta])* $test:ident: $what:literal, order $p:literal, $new:path,
+        $pend:expr, $np:expr, $kep:expr, $nk:expr;)*) => {$(
+        $(#[$note])*
+        #[test]
+        fn $test() {
+            $crate::order::check_both($what, $p, || $new($pend), &$np, || $new($kep), &$nk);
+        }
+    )*};
+}
+pub(crate) use order_tests;
 
-#[test]
-fn order_euler() {
-    check_both(
-        "Euler",
-        1,
-        || Euler::new(EulerLagrange::new(PendulumL)),
-        &[1280, 2560, 5120],
-        || Euler::new(EulerLagrange::new(KeplerL)),
-        &[10240, 20480, 40960],
-    );
+/// The Euler-Lagrange equations of a Lagrangian written by the user (AD path).
+fn lagrangian<L: Lagrangian>(l: L) -> EulerLagrange<L> {
+    EulerLagrange::new(l)
 }
 
-#[test]
-fn order_euler_cromer() {
-    check_both(
-        "Euler-Cromer",
-        1,
-        || EulerCromer::new(EulerLagrange::new(PendulumL)),
-        &[320, 640, 1280],
-        || EulerCromer::new(EulerLagrange::new(KeplerL)),
-        &[2560, 5120, 10240],
-    );
-}
-
-#[test]
-fn order_rk4() {
-    check_both(
-        "RK4",
-        4,
-        || Rk4::new(EulerLagrange::new(PendulumL)),
-        &[320, 640, 1280],
-        || Rk4::new(EulerLagrange::new(KeplerL)),
-        &[1280, 2560, 5120],
-    );
-}
-
-// Symplectic methods: the pendulum as a Natural system on (q, q̇), Kepler as a separable Hamiltonian
-// on (q, p) (T(p) differentiated by AD), so both readings are covered.
-
+/// Symplectic methods: the pendulum as a Natural system on (q, q̇).
 fn pend() -> Natural<PendulumV> {
     Natural::unit(PendulumV)
 }
+/// Symplectic methods: Kepler as a separable Hamiltonian on (q, p) (T(p) differentiated by AD), so
+/// both readings are covered.
 fn kep() -> SeparableHamiltonian<Natural<KeplerV>> {
     SeparableHamiltonian(Natural::unit(KeplerV))
 }
 
-#[test]
-fn order_symplectic_euler() {
-    check_both(
-        "symplectic Euler",
-        1,
-        || SymplecticEuler::new(pend()),
-        &[320, 640, 1280],
-        || SymplecticEuler::new(kep()),
-        &[2560, 5120, 10240],
-    );
-}
-
-#[test]
-fn order_stormer_verlet() {
-    check_both(
-        "Störmer-Verlet",
-        2,
-        || Composition::stormer_verlet(pend()),
-        &[80, 160, 320],
-        || Composition::stormer_verlet(kep()),
-        &[320, 640, 1280],
-    );
-}
-
-#[test]
-fn order_yoshida4() {
-    check_both(
-        "Yoshida 4",
-        4,
-        || Composition::yoshida4(pend()),
-        &[160, 320, 640],
-        || Composition::yoshida4(kep()),
-        &[320, 640, 1280],
-    );
-}
-
-#[test]
-fn order_suzuki4() {
-    check_both(
-        "Suzuki 4",
-        4,
-        || Composition::suzuki4(pend()),
-        &[80, 160, 320],
-        || Composition::suzuki4(kep()),
-        &[160, 320, 640],
-    );
-}
-
-#[test]
-fn order_yoshida6() {
-    check_both(
-        "Yoshida 6",
-        6,
-        || Composition::yoshida6(pend()),
-        &[80, 160, 320],
-        || Composition::yoshida6(kep()),
-        &[160, 320, 640],
-    );
-}
-
-#[test]
-fn order_kahan_li6() {
-    check_both(
-        "Kahan-Li 6",
-        6,
-        || Composition::kahan_li6(pend()),
-        &[40, 80, 160],
-        || Composition::kahan_li6(kep()),
-        &[160, 320, 640],
-    );
-}
-
-#[test]
-fn order_kahan_li8() {
-    // Order 8 reaches rounding fast: step ratios of √2 keep all errors in 1e-7 .. 1e-11.
-    check_both(
-        "Kahan-Li 8",
-        8,
-        || Composition::kahan_li8(pend()),
-        &[24, 34, 48],
-        || Composition::kahan_li8(kep()),
-        &[56, 80, 112],
-    );
+order_tests! {
+    order_euler: "Euler", order 1, Euler::new,
+        lagrangian(PendulumL), [1280, 2560, 5120], lagrangian(KeplerL), [10240, 20480, 40960];
+    order_euler_cromer: "Euler-Cromer", order 1, EulerCromer::new,
+        lagrangian(PendulumL), [320, 640, 1280], lagrangian(KeplerL), [2560, 5120, 10240];
+    order_rk4: "RK4", order 4, Rk4::new,
+        lagrangian(PendulumL), [320, 640, 1280], lagrangian(KeplerL), [1280, 2560, 5120];
+    order_symplectic_euler: "symplectic Euler", order 1, SymplecticEuler::new,
+        pend(), [320, 640, 1280], kep(), [2560, 5120, 10240];
+    order_stormer_verlet: "Störmer-Verlet", order 2, Composition::stormer_verlet,
+        pend(), [80, 160, 320], kep(), [320, 640, 1280];
+    order_yoshida4: "Yoshida 4", order 4, Composition::yoshida4,
+        pend(), [160, 320, 640], kep(), [320, 640, 1280];
+    order_suzuki4: "Suzuki 4", order 4, Composition::suzuki4,
+        pend(), [80, 160, 320], kep(), [160, 320, 640];
+    order_yoshida6: "Yoshida 6", order 6, Composition::yoshida6,
+        pend(), [80, 160, 320], kep(), [160, 320, 640];
+    order_kahan_li6: "Kahan-Li 6", order 6, Composition::kahan_li6,
+        pend(), [40, 80, 160], kep(), [160, 320, 640];
+    /// Order 8 reaches rounding fast: step ratios of √2 keep all errors in 1e-7 .. 1e-11.
+    order_kahan_li8: "Kahan-Li 8", order 8, Composition::kahan_li8,
+        pend(), [24, 34, 48], kep(), [56, 80, 112];
 }
