@@ -27,7 +27,7 @@ use crate::nonholonomic::{Nonholonomic, NonholonomicSet};
 use crate::set::ConstraintSet;
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
-use noether_core::error::{check_finite, check_len};
+use noether_core::error::{check_len, check_phase_point};
 use noether_core::{Dynamics, Error, EulerLagrange, Lagrangian, Result, Scalar, State};
 use std::sync::OnceLock;
 
@@ -137,12 +137,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     }
 
     fn check(&self, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
-        let n = self.dof();
-        check_len("q", q, n)?;
-        check_len("q̇", v, n)?;
-        check_finite("t", &[t])?;
-        check_finite("q", q)?;
-        check_finite("q̇", v)
+        check_phase_point(self.dof(), t, q, v, "q̇")
     }
 
     fn mass(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DMatrix<f64>> {

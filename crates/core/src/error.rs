@@ -143,6 +143,16 @@ pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
     }
 }
 
+/// Checks a phase point (t, q, v): q and v of length `dof` (q first), then t, q, v finite. `v_name`
+/// names the second half in the error ("q̇", "p", "v").
+pub fn check_phase_point(dof: usize, t: f64, q: &[f64], v: &[f64], v_name: &'static str) -> Result<()> {
+    check_len("q", q, dof)?;
+    check_len(v_name, v, dof)?;
+    check_finite("t", &[t])?;
+    check_finite("q", q)?;
+    check_finite(v_name, v)
+}
+
 /// Checks that a step size is finite and positive.
 pub fn check_step(h: f64) -> Result<()> {
     if h.is_finite() && h > 0.0 {

@@ -1,7 +1,7 @@
 //! Hamilton's equations by dual numbers: q̇ = ∂H/∂p, ṗ = −∂H/∂q.
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len};
+use crate::error::{check_len, check_phase_point};
 use crate::{Error, Hamiltonian, Result, Scalar};
 use nalgebra::DMatrix;
 
@@ -38,12 +38,7 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
     }
 
     fn check(&self, t: f64, q: &[f64], p: &[f64]) -> Result<()> {
-        let n = self.dof();
-        check_len("q", q, n)?;
-        check_len("p", p, n)?;
-        check_finite("t", &[t])?;
-        check_finite("q", q)?;
-        check_finite("p", p)
+        check_phase_point(self.dof(), t, q, p, "p")
     }
 
     /// The value H(t, q, p) (the energy when H has no explicit time dependence).

@@ -1,6 +1,6 @@
 //! The phase state (t, q, v) that steppers advance.
 
-use crate::error::{check_finite, check_len};
+use crate::error::check_phase_point;
 use crate::Result;
 use nalgebra::DVector;
 
@@ -35,11 +35,7 @@ impl State {
 
     /// Checks dimensions against `dof` and that every number is finite.
     pub fn validate(&self, dof: usize) -> Result<()> {
-        check_len("q", self.q.as_slice(), dof)?;
-        check_len("v", self.v.as_slice(), dof)?;
-        check_finite("t", &[self.t])?;
-        check_finite("q", self.q.as_slice())?;
-        check_finite("v", self.v.as_slice())
+        check_phase_point(dof, self.t, self.q.as_slice(), self.v.as_slice(), "v")
     }
 
     /// `true` when every component is finite.

@@ -2,7 +2,7 @@
 //! as a [`DiscreteFlow`]; every flow is also a core [`Stepper`](noether_core::Stepper) on a
 //! [`State`] whose second half `v` holds the momenta p.
 
-use noether_core::error::{check_finite, check_len, check_step};
+use noether_core::error::{check_phase_point, check_step};
 use noether_core::{Error, Result, State, StepInfo};
 
 /// A discrete flow (q, p) ↦ (q', p') over a step h, the discrete Hamiltonian map of a discrete Lagrangian.
@@ -41,11 +41,7 @@ pub(crate) fn check_flow_args(dof: usize, t: f64, h: f64, q: &[f64], p: &[f64]) 
     if !h.is_finite() || h == 0.0 {
         return Err(Error::InvalidStep { h });
     }
-    check_len("q", q, dof)?;
-    check_len("p", p, dof)?;
-    check_finite("t", &[t])?;
-    check_finite("q", q)?;
-    check_finite("p", p)
+    check_phase_point(dof, t, q, p, "p")
 }
 
 /// One [`Stepper`](noether_core::Stepper) step of a flow: a positive step, the state left untouched on error.
