@@ -42,6 +42,7 @@ fn chain_system(n: usize) -> System<impl noether_particles::Interaction> {
 }
 
 /// The same forces written by hand: springs −k (r − re) r̂ between neighbours, on-site −(k2 + k4 d²) d.
+#[inline(never)]
 fn chain_hand(x: &[f64], f: &mut [f64]) -> f64 {
     let n = x.len() / 3;
     f.iter_mut().for_each(|a| *a = 0.0);
@@ -98,6 +99,7 @@ fn chain(c: &mut Criterion) {
     g.finish();
 }
 
+#[inline(never)]
 fn gravity_hand(x: &[f64], m: &[f64], f: &mut [f64]) -> f64 {
     let n = m.len();
     f.iter_mut().for_each(|a| *a = 0.0);

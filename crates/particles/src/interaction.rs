@@ -8,7 +8,10 @@
 //! Determinism: the parallel path evaluates fixed chunks of [`CHUNK`] terms on rayon's pool into a buffer
 //! and then adds them to the particles in list order, exactly the additions the serial path performs; the
 //! partial energies are summed per chunk and then over chunks in order on both paths. Results are
-//! therefore bit-identical for any number of threads.
+//! therefore bit-identical for any number of threads. A chain listed as consecutive pairs (s, s+1),
+//! (s+1, s+2), … and one-body terms on a range of particles s, s+1, … take a streaming serial path that
+//! walks through the arrays in order (no index list, no bounds check per term) and performs the same
+//! additions in the same order.
 
 use crate::error::{Error, Result};
 use crate::particle::{add3, get3, sub3, Particle, Vec3};
@@ -16,8 +19,8 @@ use crate::potential::{
     one_gradient, one_hessian, pair_gradient, pair_hessian, sep, sep64, Body, OneBodyForce, OnePotential,
     PairPotential, TwoBodyForce,
 };
+use crate::terms::{chain_forces, chain_start, range_forces, range_start, run_terms};
 use noether_core::Scalar;
-use rayon::prelude::*;
 use std::sync::Mutex;
 
 /// Terms per parallel work item (fixed: it does not depend on the number of threads).
@@ -125,67 +128,6 @@ impl<A: Interaction, B: Interaction> Interaction for (A, B) {
     }
 }
 
-/// Evaluates `eval` on every term and applies the result with `apply`, serially or on rayon's pool,
-/// with bit-identical results (see the module docs); the value is the sum of the energies. A macro, so
-/// that each path gets its own copy of the closure (a closure with two call sites is not inlined).
-macro_rules! run_terms {
-    ($terms:expr, $eval:expr, $apply:expr, $parallel:expr, $scratch:expr $(,)?) => {
-        if $parallel {
-            $crate::interaction::run_parallel($terms, $eval, $apply, $scratch)
-        } else {
-            $crate::interaction::run_serial($terms, $eval, $apply)
-        }
-    };
-}
-
-/// The parallel path of `run_terms!`: fixed chunks evaluated on the pool, then applied in order.
-pub(crate) fn run_parallel<T: Sync>(
-    terms: &[T],
-    eval: impl Fn(&T) -> (f64, Vec3) + Sync,
-    mut apply: impl FnMut(&T, Vec3),
-    scratch: &Mutex<Vec<Vec3>>,
-) -> f64 {
-    let mut buf = scratch.lock().unwrap_or_else(|e| e.into_inner());
-    buf.resize(terms.len(), [0.0; 3]);
-    let energies: Vec<f64> = buf
-        .par_chunks_mut(CHUNK)
-        .zip(terms.par_chunks(CHUNK))
-        .map(|(b, c)| {
-            let mut e = 0.0;
-            for (slot, t) in b.iter_mut().zip(c) {
-                let (u, g) = eval(t);
-                e += u;
-                *slot = g;
-            }
-            e
-        })
-        .collect();
-    for (t, g) in terms.iter().zip(buf.iter()) {
-        apply(t, *g);
-    }
-    energies.iter().fold(0.0, |a, e| a + e)
-}
-
-/// The serial path of `run_terms!`: chunk energies summed in the same order as the parallel path.
-#[inline(always)]
-pub(crate) fn run_serial<T>(
-    terms: &[T],
-    eval: impl Fn(&T) -> (f64, Vec3),
-    mut apply: impl FnMut(&T, Vec3),
-) -> f64 {
-    let mut total = 0.0;
-    for chunk in terms.chunks(CHUNK) {
-        let mut e = 0.0;
-        for t in chunk {
-            let (u, g) = eval(t);
-            e += u;
-            apply(t, g);
-        }
-        total += e;
-    }
-    total
-}
-
 /// Appends the blocks of a pair term: (i,i) and (j,j) get +H, (i,j) and (j,i) get −H.
 pub(crate) fn push_pair_block(out: &mut Triplets, i: usize, j: usize, h: [[f64; 3]; 3]) {
     for (a, row) in h.iter().enumerate() {
@@ -208,6 +150,15 @@ fn check_index(interaction: usize, index: usize, n: usize) -> Result<()> {
     } else {
         Ok(())
     }
+}
+
+/// Converts user indices to the compact stored form (an index beyond u32 becomes u32::MAX, which
+/// `validate` rejects).
+fn to_indices(indices: impl IntoIterator<Item = usize>) -> Vec<u32> {
+    indices
+        .into_iter()
+        .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+        .collect()
 }
 
 /// Converts user pairs to the compact stored form.
@@ -241,15 +192,18 @@ fn validate_pairs(pairs: &[[u32; 2]], n: usize) -> Result<()> {
 pub struct Internal<P> {
     potential: P,
     pairs: Vec<[u32; 2]>,
+    chain: Option<usize>,
     scratch: Mutex<Vec<Vec3>>,
 }
 
 impl<P: PairPotential> Internal<P> {
     /// The potential `potential` between each pair (i, j) of `pairs` (particle i plays particle 1).
     pub fn new(potential: P, pairs: impl IntoIterator<Item = (usize, usize)>) -> Self {
+        let pairs = to_pairs(pairs);
         Internal {
             potential,
-            pairs: to_pairs(pairs),
+            chain: chain_start(&pairs),
+            pairs,
             scratch: Mutex::new(Vec::new()),
         }
     }
@@ -285,6 +239,9 @@ impl<P: PairPotential> Interaction for Internal<P> {
         })
     }
     fn add_forces(&self, _t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
+        if let (Some(s), false) = (self.chain, parallel) {
+            return chain_forces(&self.potential, s, self.pairs.len(), x, ps, f);
+        }
         run_terms!(
             &self.pairs,
             |&[i, j]| {
@@ -325,18 +282,18 @@ impl<P: PairPotential> Interaction for Internal<P> {
 pub struct External<P> {
     potential: P,
     indices: Vec<u32>,
+    range: Option<usize>,
     scratch: Mutex<Vec<Vec3>>,
 }
 
 impl<P: OnePotential> External<P> {
     /// The potential `potential` acting on each particle of `indices`.
     pub fn new(potential: P, indices: impl IntoIterator<Item = usize>) -> Self {
+        let indices = to_indices(indices);
         External {
             potential,
-            indices: indices
-                .into_iter()
-                .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-                .collect(),
+            range: range_start(&indices),
+            indices,
             scratch: Mutex::new(Vec::new()),
         }
     }
@@ -369,6 +326,9 @@ impl<P: OnePotential> Interaction for External<P> {
         })
     }
     fn add_forces(&self, t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
+        if let (Some(s), false) = (self.range, parallel) {
+            return range_forces(&self.potential, t, s, self.indices.len(), x, ps, f);
+        }
         run_terms!(
             &self.indices,
             |&i| one_gradient(&self.potential, t, get3(x, i as usize), &ps[i as usize]),
@@ -413,10 +373,7 @@ impl<F: OneBodyForce> ExternalForce<F> {
     pub fn new(force: F, indices: impl IntoIterator<Item = usize>) -> Self {
         ExternalForce {
             force,
-            indices: indices
-                .into_iter()
-                .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-                .collect(),
+            indices: to_indices(indices),
         }
     }
 }

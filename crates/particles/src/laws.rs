@@ -259,7 +259,7 @@ impl OnePotential for Trap {
     }
     #[inline(always)]
     fn radial<D: Scalar>(&self, _t: f64, s: D, _p: &Particle) -> D {
-        s * (0.5 * self.k2) + s * s * (0.25 * self.k4)
+        s * (s * (0.25 * self.k4) + 0.5 * self.k2)
     }
 }
 

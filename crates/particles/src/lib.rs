@@ -38,6 +38,7 @@ pub mod pairs;
 pub mod particle;
 pub mod potential;
 pub mod system;
+mod terms;
 
 pub use error::{Error, Result};
 pub use hessian::SparseHessian;

@@ -44,24 +44,27 @@ impl Particle {
     }
 }
 
-/// Component `k` of particle `i` in a flat array of length 3N.
+/// Particle `i` of a flat array of length 3N (one bounds check for the three components).
 #[inline(always)]
 pub(crate) fn get3(x: &[f64], i: usize) -> Vec3 {
-    [x[3 * i], x[3 * i + 1], x[3 * i + 2]]
+    let a = &x[3 * i..3 * i + 3];
+    [a[0], a[1], a[2]]
 }
 
-/// Adds `s·f` to particle `i` of a flat array.
+/// Adds `f` to particle `i` of a flat array.
 #[inline(always)]
 pub(crate) fn add3(out: &mut [f64], i: usize, f: Vec3) {
-    out[3 * i] += f[0];
-    out[3 * i + 1] += f[1];
-    out[3 * i + 2] += f[2];
+    let o = &mut out[3 * i..3 * i + 3];
+    o[0] += f[0];
+    o[1] += f[1];
+    o[2] += f[2];
 }
 
 /// Subtracts `f` from particle `i` of a flat array.
 #[inline(always)]
 pub(crate) fn sub3(out: &mut [f64], i: usize, f: Vec3) {
-    out[3 * i] -= f[0];
-    out[3 * i + 1] -= f[1];
-    out[3 * i + 2] -= f[2];
+    let o = &mut out[3 * i..3 * i + 3];
+    o[0] -= f[0];
+    o[1] -= f[1];
+    o[2] -= f[2];
 }
