@@ -19,7 +19,7 @@ use crate::potential::{
     one_gradient, one_hessian, pair_gradient, pair_hessian, sep, sep64, Body, OneBodyForce, OnePotential,
     PairPotential, TwoBodyForce,
 };
-use crate::terms::{chain_forces, chain_start, range_forces, range_start, run_terms};
+use crate::terms::{chain_forces, chain_start, range_forces, range_start, run_terms, span};
 use noether_core::Scalar;
 use std::sync::Mutex;
 
@@ -174,6 +174,13 @@ fn to_pairs(pairs: impl IntoIterator<Item = (usize, usize)>) -> Vec<[u32; 2]> {
         .collect()
 }
 
+fn validate_indices(indices: &[u32], n: usize) -> Result<()> {
+    for (k, &i) in indices.iter().enumerate() {
+        check_index(k, i as usize, n)?;
+    }
+    Ok(())
+}
+
 fn validate_pairs(pairs: &[[u32; 2]], n: usize) -> Result<()> {
     for (k, &[i, j]) in pairs.iter().enumerate() {
         check_index(k, i as usize, n)?;
@@ -240,7 +247,8 @@ impl<P: PairPotential> Interaction for Internal<P> {
     }
     fn add_forces(&self, _t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
         if let (Some(s), false) = (self.chain, parallel) {
-            return chain_forces(&self.potential, s, self.pairs.len(), x, ps, f);
+            let (x, ps, f) = span(x, ps, f, s, self.pairs.len() + 1);
+            return chain_forces(&self.potential, x, ps, f);
         }
         run_terms!(
             &self.pairs,
@@ -304,10 +312,7 @@ impl<P: OnePotential> Interaction for External<P> {
         !P::TIME_DEPENDENT
     }
     fn validate(&self, n: usize) -> Result<()> {
-        for (k, &i) in self.indices.iter().enumerate() {
-            check_index(k, i as usize, n)?;
-        }
-        Ok(())
+        validate_indices(&self.indices, n)
     }
     fn terms(&self, _n: usize) -> usize {
         self.indices.len()
@@ -327,7 +332,8 @@ impl<P: OnePotential> Interaction for External<P> {
     }
     fn add_forces(&self, t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
         if let (Some(s), false) = (self.range, parallel) {
-            return range_forces(&self.potential, t, s, self.indices.len(), x, ps, f);
+            let (x, ps, f) = span(x, ps, f, s, self.indices.len());
+            return range_forces(&self.potential, t, x, ps, f);
         }
         run_terms!(
             &self.indices,
@@ -362,6 +368,26 @@ impl<P: OnePotential> Interaction for External<P> {
     }
 }
 
+/// The [`Interaction`] methods of a group of forces that are not gradients: no potential, no
+/// conservative forces, no Hessian, nothing singular; `has_nonpotential` is true.
+macro_rules! forces_only {
+    () => {
+        fn potential<D: Scalar>(&self, _: f64, _: &[D], _: &[Particle]) -> D {
+            D::zero()
+        }
+        fn add_forces(&self, _: f64, _: &[f64], _: &[Particle], _: &mut [f64], _: bool) -> f64 {
+            0.0
+        }
+        fn has_nonpotential(&self) -> bool {
+            true
+        }
+        fn add_hessian(&self, _: f64, _: &[f64], _: &[Particle], _: &mut Triplets) {}
+        fn find_singular(&self, _: f64, _: &[f64], _: &[Particle]) -> Option<Error> {
+            None
+        }
+    };
+}
+
 /// External forces that are not gradients (drag): F(t, r_i, v_i) on each listed particle i.
 pub struct ExternalForce<F> {
     force: F,
@@ -380,32 +406,17 @@ impl<F: OneBodyForce> ExternalForce<F> {
 
 impl<F: OneBodyForce> Interaction for ExternalForce<F> {
     fn validate(&self, n: usize) -> Result<()> {
-        for (k, &i) in self.indices.iter().enumerate() {
-            check_index(k, i as usize, n)?;
-        }
-        Ok(())
+        validate_indices(&self.indices, n)
     }
     fn terms(&self, _n: usize) -> usize {
         self.indices.len()
     }
-    fn potential<D: Scalar>(&self, _: f64, _: &[D], _: &[Particle]) -> D {
-        D::zero()
-    }
-    fn add_forces(&self, _: f64, _: &[f64], _: &[Particle], _: &mut [f64], _: bool) -> f64 {
-        0.0
-    }
-    fn has_nonpotential(&self) -> bool {
-        true
-    }
+    forces_only!();
     fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
         for &i in &self.indices {
             let i = i as usize;
             add3(f, i, self.force.force(t, get3(x, i), get3(v, i), &ps[i]));
         }
-    }
-    fn add_hessian(&self, _: f64, _: &[f64], _: &[Particle], _: &mut Triplets) {}
-    fn find_singular(&self, _: f64, _: &[f64], _: &[Particle]) -> Option<Error> {
-        None
     }
 }
 
@@ -433,15 +444,7 @@ impl<F: TwoBodyForce> Interaction for InternalForce<F> {
     fn terms(&self, _n: usize) -> usize {
         self.pairs.len()
     }
-    fn potential<D: Scalar>(&self, _: f64, _: &[D], _: &[Particle]) -> D {
-        D::zero()
-    }
-    fn add_forces(&self, _: f64, _: &[f64], _: &[Particle], _: &mut [f64], _: bool) -> f64 {
-        0.0
-    }
-    fn has_nonpotential(&self) -> bool {
-        true
-    }
+    forces_only!();
     fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
         for &[by, on] in &self.pairs {
             let (by, on) = (by as usize, on as usize);
@@ -461,9 +464,5 @@ impl<F: TwoBodyForce> Interaction for InternalForce<F> {
             add3(f, on, g);
             sub3(f, by, g);
         }
-    }
-    fn add_hessian(&self, _: f64, _: &[f64], _: &[Particle], _: &mut Triplets) {}
-    fn find_singular(&self, _: f64, _: &[f64], _: &[Particle]) -> Option<Error> {
-        None
     }
 }

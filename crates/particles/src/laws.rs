@@ -18,6 +18,32 @@ fn r2<D: Scalar>(r: &[D; 3]) -> D {
     r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
 }
 
+/// Implements [`PairPotential`] for a central law written once, as a function of s = |r21|² (the
+/// body, with `self`, `s` and the two particles named at the call): `energy` evaluates it at
+/// s = r21·r21 and forces take the one-`Dual64` radial path. An optional `cutoff: |self| …` gives
+/// [`PairPotential::cutoff`].
+macro_rules! central {
+    ($law:ty, |$this:ident, $s:ident, $p1:pat_param, $p2:pat_param| $body:expr
+        $(, cutoff: |$c:ident| $cut:expr)? $(,)?) => {
+        impl PairPotential for $law {
+            const RADIAL: bool = true;
+            #[inline(always)]
+            fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
+                self.radial(r2(&r), p1, p2)
+            }
+            #[inline(always)]
+            fn radial<D: Scalar>(&$this, $s: D, $p1: &Particle, $p2: &Particle) -> D {
+                $body
+            }
+            $(
+                fn cutoff(&$c) -> Option<f64> {
+                    $cut
+                }
+            )?
+        }
+    };
+}
+
 /// Universal gravity U = −G m1 m2 / r, F21 = −G m1 m2 r21 / r³.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Gravity {
@@ -25,17 +51,7 @@ pub struct Gravity {
     pub g: f64,
 }
 
-impl PairPotential for Gravity {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
-    }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, p1: &Particle, p2: &Particle) -> D {
-        s.sqrt().recip() * (-self.g * p1.mass * p2.mass)
-    }
-}
+central! { Gravity, |self, s, p1, p2| s.sqrt().recip() * (-self.g * p1.mass * p2.mass) }
 
 /// Coulomb U = k e1 e2 / r, F21 = k e1 e2 r21 / r³ (charges from the particles).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,17 +60,7 @@ pub struct Coulomb {
     pub k: f64,
 }
 
-impl PairPotential for Coulomb {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
-    }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, p1: &Particle, p2: &Particle) -> D {
-        s.sqrt().recip() * (self.k * p1.charge * p2.charge)
-    }
-}
+central! { Coulomb, |self, s, p1, p2| s.sqrt().recip() * (self.k * p1.charge * p2.charge) }
 
 /// Constant repulsive force of magnitude F: F21 = F r̂, U = −F r.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,17 +69,7 @@ pub struct ConstantRepulsion {
     pub f: f64,
 }
 
-impl PairPotential for ConstantRepulsion {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
-    }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
-        s.sqrt() * (-self.f)
-    }
-}
+central! { ConstantRepulsion, |self, s, _, _| s.sqrt() * (-self.f) }
 
 /// Linear spring U = ½ k (r − re)², F21 = −k (r − re) r̂. With re = 0 it is U = ½ k r² (smooth at r = 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,22 +80,14 @@ pub struct Spring {
     pub re: f64,
 }
 
-impl PairPotential for Spring {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
+central! { Spring, |self, s, _, _| {
+    if self.re == 0.0 {
+        s * (0.5 * self.k)
+    } else {
+        let d = s.sqrt() - self.re;
+        d * d * (0.5 * self.k)
     }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
-        if self.re == 0.0 {
-            s * (0.5 * self.k)
-        } else {
-            let d = s.sqrt() - self.re;
-            d * d * (0.5 * self.k)
-        }
-    }
-}
+}}
 
 /// Elastic billiard contact between balls whose radii add up to re: U = ½ k (r − re)² for r < re
 /// (a compressed linear spring), U = 0 for r ≥ re. Conservative, piecewise smooth.
@@ -111,25 +99,14 @@ pub struct Billiard {
     pub re: f64,
 }
 
-impl PairPotential for Billiard {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
+central! { Billiard, |self, s, _, _| {
+    if s.re() >= self.re * self.re {
+        D::zero()
+    } else {
+        let d = s.sqrt() - self.re;
+        d * d * (0.5 * self.k)
     }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
-        if s.re() >= self.re * self.re {
-            D::zero()
-        } else {
-            let d = s.sqrt() - self.re;
-            d * d * (0.5 * self.k)
-        }
-    }
-    fn cutoff(&self) -> Option<f64> {
-        Some(self.re)
-    }
-}
+}, cutoff: |self| Some(self.re) }
 
 /// Lennard-Jones U = De [(re/r)¹² − 2 (re/r)⁶] (minimum −De at r = re). With a cutoff rc the potential
 /// is truncated and shifted, U − U(rc) for r < rc and 0 beyond (continuous energy).
@@ -166,26 +143,15 @@ impl LennardJones {
     }
 }
 
-impl PairPotential for LennardJones {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
-    }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
-        if let Some(rc) = self.rc {
-            if s.re() >= rc * rc {
-                return D::zero();
-            }
+central! { LennardJones, |self, s, _, _| {
+    if let Some(rc) = self.rc {
+        if s.re() >= rc * rc {
+            return D::zero();
         }
-        let s3 = (s.recip() * (self.re * self.re)).powi(3);
-        (s3 * s3 - s3 * 2.0) * self.de - self.shift
     }
-    fn cutoff(&self) -> Option<f64> {
-        self.rc
-    }
-}
+    let s3 = (s.recip() * (self.re * self.re)).powi(3);
+    (s3 * s3 - s3 * 2.0) * self.de - self.shift
+}, cutoff: |self| self.rc }
 
 /// The Gaussian coupling of the chains paper, U = k2 exp(−r² / (2σ²)) (repulsive for k2 > 0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,17 +162,7 @@ pub struct GaussianCoupling {
     pub sigma: f64,
 }
 
-impl PairPotential for GaussianCoupling {
-    #[inline(always)]
-    fn energy<D: Scalar>(&self, r: [D; 3], p1: &Particle, p2: &Particle) -> D {
-        self.radial(r2(&r), p1, p2)
-    }
-    const RADIAL: bool = true;
-    #[inline(always)]
-    fn radial<D: Scalar>(&self, s: D, _: &Particle, _: &Particle) -> D {
-        (s * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2
-    }
-}
+central! { GaussianCoupling, |self, s, _, _| (s * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2 }
 
 /// A central force with any scalar law f(r): F21 = f(r) r̂ (f > 0 repulsive). Given as a force, not a
 /// potential, so it enters the Lagrangian as a generalized force.

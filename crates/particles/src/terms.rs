@@ -121,31 +121,34 @@ pub(crate) fn range_start(indices: &[u32]) -> Option<usize> {
     range.then_some(s as usize)
 }
 
-/// The serial path of a chain of `m` pairs (s, s+1), …, (s+m−1, s+m), streaming through positions,
-/// particles and forces (no index list, no bounds check per term). Each particle receives the same
-/// additions in the same order as over the list, (f − ∇U_{k−1}) + ∇U_k, so the result is bit-identical.
+/// Particles s, …, s+m−1 of the position array, the particle list and the force array.
+#[inline(always)]
+pub(crate) fn span<'a>(
+    x: &'a [f64],
+    ps: &'a [Particle],
+    f: &'a mut [f64],
+    s: usize,
+    m: usize,
+) -> (&'a [f64], &'a [Particle], &'a mut [f64]) {
+    (&x[3 * s..3 * (s + m)], &ps[s..s + m], &mut f[3 * s..3 * (s + m)])
+}
+
+/// The serial path of a chain of pairs (0, 1), (1, 2), … over the particles of `x`, `ps` and `f` (a
+/// [`span`]), streaming through positions, particles and forces (no index list, no bounds check per
+/// term). Each particle receives the same additions in the same order as over the list,
+/// (f − ∇U_{k−1}) + ∇U_k, so the result is bit-identical.
 ///
 /// Not inlined on purpose: as arguments of their own function, `pot` and `f` are known not to alias,
 /// so the potential's parameters stay in registers instead of being reloaded after every store to `f`.
 #[inline(never)]
-pub(crate) fn chain_forces<P: PairPotential>(
-    pot: &P,
-    s: usize,
-    m: usize,
-    x: &[f64],
-    ps: &[Particle],
-    f: &mut [f64],
-) -> f64 {
-    let xs = &x[3 * s..3 * (s + m + 1)];
-    let fs = &mut f[3 * s..3 * (s + m + 1)];
-    let ps = &ps[s..s + m + 1];
+pub(crate) fn chain_forces<P: PairPotential>(pot: &P, x: &[f64], ps: &[Particle], f: &mut [f64]) -> f64 {
     let mut energy = ChunkedSum::new();
     // ∇U of the previous pair, still to be subtracted from the current particle.
     let mut carry = [0.0; 3];
-    for ((((a, b), fa), p1), p2) in xs
+    for ((((a, b), fa), p1), p2) in x
         .chunks_exact(3)
-        .zip(xs[3..].chunks_exact(3))
-        .zip(fs.chunks_exact_mut(3))
+        .zip(x[3..].chunks_exact(3))
+        .zip(f.chunks_exact_mut(3))
         .zip(ps)
         .zip(&ps[1..])
     {
@@ -156,28 +159,22 @@ pub(crate) fn chain_forces<P: PairPotential>(
         }
         carry = g;
     }
-    sub3(fs, m, carry);
+    sub3(f, ps.len() - 1, carry);
     energy.sum()
 }
 
-/// The serial path of one-body terms on the particles s, …, s+m−1, streaming through the arrays (not
-/// inlined, for the reason given at [`chain_forces`]).
+/// The serial path of one-body terms on every particle of `x`, `ps` and `f` (a [`span`]), streaming
+/// through the arrays (not inlined, for the reason given at [`chain_forces`]).
 #[inline(never)]
 pub(crate) fn range_forces<P: OnePotential>(
     pot: &P,
     t: f64,
-    s: usize,
-    m: usize,
     x: &[f64],
     ps: &[Particle],
     f: &mut [f64],
 ) -> f64 {
     let mut energy = ChunkedSum::new();
-    let terms = x[3 * s..3 * (s + m)]
-        .chunks_exact(3)
-        .zip(f[3 * s..3 * (s + m)].chunks_exact_mut(3))
-        .zip(&ps[s..s + m]);
-    for ((r, fa), p) in terms {
+    for ((r, fa), p) in x.chunks_exact(3).zip(f.chunks_exact_mut(3)).zip(ps) {
         let (u, g) = one_gradient(pot, t, [r[0], r[1], r[2]], p);
         energy.add(u);
         for k in 0..3 {
