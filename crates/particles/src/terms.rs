@@ -71,39 +71,6 @@ pub(crate) fn run_serial<T>(
     total
 }
 
-/// The energy sum of the serial paths: terms summed per chunk of [`CHUNK`], then the chunks in order
-/// (the order of `run_parallel`).
-struct ChunkedSum {
-    total: f64,
-    chunk: f64,
-    left: usize,
-}
-
-impl ChunkedSum {
-    #[inline(always)]
-    fn new() -> Self {
-        ChunkedSum {
-            total: 0.0,
-            chunk: 0.0,
-            left: CHUNK,
-        }
-    }
-    #[inline(always)]
-    fn add(&mut self, u: f64) {
-        self.chunk += u;
-        self.left -= 1;
-        if self.left == 0 {
-            self.total += self.chunk;
-            self.chunk = 0.0;
-            self.left = CHUNK;
-        }
-    }
-    #[inline(always)]
-    fn sum(self) -> f64 {
-        self.total + self.chunk
-    }
-}
-
 /// The first index s when `pairs` is the chain (s, s+1), (s+1, s+2), …: such a list is evaluated by
 /// streaming through the arrays ([`chain_forces`]).
 pub(crate) fn chain_start(pairs: &[[u32; 2]]) -> Option<usize> {
@@ -136,31 +103,39 @@ pub(crate) fn span<'a>(
 /// The serial path of a chain of pairs (0, 1), (1, 2), … over the particles of `x`, `ps` and `f` (a
 /// [`span`]), streaming through positions, particles and forces (no index list, no bounds check per
 /// term). Each particle receives the same additions in the same order as over the list,
-/// (f − ∇U_{k−1}) + ∇U_k, so the result is bit-identical.
+/// (f − ∇U_{k−1}) + ∇U_k, and the energies are summed per chunk of [`CHUNK`] terms and then over the
+/// chunks, as on the parallel path, so the result is bit-identical.
 ///
 /// Not inlined on purpose: as arguments of their own function, `pot` and `f` are known not to alias,
 /// so the potential's parameters stay in registers instead of being reloaded after every store to `f`.
 #[inline(never)]
 pub(crate) fn chain_forces<P: PairPotential>(pot: &P, x: &[f64], ps: &[Particle], f: &mut [f64]) -> f64 {
-    let mut energy = ChunkedSum::new();
+    let pairs = ps.len() - 1;
+    let mut total = 0.0;
     // ∇U of the previous pair, still to be subtracted from the current particle.
     let mut carry = [0.0; 3];
-    for ((((a, b), fa), p1), p2) in x
-        .chunks_exact(3)
-        .zip(x[3..].chunks_exact(3))
-        .zip(f.chunks_exact_mut(3))
-        .zip(ps)
-        .zip(&ps[1..])
-    {
-        let (u, g) = pair_gradient(pot, [b[0] - a[0], b[1] - a[1], b[2] - a[2]], p1, p2);
-        energy.add(u);
-        for k in 0..3 {
-            fa[k] = fa[k] - carry[k] + g[k];
+    for c in (0..pairs).step_by(CHUNK) {
+        let n = CHUNK.min(pairs - c);
+        let (x, ps, f) = span(x, ps, f, c, n + 1);
+        let mut energy = 0.0;
+        for ((((a, b), fa), p1), p2) in x
+            .chunks_exact(3)
+            .zip(x[3..].chunks_exact(3))
+            .zip(f.chunks_exact_mut(3))
+            .zip(ps)
+            .zip(&ps[1..])
+        {
+            let (u, g) = pair_gradient(pot, [b[0] - a[0], b[1] - a[1], b[2] - a[2]], p1, p2);
+            energy += u;
+            for k in 0..3 {
+                fa[k] = fa[k] - carry[k] + g[k];
+            }
+            carry = g;
         }
-        carry = g;
+        total += energy;
     }
-    sub3(f, ps.len() - 1, carry);
-    energy.sum()
+    sub3(f, pairs, carry);
+    total
 }
 
 /// The serial path of one-body terms on every particle of `x`, `ps` and `f` (a [`span`]), streaming
@@ -173,13 +148,21 @@ pub(crate) fn range_forces<P: OnePotential>(
     ps: &[Particle],
     f: &mut [f64],
 ) -> f64 {
-    let mut energy = ChunkedSum::new();
-    for ((r, fa), p) in x.chunks_exact(3).zip(f.chunks_exact_mut(3)).zip(ps) {
-        let (u, g) = one_gradient(pot, t, [r[0], r[1], r[2]], p);
-        energy.add(u);
-        for k in 0..3 {
-            fa[k] -= g[k];
+    let mut total = 0.0;
+    for ((x, f), ps) in x
+        .chunks(3 * CHUNK)
+        .zip(f.chunks_mut(3 * CHUNK))
+        .zip(ps.chunks(CHUNK))
+    {
+        let mut energy = 0.0;
+        for ((r, fa), p) in x.chunks_exact(3).zip(f.chunks_exact_mut(3)).zip(ps) {
+            let (u, g) = one_gradient(pot, t, [r[0], r[1], r[2]], p);
+            energy += u;
+            for k in 0..3 {
+                fa[k] -= g[k];
+            }
         }
+        total += energy;
     }
-    energy.sum()
+    total
 }
