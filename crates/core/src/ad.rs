@@ -385,11 +385,7 @@ pub fn lagrange_terms<F: Field, const N: usize>(
     y: &[f64; N],
 ) -> LagrangeTerms<N> {
     type J<const N: usize> = LagrangeJet64<N>;
-    let unit = |i: usize| {
-        let mut e = SMatrix::<f64, 1, N>::zeros();
-        e[i] = 1.0;
-        Part::some(e)
-    };
+    let unit = |i: usize| Part::unit(Const::<N>, i);
     // Absent parts stay `None`: a function of q alone never carries a q̇-part, and so on.
     let (zero, zero_h) = (Part::none, Part::none);
     let mut xs = [J::<N>::from_re(0.0); N];
@@ -400,13 +396,13 @@ pub fn lagrange_terms<F: Field, const N: usize>(
     }
     let tt = J::new(t, zero(), 1.0, zero(), zero(), zero_h());
     let r = f.eval(tt, &xs, &ys);
-    let row = |p: Part<f64, f64, U1, Const<N>>| p.0.map_or_else(SVector::zeros, |m| m.transpose());
+    let row = |p: &Part<f64, f64, U1, Const<N>>| p.get().map_or_else(SVector::zeros, |m| m.transpose());
     LagrangeTerms {
         value: r.re,
-        grad_x: row(r.gx),
-        grad_y: row(r.gw),
-        mixed: row(r.hsw),
-        hess_yy: r.hww.0.unwrap_or_else(SMatrix::zeros),
+        grad_x: row(&r.gx),
+        grad_y: row(&r.gw),
+        mixed: row(&r.hsw),
+        hess_yy: r.hww.matrix(Const::<N>),
     }
 }
 

@@ -36,33 +36,38 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
     }
 }
 
-/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: an in-place Cholesky
-/// factorization M = L Lᵀ with the same relative-pivot test as [`MassFactor::new`]. An indefinite or
-/// non-finite M goes through [`MassFactor`] (LU, or the error it reports).
+/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: an in-place LDLᵀ
+/// factorization M = L D Lᵀ (L unit lower triangular; no square root, one division per pivot) with the
+/// same relative-pivot test as [`MassFactor::new`] (the pivots d_j are the squared diagonal of the
+/// Cholesky factor). An indefinite or non-finite M goes through [`MassFactor`] (LU, or the error it
+/// reports).
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
-    // Column-major: l[(i, j)] for i ≥ j holds L; the strict upper triangle keeps M (unused).
+    // Column-major: l[(i, j)] for i > j holds L; the diagonal and the strict upper triangle keep M.
     let mut l = m;
+    let (mut dd, mut inv_d) = ([0.0; N], [0.0; N]);
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
     for j in 0..N {
-        let mut d = l[(j, j)];
+        // w[k] = l_jk d_k for k < j (the row of L D).
+        let mut w = [0.0; N];
+        let mut d = m[(j, j)];
         for k in 0..j {
-            d -= l[(j, k)] * l[(j, k)];
+            w[k] = l[(j, k)] * dd[k];
+            d -= l[(j, k)] * w[k];
         }
-        // d is the j-th pivot (a squared diagonal entry of L).
+        // d is the j-th pivot.
         if d.is_nan() || d <= 0.0 {
             return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
                 .map(|f| f.solve_in_place(b.as_mut_slice()));
         }
         lo = lo.min(d);
         hi = hi.max(d);
-        let djj = d.sqrt();
-        l[(j, j)] = djj;
-        let inv = 1.0 / djj;
+        let inv = 1.0 / d;
+        (dd[j], inv_d[j]) = (d, inv);
         for i in j + 1..N {
-            let mut s = l[(i, j)];
+            let mut s = m[(i, j)];
             for k in 0..j {
-                s -= l[(i, k)] * l[(j, k)];
+                s -= l[(i, k)] * w[k];
             }
             l[(i, j)] = s * inv;
         }
@@ -71,19 +76,20 @@ fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, 
         return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
             .map(|f| f.solve_in_place(b.as_mut_slice()));
     }
+    // L y = b, then Lᵀ x = D⁻¹ y.
     for i in 0..N {
         let mut s = b[i];
         for k in 0..i {
             s -= l[(i, k)] * b[k];
         }
-        b[i] = s / l[(i, i)];
+        b[i] = s;
     }
     for i in (0..N).rev() {
-        let mut s = b[i];
+        let mut s = b[i] * inv_d[i];
         for k in i + 1..N {
             s -= l[(k, i)] * b[k];
         }
-        b[i] = s / l[(i, i)];
+        b[i] = s;
     }
     Ok(())
 }
