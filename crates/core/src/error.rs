@@ -151,6 +151,7 @@ pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
 
 /// Checks a phase point (t, q, v): q and v of length `dof` (q first), then t, q, v finite. `v_name`
 /// names the second half in the error ("q̇", "p", "v").
+#[inline]
 pub fn check_phase_point(dof: usize, t: f64, q: &[f64], v: &[f64], v_name: &'static str) -> Result<()> {
     check_len("q", q, dof)?;
     check_len(v_name, v, dof)?;
