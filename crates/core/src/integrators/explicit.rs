@@ -39,47 +39,50 @@ fn shifted(out: &mut Pair, q: &[f64], v: &[f64], a: f64, k: &Pair) {
     }
 }
 
-/// Forward Euler, order 1: (q, v) ← (q, v) + h F(t, q, v).
-pub struct Euler<S> {
+/// A first-order method with one evaluation of the vector field per step: [`Euler`] or
+/// [`EulerCromer`], by the update rule `R`.
+pub struct FirstOrder<S, R> {
     system: S,
     /// The rates F, then the new state.
     y: Pair,
+    _rule: std::marker::PhantomData<R>,
 }
 
-impl<S: Dynamics> Euler<S> {
-    /// Forward Euler for `system`.
-    pub fn new(system: S) -> Self {
-        Euler {
-            y: Pair::new(system.dof()),
-            system,
-        }
-    }
-
-    /// The system stepped.
-    pub fn system(&self) -> &S {
-        &self.system
-    }
+/// The update (q, v) ↦ (q', v') of a [`FirstOrder`] method.
+pub trait FirstOrderRule {
+    /// Short name.
+    const NAME: &'static str;
+    /// Writes the new (q', v') of a step h from `at` = (t, q, v) into `new_q`, `new_v` (which the
+    /// caller checks for finiteness).
+    fn advance<S: Dynamics>(
+        system: &S,
+        at: (f64, &[f64], &[f64]),
+        h: f64,
+        new_q: &mut [f64],
+        new_v: &mut [f64],
+    ) -> Result<()>;
 }
 
-impl<S: Dynamics> Stepper for Euler<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
-        check_step(h)?;
-        state.validate(self.system.dof())?;
-        let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        let y = &mut self.y;
-        self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
-        y.q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        y.v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        y.commit(state, h)
-    }
-    fn dof(&self) -> usize {
-        self.system.dof()
-    }
-    fn order(&self) -> u32 {
-        1
-    }
-    fn name(&self) -> &'static str {
-        "Euler"
+/// Forward Euler, order 1: (q, v) ← (q, v) + h F(t, q, v).
+pub type Euler<S> = FirstOrder<S, Forward>;
+
+/// The forward Euler rule (see [`Euler`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Forward;
+
+impl FirstOrderRule for Forward {
+    const NAME: &'static str = "Euler";
+    fn advance<S: Dynamics>(
+        system: &S,
+        (t, q, v): (f64, &[f64], &[f64]),
+        h: f64,
+        new_q: &mut [f64],
+        new_v: &mut [f64],
+    ) -> Result<()> {
+        system.rates(t, q, v, new_q, new_v)?;
+        new_q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
+        new_v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
+        Ok(())
     }
 }
 
@@ -90,18 +93,39 @@ impl<S: Dynamics> Stepper for Euler<S> {
 /// For L = T(q̇) − V(q) (q̇ = v, v̇ depending on q only) and for separable H = T(p) + V(q) this is the
 /// symplectic Euler method; on other systems it is an explicit first-order method without that
 /// property. It costs one vector field and one [`Dynamics::position_rates`] per step.
-pub struct EulerCromer<S> {
-    system: S,
-    /// The rates F, then the new state.
-    y: Pair,
+pub type EulerCromer<S> = FirstOrder<S, Cromer>;
+
+/// The Euler-Cromer rule (see [`EulerCromer`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Cromer;
+
+impl FirstOrderRule for Cromer {
+    const NAME: &'static str = "Euler-Cromer";
+    fn advance<S: Dynamics>(
+        system: &S,
+        (t, q, v): (f64, &[f64], &[f64]),
+        h: f64,
+        new_q: &mut [f64],
+        new_v: &mut [f64],
+    ) -> Result<()> {
+        system.rates(t, q, v, new_q, new_v)?;
+        new_v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
+        if new_v.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        system.position_rates(t, q, new_v, new_q)?;
+        new_q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
+        Ok(())
+    }
 }
 
-impl<S: Dynamics> EulerCromer<S> {
-    /// Euler-Cromer for `system`.
+impl<S: Dynamics, R: FirstOrderRule> FirstOrder<S, R> {
+    /// The method for `system`.
     pub fn new(system: S) -> Self {
-        EulerCromer {
+        FirstOrder {
             y: Pair::new(system.dof()),
             system,
+            _rule: std::marker::PhantomData,
         }
     }
 
@@ -111,20 +135,13 @@ impl<S: Dynamics> EulerCromer<S> {
     }
 }
 
-impl<S: Dynamics> Stepper for EulerCromer<S> {
+impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        let y = &mut self.y;
-        self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
-        y.v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        if y.v.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        self.system.position_rates(t, q, &y.v, &mut y.q)?;
-        y.q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        y.commit(state, h)
+        R::advance(&self.system, (t, q, v), h, &mut self.y.q, &mut self.y.v)?;
+        self.y.commit(state, h)
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -133,7 +150,7 @@ impl<S: Dynamics> Stepper for EulerCromer<S> {
         1
     }
     fn name(&self) -> &'static str {
-        "Euler-Cromer"
+        R::NAME
     }
 }
 

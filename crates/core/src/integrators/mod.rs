@@ -18,6 +18,6 @@ pub mod symplectic;
 pub use adaptive::{Adaptive, AdaptiveStats, Controller, DenseOutput, EmbeddedPair};
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
-pub use explicit::{Euler, EulerCromer, Rk4};
+pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
 pub use gauss::{Gauss, LinearizedDynamics};
 pub use symplectic::{Composition, SplitDynamics, SymplecticEuler};
