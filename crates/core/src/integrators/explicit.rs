@@ -39,8 +39,9 @@ fn shifted(out: &mut Pair, q: &[f64], v: &[f64], a: f64, k: &Pair) {
     }
 }
 
-/// A first-order method with one evaluation of the vector field per step: [`Euler`] or
-/// [`EulerCromer`], by the update rule `R`.
+/// A first-order method with one evaluation of the vector field F = (q̇, v̇) per step: [`Euler`] or
+/// [`EulerCromer`], by the update rule `R`. Both take v' = v + h v̇(t, q, v); they differ in the
+/// velocities q̇ is evaluated at for q' = q + h q̇.
 pub struct FirstOrder<S, R> {
     system: S,
     /// The rates F, then the new state.
@@ -48,19 +49,13 @@ pub struct FirstOrder<S, R> {
     _rule: std::marker::PhantomData<R>,
 }
 
-/// The update (q, v) ↦ (q', v') of a [`FirstOrder`] method.
+/// Which of the two first-order updates a [`FirstOrder`] method makes.
 pub trait FirstOrderRule {
     /// Short name.
     const NAME: &'static str;
-    /// Writes the new (q', v') of a step h from `at` = (t, q, v) into `new_q`, `new_v` (which the
-    /// caller checks for finiteness).
-    fn advance<S: Dynamics>(
-        system: &S,
-        at: (f64, &[f64], &[f64]),
-        h: f64,
-        new_q: &mut [f64],
-        new_v: &mut [f64],
-    ) -> Result<()>;
+    /// `false`: q' = q + h q̇(t, q, v) (forward Euler); `true`: q' = q + h q̇(t, q, v') with the new
+    /// velocities v' (Euler-Cromer).
+    const NEW_VELOCITIES: bool;
 }
 
 /// Forward Euler, order 1: (q, v) ← (q, v) + h F(t, q, v).
@@ -72,18 +67,7 @@ pub struct Forward;
 
 impl FirstOrderRule for Forward {
     const NAME: &'static str = "Euler";
-    fn advance<S: Dynamics>(
-        system: &S,
-        (t, q, v): (f64, &[f64], &[f64]),
-        h: f64,
-        new_q: &mut [f64],
-        new_v: &mut [f64],
-    ) -> Result<()> {
-        system.rates(t, q, v, new_q, new_v)?;
-        new_q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        new_v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        Ok(())
-    }
+    const NEW_VELOCITIES: bool = false;
 }
 
 /// Euler-Cromer (semi-implicit, or symplectic, Euler), order 1:
@@ -101,22 +85,12 @@ pub struct Cromer;
 
 impl FirstOrderRule for Cromer {
     const NAME: &'static str = "Euler-Cromer";
-    fn advance<S: Dynamics>(
-        system: &S,
-        (t, q, v): (f64, &[f64], &[f64]),
-        h: f64,
-        new_q: &mut [f64],
-        new_v: &mut [f64],
-    ) -> Result<()> {
-        system.rates(t, q, v, new_q, new_v)?;
-        new_v.iter_mut().zip(v).for_each(|(d, x)| *d = x + h * *d);
-        if new_v.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        system.position_rates(t, q, new_v, new_q)?;
-        new_q.iter_mut().zip(q).for_each(|(d, x)| *d = x + h * *d);
-        Ok(())
-    }
+    const NEW_VELOCITIES: bool = true;
+}
+
+/// x + h·ẋ in place: `rate` holds ẋ on entry and the advanced value on exit.
+fn advance(rate: &mut [f64], x: &[f64], h: f64) {
+    rate.iter_mut().zip(x).for_each(|(d, x)| *d = x + h * *d);
 }
 
 impl<S: Dynamics, R: FirstOrderRule> FirstOrder<S, R> {
@@ -140,8 +114,18 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
-        R::advance(&self.system, (t, q, v), h, &mut self.y.q, &mut self.y.v)?;
-        self.y.commit(state, h)
+        let y = &mut self.y;
+        self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
+        advance(&mut y.v, v, h); // v' = v + h v̇(t, q, v)
+        if R::NEW_VELOCITIES {
+            // Euler-Cromer: q̇ at the new velocities v'.
+            if y.v.iter().any(|x| !x.is_finite()) {
+                return Err(Error::NonFiniteState { step: 0, t });
+            }
+            self.system.position_rates(t, q, &y.v, &mut y.q)?;
+        }
+        advance(&mut y.q, q, h); // q' = q + h q̇
+        y.commit(state, h)
     }
     fn dof(&self) -> usize {
         self.system.dof()
