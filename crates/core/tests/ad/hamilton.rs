@@ -1,7 +1,8 @@
 //! Hamilton's equations q̇ = ∂H/∂p, ṗ = −∂H/∂q by AD against hand-derived right-hand sides.
 
-use crate::{assert_rel, draw, rng};
+use crate::{assert_rel, draw, for_states, Sample};
 use noether_core::{HamiltonEquations, Hamiltonian, Scalar};
+use rand::rngs::StdRng;
 use rand::Rng;
 
 /// Kepler in polar coordinates: H = p_r²/(2m) + p_φ²/(2 m r²) − k/r.
@@ -64,21 +65,24 @@ fn rates<H: Hamiltonian>(h: &HamiltonEquations<H>, t: f64, q: &[f64], p: &[f64])
     (dq, dp)
 }
 
+/// A Kepler state (0, q, p) with r in [0.5, 3).
+fn kepler_state(r: &mut StdRng) -> Sample<2> {
+    let q = [r.random_range(0.5..3.0), r.random_range(-3.0..3.0)];
+    (0.0, q, draw(r, -2.0, 2.0))
+}
+
 #[test]
 fn ad_vs_hand_hamilton_kepler() {
     // ṙ = p_r/m, φ̇ = p_φ/(m r²), ṗ_r = p_φ²/(m r³) − k/r², ṗ_φ = 0.
     let sys = KeplerH { m: 1.1, k: 2.7 };
     let h = HamiltonEquations::new(sys);
-    let mut r = rng(31);
-    for _ in 0..100 {
-        let q = [r.random_range(0.5..3.0), r.random_range(-3.0..3.0)];
-        let p = draw::<2>(&mut r, -2.0, 2.0);
-        let (dq, dp) = rates(&h, 0.0, &q, &p);
+    for_states(31, 100, kepler_state, |t, q, p| {
+        let (dq, dp) = rates(&h, t, q, p);
         let rr = q[0];
         assert_rel("Kepler q̇", &dq, &[p[0] / sys.m, p[1] / (sys.m * rr * rr)], 1.0);
         let hand_dp = [p[1] * p[1] / (sys.m * rr.powi(3)) - sys.k / (rr * rr), 0.0];
         assert_rel("Kepler ṗ", &dp, &hand_dp, 1.0);
-    }
+    });
 }
 
 #[test]
@@ -86,11 +90,8 @@ fn ad_vs_hand_hamilton_kepler_hessian() {
     // H_rr = 3 p_φ²/(m r⁴) − 2k/r³, H_{r p_φ} = −2 p_φ/(m r³), H_pp = diag(1/m, 1/(m r²)), others 0.
     let sys = KeplerH { m: 1.1, k: 2.7 };
     let h = HamiltonEquations::new(sys);
-    let mut r = rng(32);
-    for _ in 0..50 {
-        let q = [r.random_range(0.5..3.0), r.random_range(-3.0..3.0)];
-        let p = draw::<2>(&mut r, -2.0, 2.0);
-        let hess = h.hessian(0.0, &q, &p).unwrap();
+    for_states(32, 50, kepler_state, |t, q, p| {
+        let hess = h.hessian(t, q, p).unwrap();
         let (rr, m) = (q[0], sys.m);
         let mut hand = nalgebra::DMatrix::<f64>::zeros(4, 4);
         hand[(0, 0)] = 3.0 * p[1] * p[1] / (m * rr.powi(4)) - 2.0 * sys.k / rr.powi(3);
@@ -99,7 +100,7 @@ fn ad_vs_hand_hamilton_kepler_hessian() {
         hand[(2, 2)] = 1.0 / m;
         hand[(3, 3)] = 1.0 / (m * rr * rr);
         assert_rel("Kepler Hessian", hess.as_slice(), hand.as_slice(), 1.0);
-    }
+    });
 }
 
 #[test]
@@ -111,14 +112,13 @@ fn ad_vs_hand_hamilton_relativistic() {
         k: 0.7,
     };
     let h = HamiltonEquations::new(sys);
-    let mut r = rng(33);
-    for _ in 0..100 {
-        let (q, p) = (draw::<3>(&mut r, -2.0, 2.0), draw::<3>(&mut r, -5.0, 5.0));
-        let (dq, dp) = rates(&h, 0.0, &q, &p);
+    let state = |r: &mut StdRng| -> Sample<3> { (0.0, draw(r, -2.0, 2.0), draw(r, -5.0, 5.0)) };
+    for_states(33, 100, state, |t, q, p| {
+        let (dq, dp) = rates(&h, t, q, p);
         let e = (p.iter().map(|x| x * x).sum::<f64>() + (sys.m * sys.c).powi(2)).sqrt();
         assert_rel("relativistic q̇", &dq, &p.map(|x| sys.c * x / e), 1.0);
         assert_rel("relativistic ṗ", &dp, &q.map(|x| -sys.k * x), 1.0);
-    }
+    });
 }
 
 #[test]
@@ -127,11 +127,10 @@ fn ad_vs_hand_hamilton_charge_explicit_time() {
     // ṗ_x = (e/m) π_y B/2 − e κ x, ṗ_y = −(e/m) π_x B/2 − e κ y, ṗ_z = −e E0 cos ωt.
     let s = crate::systems::ChargeInField::default();
     let h = HamiltonEquations::new(ChargeH(s));
-    let mut r = rng(34);
-    for _ in 0..100 {
-        let t = r.random_range(-5.0..5.0);
-        let (q, p) = (draw::<3>(&mut r, -2.0, 2.0), draw::<3>(&mut r, -3.0, 3.0));
-        let (dq, dp) = rates(&h, t, &q, &p);
+    let state =
+        |r: &mut StdRng| -> Sample<3> { (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0)) };
+    for_states(34, 100, state, |t, q, p| {
+        let (dq, dp) = rates(&h, t, q, p);
         let (b, _) = s.field(t);
         let pi = [p[0] + 0.5 * s.e * b * q[1], p[1] - 0.5 * s.e * b * q[0], p[2]];
         assert_rel("charge q̇", &dq, &pi.map(|x| x / s.m), 1.0);
@@ -141,5 +140,5 @@ fn ad_vs_hand_hamilton_charge_explicit_time() {
             -s.e * s.e0 * (s.omega * t).cos(),
         ];
         assert_rel("charge ṗ", &dp, &hand_dp, 1.0);
-    }
+    });
 }
