@@ -60,32 +60,39 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
     }
     fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
         self.problem.jacobian(x, &mut self.jac)?;
-        if self.jac.iter().any(|v| !v.is_finite()) {
-            return Err(Error::SingularMatrix {
-                what: "Newton Jacobian (non-finite entries)",
-            });
-        }
-        let lu = self.jac.clone().lu();
-        if !lu.is_invertible() {
-            return Err(Error::SingularMatrix {
-                what: "Newton Jacobian",
-            });
-        }
-        self.lu = Some(lu);
+        self.lu = Some(lu_factor(&self.jac, "Newton Jacobian")?);
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let lu = self.lu.as_ref().ok_or(Error::SingularMatrix {
-            what: "Newton Jacobian (not factored)",
-        })?;
-        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
-        if lu.solve_mut(&mut b) {
-            Ok(())
-        } else {
-            Err(Error::SingularMatrix {
-                what: "Newton Jacobian",
-            })
-        }
+        lu_solve(self.lu.as_ref(), rhs, "Newton Jacobian")
+    }
+}
+
+/// A dense LU factor, as kept by the Newton systems with a dense Jacobian.
+pub type DenseLu = nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>;
+
+/// LU-factors a dense Newton Jacobian (a copy of `jac`), with [`Error::SingularMatrix`] naming `what`
+/// when an entry is not finite or the factor is singular.
+pub fn lu_factor(jac: &DMatrix<f64>, what: &'static str) -> Result<DenseLu> {
+    if jac.iter().any(|v| !v.is_finite()) {
+        return Err(Error::SingularMatrix { what });
+    }
+    let lu = jac.clone().lu();
+    if !lu.is_invertible() {
+        return Err(Error::SingularMatrix { what });
+    }
+    Ok(lu)
+}
+
+/// Overwrites `rhs` with J⁻¹ rhs by the factor `lu`; [`Error::SingularMatrix`] naming `what` when there
+/// is no factor or it is singular.
+pub fn lu_solve(lu: Option<&DenseLu>, rhs: &mut [f64], what: &'static str) -> Result<()> {
+    let lu = lu.ok_or(Error::SingularMatrix { what })?;
+    let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
+    if lu.solve_mut(&mut b) {
+        Ok(())
+    } else {
+        Err(Error::SingularMatrix { what })
     }
 }
 
@@ -152,14 +159,28 @@ impl Newton {
     /// Solves `sys` starting from `x` (overwritten by the solution). On failure `x` holds the last
     /// iterate and the error carries the iteration count and the last residual norm.
     pub fn solve<S: NewtonSystem + ?Sized>(&self, sys: &mut S, x: &mut [f64]) -> Result<NewtonInfo> {
+        self.solve_reusing(sys, x, false)
+    }
+
+    /// As [`solve`](Self::solve); when `factored` (and [`reuse_jacobian`](Self::reuse_jacobian) is on)
+    /// the system already holds a Jacobian factor from an earlier solve (say the last time step) and the
+    /// first iterations use it, until the residual fails to contract by `contraction` (then the
+    /// Jacobian is refreshed at the current iterate, as in `solve`).
+    pub fn solve_reusing<S: NewtonSystem + ?Sized>(
+        &self,
+        sys: &mut S,
+        x: &mut [f64],
+        factored: bool,
+    ) -> Result<NewtonInfo> {
         let n = sys.dim();
         crate::error::check_len("Newton initial guess", x, n)?;
         let mut r = vec![0.0; n];
+        let mut dx = vec![0.0; n];
         let mut info = NewtonInfo::default();
         sys.residual(x, &mut r)?;
         let mut rnorm = max_norm(&r);
-        let mut fresh = false;
-        let mut factored = false;
+        let mut factored = factored && self.reuse_jacobian;
+        let mut fresh = factored;
         loop {
             if !rnorm.is_finite() {
                 return Err(self.diverged(info.iterations, rnorm));
@@ -176,7 +197,7 @@ impl Newton {
                 info.jacobians += 1;
                 factored = true;
             }
-            let mut dx = r.clone();
+            dx.copy_from_slice(&r);
             sys.solve(&mut dx)?;
             for (xi, di) in x.iter_mut().zip(&dx) {
                 *xi -= di;
