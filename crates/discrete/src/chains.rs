@@ -90,6 +90,7 @@ impl LocalPotential for CoupledChains {
             idx.extend([i, n + j]);
         }
     }
+    #[inline]
     fn term<D: Scalar>(&self, k: usize, x: &[D]) -> D {
         if k < self.springs() {
             let e = x[1] - x[0] - self.l;
@@ -135,6 +136,7 @@ impl LocalPotential for QuarticChain {
             idx.extend([i, i + 1]);
         }
     }
+    #[inline]
     fn term<D: Scalar>(&self, k: usize, x: &[D]) -> D {
         if k < self.n {
             let q2 = x[0] * x[0];

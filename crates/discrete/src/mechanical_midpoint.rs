@@ -15,6 +15,10 @@
 //! The Newton unknown is the increment Δ (q_{k+1} = q_k + Δ), not q_{k+1}: the momenta then carry no
 //! rounding from differencing large positions (ε|q|/h per component), and the total momentum of a
 //! translation-invariant system stays at rounding level even after the system has travelled far.
+//! The factor of J is kept from one step to the next (same h) and reused while it contracts the
+//! residual by the Newton `contraction` factor (modified Newton; J changes by O(h ∇³V Δ) per step), so
+//! most steps cost residual evaluations and triangular solves only; `Newton::reuse_jacobian(false)`
+//! refreshes it at every iteration.
 //! J is stored banded (LU with partial pivoting, O(N) for a chain) when the half-bandwidth of M + ∇²V is
 //! small against N, dense (LU) otherwise.
 
@@ -23,14 +27,12 @@ use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow,
 use crate::integrator::{effective_newton, DEFAULT_TOL};
 use crate::mechanical::{LocalPotential, Mechanical};
 use nalgebra::DMatrix;
+use noether_core::newton::{lu_factor, lu_solve, DenseLu};
 use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result};
 
 /// Storage of the Newton Jacobian.
 enum Jacobian {
-    Dense(
-        DMatrix<f64>,
-        Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
-    ),
+    Dense(DMatrix<f64>, Option<DenseLu>),
     Banded(usize, Option<BandedLu>),
 }
 
@@ -44,6 +46,8 @@ struct MidpointSystem<'a, P> {
     grad: &'a mut [f64],
     work: &'a mut [f64],
     jac: &'a mut Jacobian,
+    /// Step size the factor in `jac` was computed with (NaN when none).
+    factor_h: &'a mut f64,
 }
 
 impl<P: LocalPotential> MidpointSystem<'_, P> {
@@ -81,6 +85,7 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
 
     fn factor_jacobian(&mut self, d: &[f64]) -> Result<()> {
         self.midpoint(d);
+        *self.factor_h = f64::NAN;
         let (h, n) = (self.h, self.q0.len());
         let damping = self.sys.damping();
         match self.jac {
@@ -91,18 +96,7 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
                 if let Some(c) = damping {
                     (0..n).for_each(|i| m[(i, i)] += 0.5 * c[i]);
                 }
-                if m.iter().any(|v| !v.is_finite()) {
-                    return Err(Error::SingularMatrix {
-                        what: "midpoint Newton Jacobian (non-finite entries)",
-                    });
-                }
-                let f = m.clone().lu();
-                if !f.is_invertible() {
-                    return Err(Error::SingularMatrix {
-                        what: "midpoint Newton Jacobian",
-                    });
-                }
-                *lu = Some(f);
+                *lu = Some(lu_factor(m, "midpoint Newton Jacobian")?);
             }
             Jacobian::Banded(bw, lu) => {
                 let mut b = Banded::zeros(n, *bw, *bw);
@@ -114,27 +108,20 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
                 *lu = Some(b.factor()?);
             }
         }
+        *self.factor_h = h;
         Ok(())
     }
 
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let singular = Error::SingularMatrix {
-            what: "midpoint Newton Jacobian",
-        };
         match self.jac {
-            Jacobian::Dense(_, Some(lu)) => {
-                let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
-                if lu.solve_mut(&mut b) {
-                    Ok(())
-                } else {
-                    Err(singular)
-                }
-            }
+            Jacobian::Dense(_, lu) => lu_solve(lu.as_ref(), rhs, "midpoint Newton Jacobian"),
             Jacobian::Banded(_, Some(lu)) => {
                 lu.solve(rhs);
                 Ok(())
             }
-            _ => Err(singular),
+            Jacobian::Banded(_, None) => Err(Error::SingularMatrix {
+                what: "midpoint Newton Jacobian (not factored)",
+            }),
         }
     }
 }
@@ -192,6 +179,7 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
     pub fn dense(mut self) -> Self {
         let n = self.sys.dof();
         self.jac = Jacobian::Dense(DMatrix::zeros(n, n), None);
+        self.factor_h = f64::NAN;
         self
     }
 
@@ -236,18 +224,13 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
             grad: &mut self.grad,
             work: &mut self.work,
             jac: &mut self.jac,
+            factor_h: &mut self.factor_h,
         };
-        let info = newton.solve(&mut system, &mut self.d)?;
-        if info.iterations > 0 {
-            self.factor_h = h;
-        }
+        // A factor of the last step's Jacobian (same h) is reused while it contracts the residual.
+        let factored = *system.factor_h == h;
+        let info = newton.solve_reusing(&mut system, &mut self.d, factored)?;
         if info.iterations == 0 {
-            let factored = self.factor_h == h
-                && matches!(
-                    system.jac,
-                    Jacobian::Dense(_, Some(_)) | Jacobian::Banded(_, Some(_))
-                );
-            self.factor_h = h;
+            let factored = *system.factor_h == h;
             correct_once(&mut system, &mut self.d, factored)?;
         }
         // The last residual was evaluated at the solution: ∇V(m) is in `grad`, Δ/h in `work`.
