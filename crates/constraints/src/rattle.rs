@@ -63,7 +63,7 @@ use crate::dynamics::{max_abs, rank_error, within};
 use crate::holonomic::{self, Holonomic};
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::check_step;
-use noether_core::newton::{Dense, DenseProblem};
+use noether_core::newton::{lu_solve, Dense, DenseProblem};
 use noether_core::{
     Error, EulerLagrange, Lagrangian, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
 };
@@ -192,24 +192,17 @@ where
     /// The state (t, q, p = ∂L/∂q̇) of positions and velocities; both must satisfy the constraints
     /// (see [`check_state`](Self::check_state)).
     pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
-        let mut p = vec![0.0; self.ld.dof()];
-        self.ld.continuous().momenta(t, q, v, &mut p)?;
-        Ok(State::new(t, q.to_vec(), p))
+        self.ld.state_from_velocities(t, q, v)
     }
 
     /// The velocities q̇ of a state (t, q, p) by the inverse Legendre map.
     pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
-        self.ld
-            .continuous()
-            .velocities(state.t, state.q.as_slice(), state.v.as_slice())
+        self.ld.velocities_at(state)
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a state (t, q, p).
     pub fn energy(&self, state: &State) -> Result<f64> {
-        let v = self.velocities(state)?;
-        self.ld
-            .continuous()
-            .energy(state.t, state.q.as_slice(), v.as_slice())
+        self.ld.energy_at(state)
     }
 
     /// Checks that a state (t, q, p) lies on the constraint manifold to within the violation tolerance:
@@ -435,17 +428,8 @@ impl<P: DenseProblem> NewtonSystem for AcrossSteps<'_, P> {
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let (_, lu) = self.lu.as_ref().ok_or(Error::SingularMatrix {
-            what: "constrained variational Jacobian (not factored)",
-        })?;
-        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
-        if lu.solve_mut(&mut b) {
-            Ok(())
-        } else {
-            Err(Error::SingularMatrix {
-                what: "constrained variational Jacobian",
-            })
-        }
+        let lu = self.lu.as_ref().map(|(_, lu)| lu);
+        lu_solve(lu, rhs, "constrained variational Jacobian")
     }
 }
 

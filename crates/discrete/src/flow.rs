@@ -86,8 +86,9 @@ macro_rules! stepper_via_flow {
 }
 pub(crate) use stepper_via_flow;
 
-/// Remembers the last step (end point and displacement) to predict the next q_{k+1} by linear
-/// extrapolation, q_{k+1} ≈ q_k + (h/h_prev)(q_k − q_{k−1}), when the next step starts where the last ended.
+/// Remembers the last step (end point and increment) to predict the next increment by linear
+/// extrapolation, q_{k+1} − q_k ≈ (h/h_prev)(q_k − q_{k−1}), when the next step starts where the last
+/// ended.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Predictor {
     end: Vec<f64>,
@@ -96,15 +97,6 @@ pub(crate) struct Predictor {
 }
 
 impl Predictor {
-    /// Writes the initial Newton guess for a step from `q` of size `h` into `guess`.
-    pub(crate) fn guess(&self, q: &[f64], h: f64, guess: &mut [f64]) {
-        guess.copy_from_slice(q);
-        if self.h != 0.0 && self.end.as_slice() == q {
-            let s = h / self.h;
-            guess.iter_mut().zip(&self.dq).for_each(|(g, d)| *g += s * d);
-        }
-    }
-
     /// Writes the predicted increment q_{k+1} − q_k for a step from `q` of size `h` into `out` (zero
     /// when the step does not start where the last one ended).
     pub(crate) fn guess_increment(&self, q: &[f64], h: f64, out: &mut [f64]) {
@@ -122,15 +114,6 @@ impl Predictor {
         self.end.extend_from_slice(q1);
         self.dq.clear();
         self.dq.extend_from_slice(dq);
-        self.h = h;
-    }
-
-    /// Records a step from `q0` to `q1` of size `h`.
-    pub(crate) fn record(&mut self, q0: &[f64], q1: &[f64], h: f64) {
-        self.end.clear();
-        self.end.extend_from_slice(q1);
-        self.dq.clear();
-        self.dq.extend(q1.iter().zip(q0).map(|(b, a)| b - a));
         self.h = h;
     }
 }

@@ -1,14 +1,24 @@
 //! The variational integrator of any [`DiscreteLagrangian`] in position-momentum form, solved by the
 //! core Newton with the Jacobian D₁₂L_d from dual numbers.
 //!
-//! Given (q_k, p_k), solve for q_{k+1}
+//! Given (q_k, p_k), solve for the increment Δ = q_{k+1} − q_k
 //!
 //! ```text
-//! F(q_{k+1}) = p_k + D₁L_d(q_k, q_{k+1}) + f⁻(q_k, q_{k+1}) = 0,     ∂F/∂q_{k+1} = D₁₂L_d(q_k, q_{k+1}),
+//! F(Δ) = p_k + D₁L_d(q_k, q_k + Δ) + f⁻(q_k, q_k + Δ) = 0,     ∂F/∂Δ = D₁₂L_d(q_k, q_{k+1}),
 //! ```
 //!
 //! then set p_{k+1} = D₂L_d(q_k, q_{k+1}) + f⁺(q_k, q_{k+1}). Without forces this is the discrete
 //! Euler-Lagrange equation D₂L_d(q_{k−1}, q_k) + D₁L_d(q_k, q_{k+1}) = 0 written as a symplectic map.
+//!
+//! How it is evaluated, for conserved momenta at rounding level: the new momentum is accumulated as
+//! p_{k+1} = p_k + (D₁ + D₂)L_d + f⁻ + f⁺ (equal to D₂L_d + f⁺ + R, R = F(Δ) the Newton residual),
+//! with (D₁ + D₂)L_d, a small impulse, by one dual evaluation along a common shift of q_k and q_{k+1}
+//! (no cancellation), and q_{k+1} is stored exactly as the point L_d was evaluated at. For a symmetry
+//! ξ (linear in q) of L_d the discrete Noether identity D₁L_d·ξ(q_k) + D₂L_d·ξ(q_{k+1}) = 0 then gives
+//! J_{k+1} − J_k = R·ξ(Δ) for J = p·ξ(q), where taking p_{k+1} = D₂L_d gives R·ξ(q_k): the residual,
+//! which cannot go below ~ε|q|/h (q_{k+1} is a floating-point number), is weighted by the small
+//! increment instead of the position. Newton iterates on Δ, so the unknown carries no ε|q| rounding.
+//!
 //! The Jacobian neglects the derivative of the discrete forces (they come as plain `f64` from
 //! [`Lagrangian::generalized_force`](noether_core::Lagrangian::generalized_force)); Newton still converges
 //! to the exact solution of F = 0, linearly when the forces depend strongly on q_{k+1}.
@@ -38,6 +48,7 @@ use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::{check_finite, check_len};
+use noether_core::newton::{lu_factor, lu_solve, DenseLu};
 use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result, State};
 
 /// Default absolute Newton tolerance on the momentum residual.
@@ -50,60 +61,55 @@ pub(crate) fn effective_newton(newton: &Newton, p: &[f64]) -> Newton {
     newton.tol_residual(newton.tol_residual.max(floor))
 }
 
-/// The discrete Euler-Lagrange equation of one step as a Newton system in q_{k+1}.
+/// The discrete Euler-Lagrange equation of one step as a Newton system in the increment
+/// Δ = q_{k+1} − q_k.
 struct DelSystem<'a, Ld: ?Sized> {
     ld: &'a Ld,
     t0: f64,
     h: f64,
     q0: &'a [f64],
     p0: &'a [f64],
+    /// q₀ + Δ.
+    q1: &'a mut [f64],
     jac: &'a mut DMatrix<f64>,
-    lu: &'a mut Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    lu: &'a mut Option<DenseLu>,
     fm: &'a mut [f64],
     fp: &'a mut [f64],
+}
+
+const JACOBIAN: &str = "discrete Euler-Lagrange Jacobian D₁₂L_d";
+
+impl<Ld: DiscreteLagrangian + ?Sized> DelSystem<'_, Ld> {
+    fn end(&mut self, d: &[f64]) {
+        for ((q1, q0), di) in self.q1.iter_mut().zip(self.q0).zip(d) {
+            *q1 = q0 + di;
+        }
+    }
 }
 
 impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
     fn dim(&self) -> usize {
         self.q0.len()
     }
-    fn residual(&mut self, q1: &[f64], r: &mut [f64]) -> Result<()> {
-        self.ld.d1(self.t0, self.h, self.q0, q1, r);
+    fn residual(&mut self, d: &[f64], r: &mut [f64]) -> Result<()> {
+        self.end(d);
+        self.ld.d1(self.t0, self.h, self.q0, self.q1, r);
         r.iter_mut().zip(self.p0).for_each(|(ri, pi)| *ri += pi);
         if self.ld.has_discrete_force() {
             self.ld
-                .discrete_force(self.t0, self.h, self.q0, q1, self.fm, self.fp);
+                .discrete_force(self.t0, self.h, self.q0, self.q1, self.fm, self.fp);
             r.iter_mut().zip(self.fm.iter()).for_each(|(ri, fi)| *ri += fi);
         }
         Ok(())
     }
-    fn factor_jacobian(&mut self, q1: &[f64]) -> Result<()> {
-        self.ld.d12(self.t0, self.h, self.q0, q1, self.jac);
-        if self.jac.iter().any(|v| !v.is_finite()) {
-            return Err(Error::SingularMatrix {
-                what: "discrete Euler-Lagrange Jacobian D₁₂L_d (non-finite entries)",
-            });
-        }
-        let lu = self.jac.clone().lu();
-        if !lu.is_invertible() {
-            return Err(Error::SingularMatrix {
-                what: "discrete Euler-Lagrange Jacobian D₁₂L_d",
-            });
-        }
-        *self.lu = Some(lu);
+    fn factor_jacobian(&mut self, d: &[f64]) -> Result<()> {
+        self.end(d);
+        self.ld.d12(self.t0, self.h, self.q0, self.q1, self.jac);
+        *self.lu = Some(lu_factor(self.jac, JACOBIAN)?);
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let singular = Error::SingularMatrix {
-            what: "discrete Euler-Lagrange Jacobian D₁₂L_d",
-        };
-        let lu = self.lu.as_ref().ok_or(singular.clone())?;
-        let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
-        if lu.solve_mut(&mut b) {
-            Ok(())
-        } else {
-            Err(singular)
-        }
+        lu_solve(self.lu.as_ref(), rhs, JACOBIAN)
     }
 }
 
@@ -114,12 +120,14 @@ pub struct VariationalIntegrator<Ld> {
     ld: Ld,
     newton: Newton,
     predictor: Predictor,
+    /// The increment Δ = q_{k+1} − q_k (Newton's unknown).
+    d: Vec<f64>,
     q1: Vec<f64>,
-    p1: Vec<f64>,
+    dp: Vec<f64>,
     fm: Vec<f64>,
     fp: Vec<f64>,
     jac: DMatrix<f64>,
-    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    lu: Option<DenseLu>,
     last: NewtonInfo,
     /// Step size of the Jacobian factor kept from the last step.
     factor_h: f64,
@@ -134,8 +142,9 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
             ld,
             newton: Newton::default().tol_residual(DEFAULT_TOL),
             predictor: Predictor::default(),
+            d: vec![0.0; n],
             q1: vec![0.0; n],
-            p1: vec![0.0; n],
+            dp: vec![0.0; n],
             fm: vec![0.0; n],
             fp: vec![0.0; n],
             jac: DMatrix::zeros(n, n),
@@ -147,10 +156,10 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
 
     /// Replaces the Newton settings (iteration cap, Jacobian reuse, and the absolute tolerance τ on the
     /// residual). A step is solved to ‖p_k + D₁L_d + f⁻‖∞ ≤ max(τ, 2ε‖p_k‖∞): the second bound is the
-    /// rounding floor of the residual. Conserved Noether momenta change per step by the residual's
-    /// component along the symmetry (exactly zero after one iteration for translations, whose residual
-    /// component is linear in q_{k+1}), so a loose τ (the paper uses 1e-8) keeps translational momenta
-    /// at rounding level but not angular ones.
+    /// rounding floor of the residual. A conserved Noether momentum J = p·ξ(q) changes per step by
+    /// R·ξ(Δ) (module docs), so a loose τ (the paper uses 1e-8) lets an angular momentum drift by up to
+    /// τ|Δ| per step; for translations (ξ constant) one Newton iteration already removes the residual's
+    /// component along ξ, which is linear in Δ.
     pub fn with_newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
@@ -207,25 +216,18 @@ impl<Ld: DiscreteLagrangian + FromLagrangian> VariationalIntegrator<Ld> {
     /// The state (t, q, p) from positions and velocities through the continuous Legendre map
     /// p = ∂L/∂q̇(t, q, q̇).
     pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
-        let mut p = vec![0.0; self.ld.dof()];
-        self.ld.continuous().momenta(t, q, v, &mut p)?;
-        Ok(State::new(t, q.to_vec(), p))
+        self.ld.state_from_velocities(t, q, v)
     }
 
     /// The velocities q̇ of a state (t, q, p) through the inverse continuous Legendre map.
     pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
-        self.ld
-            .continuous()
-            .velocities(state.t, state.q.as_slice(), state.v.as_slice())
+        self.ld.velocities_at(state)
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a discrete state (t, q, p), with q̇ from
     /// the inverse Legendre map.
     pub fn energy(&self, state: &State) -> Result<f64> {
-        let v = self.velocities(state)?;
-        self.ld
-            .continuous()
-            .energy(state.t, state.q.as_slice(), v.as_slice())
+        self.ld.energy_at(state)
     }
 }
 
@@ -244,40 +246,48 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
         let n = self.ld.dof();
         check_flow_args(n, t, h, q, p)?;
         check_len("q₁ (workspace)", &self.q1, n)?;
-        self.predictor.guess(q, h, &mut self.q1);
+        self.predictor.guess_increment(q, h, &mut self.d);
         let mut sys = DelSystem {
             ld: &self.ld,
             t0: t,
             h,
             q0: q,
             p0: p,
+            q1: &mut self.q1,
             jac: &mut self.jac,
             lu: &mut self.lu,
             fm: &mut self.fm,
             fp: &mut self.fp,
         };
         let newton = effective_newton(&self.newton, p);
-        let info = newton.solve(&mut sys, &mut self.q1)?;
+        let info = newton.solve(&mut sys, &mut self.d)?;
         if info.iterations > 0 {
             self.factor_h = h;
         }
         if info.iterations == 0 {
             let factored = self.factor_h == h && sys.lu.is_some();
             self.factor_h = h;
-            correct_once(&mut sys, &mut self.q1, factored)?;
+            correct_once(&mut sys, &mut self.d, factored)?;
         }
-        self.ld.d2(t, h, q, &self.q1, &mut self.p1);
+        // p_{k+1} = D₂L_d + f⁺ = p_k + (D₁ + D₂)L_d + f⁻ + f⁺ − R, R the Newton residual; the
+        // increment form drops R, so that a symmetry ξ (linear in q) changes p·ξ(q) per step by R·ξ(Δ)
+        // only, instead of R·ξ(q_k).
+        self.ld.d1_plus_d2(t, h, q, &self.q1, &mut self.dp);
         if self.ld.has_discrete_force() {
             self.ld
                 .discrete_force(t, h, q, &self.q1, &mut self.fm, &mut self.fp);
-            self.p1.iter_mut().zip(&self.fp).for_each(|(pi, fi)| *pi += fi);
+            for ((dp, fm), fp) in self.dp.iter_mut().zip(&self.fm).zip(&self.fp) {
+                *dp += fm + fp;
+            }
         }
-        if self.q1.iter().chain(&self.p1).any(|x| !x.is_finite()) {
+        if self.d.iter().chain(&self.dp).any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t });
         }
-        self.predictor.record(q, &self.q1, h);
+        // q_{k+1} is the point L_d was evaluated at, so the discrete Noether identity
+        // D₁L_d·ξ(q_k) + D₂L_d·ξ(q_{k+1}) = 0 holds for the state as stored.
         q.copy_from_slice(&self.q1);
-        p.copy_from_slice(&self.p1);
+        p.iter_mut().zip(&self.dp).for_each(|(pi, di)| *pi += di);
+        self.predictor.record_increment(q, &self.d, h);
         self.last = info;
         Ok(info.iterations)
     }

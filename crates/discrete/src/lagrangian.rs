@@ -121,6 +121,17 @@ pub trait DiscreteDerivatives: DiscreteLagrangian {
         ad::gradient(&DiscreteField { ld: self, t0 }, h, q0, q1, Block::Y, out)
     }
 
+    /// (D₁ + D₂)L_d(q₀, q₁) into `out`: the derivative along a common shift of both ends,
+    /// ∂/∂s L_d(q₀ + s, q₁ + s), by one dual evaluation in which the shift cancels exactly from
+    /// q₁ − q₀. Unlike the sum of [`d1`](Self::d1) and [`d2`](Self::d2) (each ~ p, summing to a small
+    /// force impulse) it carries no cancellation error: it is the momentum change of a step,
+    /// p_{k+1} − p_k, to relative rounding.
+    fn d1_plus_d2(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut [f64]) {
+        let zero = Scratch::<f64>::new(q0.len(), |_| 0.0);
+        let f = ShiftField { ld: self, t0, q0, q1 };
+        ad::gradient(&f, h, &zero, &[], Block::X, out);
+    }
+
     /// The mixed block D₁₂L_d = ∂²L_d/∂q₀∂q₁ (rows q₀, columns q₁) into `out` (dof × dof): the Jacobian
     /// of q₁ ↦ D₁L_d(q₀, q₁).
     fn d12(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut DMatrix<f64>) {
@@ -147,6 +158,23 @@ pub trait DiscreteDerivatives: DiscreteLagrangian {
 }
 
 impl<Ld: DiscreteLagrangian + ?Sized> DiscreteDerivatives for Ld {}
+
+/// s ↦ L_d(q₀ + s, q₁ + s) as an AD field (x = s, the step h in the scalar slot).
+struct ShiftField<'a, Ld: ?Sized> {
+    ld: &'a Ld,
+    t0: f64,
+    q0: &'a [f64],
+    q1: &'a [f64],
+}
+
+impl<Ld: DiscreteLagrangian + ?Sized> Field for ShiftField<'_, Ld> {
+    #[inline]
+    fn eval<D: Scalar>(&self, h: D, s: &[D], _y: &[D]) -> D {
+        let a = Scratch::new(s.len(), |i| s[i] + self.q0[i]);
+        let b = Scratch::new(s.len(), |i| s[i] + self.q1[i]);
+        self.ld.discrete_lagrangian(self.t0, h, &a, &b)
+    }
+}
 
 /// A short vector of scalars on the stack (up to 16), on the heap beyond: scratch space for generic
 /// model code that must not allocate per evaluation for small systems.
