@@ -8,7 +8,7 @@
 //! p_k = −D₁L_d(q_k, q_{k+1}) − f⁻(q_k, q_{k+1}),      p_{k+1} = D₂L_d(q_k, q_{k+1}) + f⁺(q_k, q_{k+1}),
 //! ```
 //!
-//! solved for q_{k+1} by the core Newton with Jacobians from dual numbers, discrete Noether momenta, and
+//! solved for the increment q_{k+1} − q_k by the core Newton with Jacobians from dual numbers, discrete Noether momenta, and
 //! the discrete Lagrange-d'Alembert principle for forced and dissipative systems (f^±).
 //!
 //! - [`DiscreteLagrangian`]: the user's (or a rule's) L_d; [`DiscreteDerivatives`]: D₁L_d, D₂L_d, D₁₂L_d.

@@ -29,25 +29,21 @@
 //! ```
 
 use crate::banded::Banded;
-use nalgebra::Const;
 use nalgebra::DMatrix;
+use nalgebra::{Const, U1};
 use noether_core::ad::{self, Block, Field};
 use noether_core::error::{check_finite, check_len};
 use noether_core::{Error, Lagrangian, MassFactor, Result, Scalar};
-use num_dual::{Dual2Vec, HyperDual64};
+use num_dual::{Dual2Vec, DualVec};
 
-/// Gradient of a two-variable term by one hyper-dual evaluation, ε₁ along x₀ and ε₂ along x₁: the
-/// ε₁, ε₂ parts are ∂V/∂x₀ and ∂V/∂x₁ (the ε₁ε₂ part, ∂²V/∂x₀∂x₁, comes along unused). A hyper-dual number
-/// is four plain `f64`, without the optional derivative storage of `DualVec`, and this is the
-/// fastest kernel measured for the residual of a chain (see docs/benchmarks.md).
+/// Gradient of a two-variable term by one `DualVec<2>` evaluation (the common case: springs, pairs).
 #[inline]
 fn grad2<P: LocalPotential>(p: &P, k: usize, x: [f64; 2]) -> (f64, [f64; 2]) {
-    let xs = [
-        HyperDual64::new(x[0], 1.0, 0.0, 0.0),
-        HyperDual64::new(x[1], 0.0, 1.0, 0.0),
-    ];
+    type D = DualVec<f64, f64, Const<2>>;
+    let xs = [D::from_re(x[0]).derivative(0), D::from_re(x[1]).derivative(1)];
     let r = p.term(k, &xs);
-    (r.re, [r.eps1, r.eps2])
+    let g = r.eps.unwrap_generic(Const::<2>, U1);
+    (r.re, [g[0], g[1]])
 }
 
 /// Hessian of a two-variable term by one `Dual2Vec<2>` evaluation.
