@@ -13,7 +13,8 @@
 //!
 //! - [`DiscreteLagrangian`]: the user's (or a rule's) L_d; [`DiscreteDerivatives`]: D₁L_d, D₂L_d, D₁₂L_d.
 //! - [`Midpoint`], [`Trapezoidal`]: second-order discrete Lagrangians of a continuous L.
-//! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6.
+//! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6 by
+//!   symmetric composition; [`Galerkin`]: orders 4 and 6 by a polynomial path and Gauss quadrature.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
 //!   [`MechanicalMidpoint`] (Newton with a banded or dense Jacobian assembled term by term, O(N) for
@@ -47,6 +48,7 @@ pub mod banded;
 pub mod chains;
 pub mod composition;
 pub mod flow;
+pub mod galerkin;
 pub mod integrator;
 pub mod lagrangian;
 pub mod mechanical;
@@ -57,6 +59,7 @@ pub mod verlet;
 
 pub use composition::Composition;
 pub use flow::DiscreteFlow;
+pub use galerkin::Galerkin;
 pub use integrator::VariationalIntegrator;
 pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
 pub use mechanical::{LocalPotential, Mass, Mechanical};
@@ -69,7 +72,8 @@ pub use verlet::Verlet;
 pub mod prelude {
     pub use crate::momentum::{noether_momentum, PlanarRotation, Symmetry, Translation};
     pub use crate::{
-        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, LocalPotential,
-        Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator, Verlet,
+        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Galerkin,
+        LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator,
+        Verlet,
     };
 }

@@ -2,7 +2,7 @@
 
 use crate::models::{Kepler, Pendulum};
 use noether_core::{Error, Newton, State, Stepper};
-use noether_discrete::{DiscreteFlow, Midpoint, VariationalIntegrator};
+use noether_discrete::{DiscreteFlow, Galerkin, Midpoint, VariationalIntegrator};
 
 #[test]
 fn bad_input_step_size() {
@@ -64,4 +64,56 @@ fn bad_input_newton_not_converging_keeps_state() {
         other => panic!("expected a Newton failure, got {other:?}"),
     }
     assert_eq!(s, before);
+}
+
+/// The Galerkin integrator: zero/negative/NaN steps and wrong dimensions are refused, a Lagrangian
+/// with a generalized force is refused at construction (discrete forces are not supported), and
+/// Newton capped at one iteration on a large step (h = 50 near the pericentre, where one iteration
+/// from the straight-path guess cannot reach the rounding-level tolerance) returns `NewtonDiverged`
+/// with the iterations and the residual, the state intact.
+#[test]
+fn bad_input_galerkin() {
+    let mut g = Galerkin::order6(Kepler)
+        .unwrap()
+        .with_newton(Newton::default().max_iterations(1));
+    let mut s = State::new(0.0, [0.1, 0.0], [0.0, 4.2]);
+    let before = s.clone();
+    for h in [0.0, -0.1, f64::NAN] {
+        assert!(matches!(g.step(&mut s, h), Err(Error::InvalidStep { .. })));
+    }
+    let mut short = State::new(0.0, [1.0], [0.0, 1.0]);
+    assert!(matches!(g.step(&mut short, 0.1), Err(Error::Dimension { .. })));
+    match g.step(&mut s, 50.0) {
+        Err(Error::NewtonDiverged {
+            iterations,
+            residual,
+            tolerance,
+        }) => {
+            assert_eq!(iterations, 1);
+            assert!(residual > tolerance);
+        }
+        other => panic!("expected a Newton failure, got {other:?}"),
+    }
+    assert_eq!(s, before);
+    assert!(matches!(
+        Galerkin::order4(Damped),
+        Err(Error::InvalidParameter { .. })
+    ));
+}
+
+/// A damped oscillator (L = ½(q̇² − q²), Q = −q̇).
+struct Damped;
+impl noether_core::Lagrangian for Damped {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: noether_core::Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        (v[0] * v[0] - q[0] * q[0]) * 0.5
+    }
+    fn has_generalized_force(&self) -> bool {
+        true
+    }
+    fn generalized_force(&self, _t: f64, _q: &[f64], v: &[f64], out: &mut [f64]) {
+        out[0] = -v[0];
+    }
 }

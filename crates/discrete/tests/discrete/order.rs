@@ -7,7 +7,7 @@
 use crate::models::{kepler_start, pendulum_period, Kepler, Pendulum};
 use noether_core::{Lagrangian, State, Stepper};
 use noether_discrete::{
-    Composition, DiscreteFlow, FromLagrangian, Midpoint, Trapezoidal, VariationalIntegrator,
+    Composition, DiscreteFlow, FromLagrangian, Galerkin, Midpoint, Trapezoidal, VariationalIntegrator,
 };
 
 /// Max-norm error of the state after `n` steps of size `period/n` from `start`.
@@ -127,6 +127,34 @@ fn order_composition6_kepler() {
     let (s, t) = kepler_state();
     let mk = || Composition::order6(VariationalIntegrator::new(Midpoint::new(Kepler)));
     assert_order(mk, &s, t, 200, "composition6(midpoint)/kepler");
+}
+
+#[test]
+fn order_galerkin4_pendulum() {
+    let (s, t) = pendulum_start();
+    let mk = || Galerkin::order4(Pendulum).unwrap();
+    assert_order(mk, &s, t, 16, "galerkin4/pendulum");
+}
+
+#[test]
+fn order_galerkin6_pendulum() {
+    let (s, t) = pendulum_start();
+    let mk = || Galerkin::order6(Pendulum).unwrap();
+    assert_order(mk, &s, t, 16, "galerkin6/pendulum");
+}
+
+#[test]
+fn order_galerkin4_kepler() {
+    let (s, t) = kepler_state();
+    let mk = || Galerkin::order4(Kepler).unwrap();
+    assert_order(mk, &s, t, 100, "galerkin4/kepler");
+}
+
+#[test]
+fn order_galerkin6_kepler() {
+    let (s, t) = kepler_state();
+    let mk = || Galerkin::order6(Kepler).unwrap();
+    assert_order(mk, &s, t, 100, "galerkin6/kepler");
 }
 
 #[test]
