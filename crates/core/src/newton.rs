@@ -262,3 +262,58 @@ pub fn solve_dense<P: DenseProblem>(
     let info = newton.solve(&mut sys, &mut x)?;
     Ok((DVector::from_vec(x), info))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// F(x) = x² − c.
+    struct Square {
+        c: f64,
+    }
+
+    impl DenseProblem for Square {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+            r[0] = x[0] * x[0] - self.c;
+            Ok(())
+        }
+        fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+            j[(0, 0)] = 2.0 * x[0];
+            Ok(())
+        }
+    }
+
+    /// A factor kept from an earlier solve: reused (no new Jacobian) when it still contracts the
+    /// residual, refreshed when it does not; both converge to the root √c (closed form) to rounding.
+    #[test]
+    fn closed_form_solve_reusing_keeps_or_refreshes_the_factor() {
+        // ‖F‖ ≤ 1e-15 puts x within 1e-15/(2√2) of the root, plus rounding.
+        let newton = Newton::default().tol_residual(1e-15);
+        let mut sys = Dense::new(Square { c: 2.0 });
+        let mut x = [1.5];
+        let first = newton.solve(&mut sys, &mut x).unwrap();
+        assert!(first.jacobians >= 1);
+        assert!((x[0] - 2f64.sqrt()).abs() < 1e-15);
+        // A nearby problem: the old factor 2·x (last refreshed near √2) contracts by ~|1 − x/√c| ≪ ¼.
+        sys.problem.c = 2.0001;
+        let info = newton.solve_reusing(&mut sys, &mut x, true).unwrap();
+        assert_eq!(info.jacobians, 0, "{info:?}");
+        assert!((x[0] - 2.0001f64.sqrt()).abs() < 1e-15);
+        // A far one: the stale slope (≈ 2.8 against 20) overshoots, the residual does not contract
+        // by ¼, and the Jacobian is refreshed.
+        sys.problem.c = 100.0;
+        let mut y = [9.0];
+        let info = newton.solve_reusing(&mut sys, &mut y, true).unwrap();
+        assert!(info.jacobians >= 1, "{info:?}");
+        // (Rounding floor of F here: ε·100 ≈ 2e-14; the step criterion ends it, |Δx| ≤ 1.1e-13.)
+        assert!((y[0] - 10.0).abs() < 2e-14);
+        // Without a kept factor, solve_reusing(.., false) is solve.
+        let (mut a, mut b) = ([9.0], [9.0]);
+        let i1 = newton.solve_reusing(&mut sys, &mut a, false).unwrap();
+        let i2 = newton.solve(&mut sys, &mut b).unwrap();
+        assert_eq!((a, i1), (b, i2));
+    }
+}
