@@ -357,18 +357,20 @@ fn directional_gradient_w<F: Field, const W: usize>(
 }
 
 /// Everything Lagrange's equations need from f(t, x, y) at one point, from one evaluation with a
-/// [`LagrangeJet`]: f, ∇_y f, ∇_x f − ∇_y(∂_t f + ∇_x f·y) and the Hessian ∂²f/∂y².
+/// [`LagrangeJet`]: f, ∇_x f, ∇_y f, the mixed term ∇_y(∂_t f + ∇_x f·y) and the Hessian ∂²f/∂y².
 ///
-/// For a Lagrangian (x = q, y = q̇) these are L, the momenta p, the right-hand side
-/// ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t of Lagrange's equations and the mass matrix M.
+/// For a Lagrangian (x = q, y = q̇) these are L, ∂L/∂q, the momenta p, the term
+/// (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t of Lagrange's equations and the mass matrix M.
 #[derive(Debug, Clone, Copy)]
 pub struct LagrangeTerms<const N: usize> {
     /// f.
     pub value: f64,
+    /// ∇_x f (∂L/∂q).
+    pub grad_x: SVector<f64, N>,
     /// ∇_y f (the momenta ∂L/∂q̇).
     pub grad_y: SVector<f64, N>,
-    /// ∇_x f − ∇_y(∂_t f + ∇_x f·y): ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t, so that M q̈ = `force` + Q.
-    pub force: SVector<f64, N>,
+    /// ∇_y(∂_t f + ∇_x f·y): (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
+    pub mixed: SVector<f64, N>,
     /// ∂²f/∂y² (the mass matrix ∂²L/∂q̇²).
     pub hess_yy: SMatrix<f64, N, N>,
 }
@@ -389,16 +391,17 @@ pub fn lagrange_terms<F: Field, const N: usize>(
     let mut xs = [J::<N>::from_re(0.0); N];
     let mut ys = [J::<N>::from_re(0.0); N];
     for i in 0..N {
-        xs[i] = J::new(x[i], unit(i), y[i], zero(), zero_h());
-        ys[i] = J::new(y[i], zero(), 0.0, unit(i), zero_h());
+        xs[i] = J::new(x[i], unit(i), y[i], zero(), zero(), zero_h());
+        ys[i] = J::new(y[i], zero(), 0.0, unit(i), zero(), zero_h());
     }
-    let tt = J::new(t, zero(), 1.0, zero(), zero_h());
+    let tt = J::new(t, zero(), 1.0, zero(), zero(), zero_h());
     let r = f.eval(tt, &xs, &ys);
     let row = |p: &Part<f64, f64, U1, Const<N>>| p.get().map_or_else(SVector::zeros, |m| m.transpose());
     LagrangeTerms {
         value: r.re,
+        grad_x: row(&r.gx),
         grad_y: row(&r.gw),
-        force: row(&r.gf),
+        mixed: row(&r.hsw),
         hess_yy: r.hww.matrix(Const::<N>),
     }
 }

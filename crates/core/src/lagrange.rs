@@ -294,7 +294,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
             return finish(b.as_slice(), a, t);
         }
         let terms = ad::lagrange_terms(&f, t, qn, vn);
-        let mut b = terms.force;
+        let mut b = terms.grad_x - terms.mixed;
         self.add_generalized_force(t, q, v, &mut b);
         solve_mass_fixed(terms.hess_yy, &mut b, t)?;
         finish(b.as_slice(), a, t)

@@ -7,17 +7,8 @@
 //! L + ∇ₓL·x + ∂ₛL s + ∇_wL·w + s (∂²L/∂s∂w)·w + ½ wᵀ (∂²L/∂w²) w
 //! ```
 //!
-//! so that one evaluation yields the momenta ∂L/∂q̇ (`gw`), the mass matrix ∂²L/∂q̇² (`hww`) and the
-//! right-hand side of Lagrange's equations ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t (`gf` = ∂/∂x − ∂²/∂s∂w).
-//! The last is carried as one part rather than as ∂/∂x and ∂²/∂s∂w separately: both obey the same
-//! linear rules (sum, scaling by the other factor's value), so their difference does too, with the
-//! extra product and chain-rule terms of ∂²/∂s∂w entering with a minus sign —
-//!
-//! ```text
-//! (ab).gf = a.gf b + a b.gf − (a.gs b.gw + b.gs a.gw),      g(a).gf = g' a.gf − g'' a.gs a.gw
-//! ```
-//!
-//! — which saves one N-vector in every operation.
+//! so that one evaluation yields ∂L/∂q (`gx`), the momenta ∂L/∂q̇ (`gw`), the mixed term
+//! (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (`hsw`, a Hessian-vector product) and the mass matrix ∂²L/∂q̇² (`hww`).
 //! Compared with three separate evaluations (gradient, directional derivative, Hessian), every
 //! transcendental function of the model is computed once, and the second-order parts exist only
 //! where the model needs them: each part is `None` until an operation makes it non-zero (a function
@@ -47,8 +38,8 @@ mod part;
 
 pub use part::Part;
 
-/// The Lagrange jet: value, ∂/∂x − ∂²/∂s∂w, ∂/∂s, ∂/∂w and ∂²/∂w² of a scalar (see the module
-/// documentation). `D` is the number of degrees of freedom.
+/// The Lagrange jet: value, ∂/∂x (first order), ∂/∂s, ∂/∂w, ∂²/∂s∂w and ∂²/∂w² of a scalar (see the
+/// module documentation). `D` is the number of degrees of freedom.
 #[derive(Clone, Debug)]
 pub struct LagrangeJet<T: DualNum<F>, F, D: Dim>
 where
@@ -56,12 +47,14 @@ where
 {
     /// Value.
     pub re: T,
-    /// ∂/∂x − ∂²/∂s∂w: ∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t for a Lagrangian.
-    pub gf: Part<T, F, U1, D>,
+    /// ∂/∂x: the gradient in q (first order only).
+    pub gx: Part<T, F, U1, D>,
     /// ∂/∂s: the derivative along the flow direction (δt, δq) = (1, q̇).
     pub gs: T,
     /// ∂/∂w: the gradient in q̇.
     pub gw: Part<T, F, U1, D>,
+    /// ∂²/∂s∂w: the mixed term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
+    pub hsw: Part<T, F, U1, D>,
     /// ∂²/∂w²: the Hessian in q̇ (the mass matrix).
     pub hww: Part<T, F, D, D>,
     f: PhantomData<F>,
@@ -78,12 +71,20 @@ where
 {
     /// A jet from its parts.
     #[inline(always)]
-    pub fn new(re: T, gf: Part<T, F, U1, D>, gs: T, gw: Part<T, F, U1, D>, hww: Part<T, F, D, D>) -> Self {
+    pub fn new(
+        re: T,
+        gx: Part<T, F, U1, D>,
+        gs: T,
+        gw: Part<T, F, U1, D>,
+        hsw: Part<T, F, U1, D>,
+        hww: Part<T, F, D, D>,
+    ) -> Self {
         LagrangeJet {
             re,
-            gf,
+            gx,
             gs,
             gw,
+            hsw,
             hww,
             f: PhantomData,
         }
@@ -92,7 +93,14 @@ where
     /// A constant.
     #[inline(always)]
     pub fn from_re(re: T) -> Self {
-        Self::new(re, Part::none(), T::zero(), Part::none(), Part::none())
+        Self::new(
+            re,
+            Part::none(),
+            T::zero(),
+            Part::none(),
+            Part::none(),
+            Part::none(),
+        )
     }
 }
 
@@ -103,17 +111,16 @@ where
     /// g(a) from g(a.re), g'(a.re), g''(a.re).
     #[inline(always)]
     fn chain_rule(&self, f0: T, f1: T, f2: T) -> Self {
-        let mut gf = Part::scale(&self.gf, &f1);
-        if !self.gs.is_zero() {
-            gf.axpy(&-(f2.clone() * self.gs.clone()), &self.gw);
-        }
+        let mut hsw = Part::scale(&self.hsw, &f1);
+        hsw.axpy(&(f2.clone() * self.gs.clone()), &self.gw);
         let mut hww = Part::scale(&self.hww, &f1);
         hww.sym_outer(&(f2 * F::from(0.5).unwrap()), &self.gw, &self.gw);
         Self::new(
             f0,
-            gf,
+            Part::scale(&self.gx, &f1),
             self.gs.clone() * f1.clone(),
             Part::scale(&self.gw, &f1),
+            hsw,
             hww,
         )
     }
@@ -127,21 +134,17 @@ where
     #[inline(always)]
     fn mul_ref(&self, o: &Self) -> Self {
         let (a, b) = (self, o);
-        let mut gf = Part::lin(&a.gf, &b.re, &b.gf, &a.re);
-        // A factor that does not move along the flow (gs = 0, e.g. a velocity) adds nothing here.
-        if !a.gs.is_zero() {
-            gf.axpy(&-a.gs.clone(), &b.gw);
-        }
-        if !b.gs.is_zero() {
-            gf.axpy(&-b.gs.clone(), &a.gw);
-        }
+        let mut hsw = Part::lin(&a.hsw, &b.re, &b.hsw, &a.re);
+        hsw.axpy(&a.gs, &b.gw);
+        hsw.axpy(&b.gs, &a.gw);
         let mut hww = Part::lin(&a.hww, &b.re, &b.hww, &a.re);
         hww.sym_outer(&T::one(), &a.gw, &b.gw);
         LagrangeJet::new(
             a.re.clone() * b.re.clone(),
-            gf,
+            Part::lin(&a.gx, &b.re, &b.gx, &a.re),
             a.gs.clone() * b.re.clone() + b.gs.clone() * a.re.clone(),
             Part::lin(&a.gw, &b.re, &b.gw, &a.re),
+            hsw,
             hww,
         )
     }
@@ -160,9 +163,10 @@ where
         let one = T::one();
         Self::new(
             self.re.clone() + o.re.clone(),
-            Part::sum(&self.gf, &o.gf, &one),
+            Part::sum(&self.gx, &o.gx, &one),
             self.gs.clone() + o.gs.clone(),
             Part::sum(&self.gw, &o.gw, &one),
+            Part::sum(&self.hsw, &o.hsw, &one),
             Part::sum(&self.hww, &o.hww, &one),
         )
     }
@@ -172,9 +176,10 @@ where
         let m1 = -T::one();
         Self::new(
             self.re.clone() - o.re.clone(),
-            Part::sum(&self.gf, &o.gf, &m1),
+            Part::sum(&self.gx, &o.gx, &m1),
             self.gs.clone() - o.gs.clone(),
             Part::sum(&self.gw, &o.gw, &m1),
+            Part::sum(&self.hsw, &o.hsw, &m1),
             Part::sum(&self.hww, &o.hww, &m1),
         )
     }
@@ -183,9 +188,10 @@ where
     fn scale_by(&self, f: &T) -> Self {
         Self::new(
             self.re.clone() * f.clone(),
-            Part::scale(&self.gf, f),
+            Part::scale(&self.gx, f),
             self.gs.clone() * f.clone(),
             Part::scale(&self.gw, f),
+            Part::scale(&self.hsw, f),
             Part::scale(&self.hww, f),
         )
     }
@@ -348,11 +354,11 @@ where
     }
 }
 
-impl_second_derivatives!(LagrangeJet, [gf, gs, gw, hww], [D], [U1, D], [D, D]);
-impl_from_f!(LagrangeJet, [gf, gs, gw, hww], [D], [U1, D], [D, D]);
+impl_second_derivatives!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_from_f!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
 impl_zero_one!(LagrangeJet, [D], [U1, D], [D, D]);
-impl_neg!(LagrangeJet, [gf, gs, gw, hww], [D], [U1, D], [D, D]);
-impl_assign_ops!(LagrangeJet, [gf, gs, gw, hww], [D], [U1, D], [D, D]);
+impl_neg!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+impl_assign_ops!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
 impl_inv!(LagrangeJet, [D], [U1, D], [D, D]);
 impl_iterator!(LagrangeJet, [D], [U1, D], [D, D]);
 impl_from_primitive!(LagrangeJet, [D], [U1, D], [D, D]);
