@@ -9,6 +9,9 @@ pub use noether_core as core;
 pub use noether_discrete as discrete;
 pub use noether_particles as particles;
 
+/// Closure-like shorthands for small models (see [`noether_core::shorthand`]).
+pub use noether_core::{hamiltonian, lagrangian};
+
 /// Everything a model and a simulation need, in one import.
 pub mod prelude {
     pub use noether_core::prelude::*;

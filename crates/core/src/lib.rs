@@ -38,6 +38,7 @@ pub mod model;
 pub mod natural;
 pub mod newton;
 pub mod scalar;
+pub mod shorthand;
 pub mod state;
 pub mod stepper;
 
@@ -56,6 +57,7 @@ pub use stepper::{StepInfo, Stepper, Trajectory};
 /// Everything a model and a simulation need, in one import.
 pub mod prelude {
     pub use crate::integrators::*;
+    pub use crate::{hamiltonian, lagrangian};
     pub use crate::{
         Dynamics, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Natural, Potential,
         Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper, Trajectory,
