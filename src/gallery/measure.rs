@@ -2,7 +2,8 @@
 //! between steps, periods, and the complete elliptic integral K used by the pendulum's closed form.
 
 use super::plot::BoxError;
-use noether_core::{State, Stepper, Trajectory};
+use noether_core::integrators::{Adaptive, DenseOutput, EmbeddedPair};
+use noether_core::{Dynamics, State, Stepper, Trajectory};
 
 /// Takes `n` steps of size `h` with `stepper` from `start`, calling `observe(step, state)` after each
 /// (step = 1, …, n); returns the final state.
@@ -19,6 +20,34 @@ pub fn drive<S: Stepper>(
         observe(step, &s, run.stepper())?;
     }
     Ok(run.state().clone())
+}
+
+/// Steps the adaptive method `stepper` from `start` to `t_end` (its own initial step by Hairer's
+/// `hinit`, then the controller's steps, the last one shortened to land on `t_end`), calling
+/// `observe(dense)` with the continuous extension of every accepted step; returns the final state.
+/// The extension is what events and uniform samples are taken from (see [`up_crossing`]).
+pub fn drive_dense<S: Dynamics, M: EmbeddedPair>(
+    mut stepper: Adaptive<S, M>,
+    start: State,
+    t_end: f64,
+    mut observe: impl FnMut(&DenseOutput) -> Result<(), BoxError>,
+) -> Result<State, BoxError> {
+    let mut state = start;
+    let mut h = stepper.initial_step(&state)?;
+    while t_end - state.t > 1e-14 * t_end.abs().max(1.0) {
+        let h_try = h.min(t_end - state.t);
+        let info = stepper.step(&mut state, h_try)?;
+        observe(stepper.dense_output().ok_or("the adaptive method has no dense output")?)?;
+        h = info.h_next;
+    }
+    Ok(state)
+}
+
+/// The time in the step of `dense` at which `g` crosses zero upwards (g < 0 at the start of the step,
+/// ≥ 0 at its end), located on the continuous extension ([`DenseOutput::locate`]); `None` otherwise.
+pub fn up_crossing(dense: &DenseOutput, g: impl Fn(&State) -> f64) -> Option<f64> {
+    let (a, b) = (g(&dense.state_at(dense.t_start())), g(&dense.state_at(dense.t_end())));
+    (a < 0.0 && b >= 0.0).then(|| dense.locate(&g)).flatten()
 }
 
 /// The largest value of a sampled signal in each window of `window` samples: the envelope of an
