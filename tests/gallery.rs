@@ -1,7 +1,7 @@
 //! Every gallery example's checks against closed forms must pass (each check states its formula and
 //! tolerance in the example module that makes it).
 
-use noether::gallery::{self, Options};
+use noether::gallery::{self, Options, Report};
 
 /// Runs the example `name` without pictures and asserts that all its checks pass.
 fn assert_example_passes(name: &str) {
@@ -10,6 +10,11 @@ fn assert_example_passes(name: &str) {
         .find(|e| e.name == name)
         .unwrap_or_else(|| panic!("no example {name}"));
     let report = (ex.run)(&Options::default()).unwrap_or_else(|e| panic!("{name} failed: {e}"));
+    assert_report_passes(name, &report);
+}
+
+/// Asserts that `report` made checks and that all of them pass.
+fn assert_report_passes(name: &str, report: &Report) {
     assert!(!report.checks.is_empty(), "{name} made no checks");
     let failed: Vec<String> = report
         .checks
@@ -125,17 +130,7 @@ fn closed_form_third_law() {
 #[test]
 fn conserves_energy_lj_cluster() {
     let report = gallery::lj_cluster::run_steps(20_000).expect("lj_cluster runs");
-    let failed: Vec<String> = report
-        .checks
-        .iter()
-        .filter(|c| !c.passed())
-        .map(|c| c.to_string())
-        .collect();
-    assert!(
-        !report.checks.is_empty() && failed.is_empty(),
-        "failed checks:\n{}",
-        failed.join("\n")
-    );
+    assert_report_passes("lj_cluster", &report);
 }
 
 #[test]

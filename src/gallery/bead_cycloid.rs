@@ -8,25 +8,22 @@
 //! M is definite on the velocities the constraints allow.
 
 use super::bead_rotating_hoop::period;
+use super::pendulum_cartesian::PlanarMass;
 use super::{Check, Options, Report};
 use noether_constraints::prelude::*;
 
 const NAME: &str = "bead_cycloid";
 
-/// L = ½ m (ẋ² + ẏ²) − m g y on q = (x, y, s): no kinetic energy in s.
-pub struct BeadWithParameter {
-    /// Mass.
-    pub m: f64,
-    /// Gravitational acceleration.
-    pub g: f64,
-}
+/// L = ½ m (ẋ² + ẏ²) − m g y on q = (x, y, s): the planar mass of the Cartesian pendulum, plus the
+/// curve parameter s, which has no kinetic energy.
+pub struct BeadWithParameter(pub PlanarMass);
 
 impl Lagrangian for BeadWithParameter {
     fn dof(&self) -> usize {
         3
     }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m) - q[1] * (self.m * self.g)
+    fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        self.0.lagrangian(t, &q[..2], &v[..2])
     }
     fn constant_mass_matrix(&self) -> bool {
         true
@@ -57,7 +54,7 @@ impl Holonomic for Cycloid {
 pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>> {
     let (m, g, a) = (1.0_f64, 9.81_f64, 0.5_f64);
     let expected = 4.0 * std::f64::consts::PI * (a / g).sqrt();
-    let sys = Constrained::holonomic(BeadWithParameter { m, g }, Cycloid { a })?;
+    let sys = Constrained::holonomic(BeadWithParameter(PlanarMass { m, g }), Cycloid { a })?;
     let h = 1e-3;
     let steps = (2.1 * expected / h) as usize; // two upward crossings of x = 0 need 7/4 periods
     let mut checks = Vec::new();

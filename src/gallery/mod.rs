@@ -69,13 +69,7 @@ impl Check {
         expected: f64,
         tol: f64,
     ) -> Self {
-        Check {
-            example,
-            quantity: quantity.into(),
-            computed,
-            expected,
-            tolerance: Tolerance::Relative(tol),
-        }
+        Self::new(example, quantity, computed, expected, Tolerance::Relative(tol))
     }
 
     /// A check with an absolute tolerance.
@@ -86,12 +80,22 @@ impl Check {
         expected: f64,
         tol: f64,
     ) -> Self {
+        Self::new(example, quantity, computed, expected, Tolerance::Absolute(tol))
+    }
+
+    fn new(
+        example: &'static str,
+        quantity: impl Into<String>,
+        computed: f64,
+        expected: f64,
+        tolerance: Tolerance,
+    ) -> Self {
         Check {
             example,
             quantity: quantity.into(),
             computed,
             expected,
-            tolerance: Tolerance::Absolute(tol),
+            tolerance,
         }
     }
 
@@ -316,3 +320,4 @@ pub fn main_for(name: &str) {
         }
     }
 }
+

@@ -7,6 +7,7 @@
 //! eigen-solver (a few ulps times the condition number of M); 1e-10 relative leaves room for that and
 //! for the equilibrium's residual gradient (polished to ~1e-12 of its scale), and nothing else.
 
+use super::bead_rotating_hoop::HoopAngle;
 use super::{Check, Options, Report};
 use noether_analysis::{normal_modes, EffectivePotential, EquilibriumFinder, Kind};
 use noether_core::{Lagrangian, Scalar};
@@ -66,27 +67,6 @@ impl Lagrangian for Chain {
             prev = x;
         }
         kinetic - pot * (0.5 * self.k)
-    }
-}
-
-/// Bead on a hoop of radius a spinning at ω about its vertical diameter:
-/// L = ½ m a² (θ̇² + ω² sin²θ) + m g a cos θ (m = 1).
-pub struct Hoop {
-    /// Radius.
-    pub a: f64,
-    /// Gravity.
-    pub g: f64,
-    /// Spin rate.
-    pub omega: f64,
-}
-
-impl Lagrangian for Hoop {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let s = q[0].sin();
-        (v[0] * v[0] + s * s * self.omega.powi(2)) * (0.5 * self.a * self.a) + q[0].cos() * (self.g * self.a)
     }
 }
 
@@ -198,7 +178,9 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
 
     // Bead on the rotating hoop, a ω² > g: the bottom is a maximum of U with ω² = g/a − ω_h² < 0; the
     // bead rests at cos θ₀ = g/(a ω_h²) with ω² = ω_h² sin²θ₀.
-    let hoop = Hoop {
+    // The same Lagrangian as the bead_rotating_hoop example, L = ½ m a² (θ̇² + ω_h² sin²θ) + m g a cos θ.
+    let hoop = HoopAngle {
+        m: 1.0,
         a: 0.5,
         g: 9.81,
         omega: 6.0,
@@ -237,7 +219,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         36.0 * (1.0 - cos0 * cos0),
         1e-10,
     ));
-    let slow = Hoop { omega: 3.0, ..hoop };
+    let slow = HoopAngle { omega: 3.0, ..hoop };
     let eq = finder.minimize(&EffectivePotential::new(&slow), &[0.8])?;
     checks.push(Check::abs(
         NAME,

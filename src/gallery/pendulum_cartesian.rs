@@ -7,6 +7,7 @@
 //! The constrained variational integrator (RATTLE type) gives the tension too, from the impulses of
 //! the half steps on either side of each time, to O(h²).
 
+use super::pendulum::Pendulum;
 use super::{Check, Options, Report};
 use noether_constraints::prelude::*;
 use noether_discrete::Midpoint;
@@ -52,25 +53,6 @@ impl Holonomic for Rod {
     }
 }
 
-/// The same pendulum in its angle θ from the downward vertical.
-pub struct AnglePendulum {
-    /// Mass.
-    pub m: f64,
-    /// Length.
-    pub l: f64,
-    /// Gravitational acceleration.
-    pub g: f64,
-}
-
-impl Lagrangian for AnglePendulum {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        v[0] * v[0] * (0.5 * self.m * self.l * self.l) + q[0].cos() * (self.m * self.g * self.l)
-    }
-}
-
 /// Runs both formulations side by side and checks them against each other and the tension formula.
 pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + Sync>> {
     let (m, l, g) = (1.0, 1.0, 9.81);
@@ -90,7 +72,7 @@ pub fn run(_opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send +
     let stepper = Projected::new(Rk4::new(&cartesian), cartesian.constraints());
     let cart_run = Trajectory::new(stepper, start, h)?;
 
-    let angle = EulerLagrange::new(AnglePendulum { m, l, g });
+    let angle = EulerLagrange::new(Pendulum { m, l, g });
     let angle_run = Trajectory::new(Rk4::new(&angle), State::new(0.0, [theta0], [omega0]), h)?;
 
     let (mut d_theta, mut d_tension) = (0.0_f64, 0.0_f64);
