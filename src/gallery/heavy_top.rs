@@ -23,11 +23,15 @@
 //! L = ½ I₁ (α̇² cos²β + β̇²) + ½ I₃ (γ̇ + α̇ sin β)² − M g ℓ cos α cos β.
 //! ```
 //!
-//! Integrator: RK4 with a fixed step (the only general method for a Lagrangian with a configuration-
-//! dependent mass matrix on main when this was written; the runs are short, a few thousand nutation
-//! steps, and RK4's drift at these steps is ~1e-11 in the conserved quantities, well below the checks).
+//! Integrators: the nutating and the fast top run DOP853 (adaptive, tolerances 1e-14) on the Lagrangian's
+//! equations, and their turning points are events θ̇ = 0 located on its dense output, so the extremes of
+//! θ, the nutation period and the precession per nutation are read at the exact turning times instead of
+//! being interpolated between samples. The sleeping top (a growth rate and a largest tilt sampled along
+//! the run) and the run into the pole (which checks that the chart guard trips within one fixed step)
+//! keep RK4 with a fixed step.
 
-use super::plot::Figure;
+use super::measure::drive_dense;
+use super::plot::{BoxError, Figure};
 use super::{Check, Options, Report};
 use noether_core::prelude::*;
 use noether_core::ChartGuard;
@@ -126,73 +130,73 @@ pub fn cubic_roots(c: [f64; 4]) -> Option<[f64; 3]> {
     Some(r)
 }
 
-/// Extrema of a sampled curve, each refined by the vertex of the parabola through three samples:
-/// (time, value, is_maximum).
-fn extrema(ts: &[f64], ys: &[f64]) -> Vec<(f64, f64, bool)> {
-    let mut out = Vec::new();
-    for k in 1..ys.len().saturating_sub(1) {
-        let (y0, y1, y2) = (ys[k - 1], ys[k], ys[k + 1]);
-        let is_max = y1 > y0 && y1 >= y2;
-        let is_min = y1 < y0 && y1 <= y2;
-        if is_max || is_min {
-            let h = ts[k + 1] - ts[k];
-            let curv = y0 - 2.0 * y1 + y2;
-            let dt = if curv != 0.0 {
-                0.5 * h * (y0 - y2) / curv
-            } else {
-                0.0
-            };
-            let y = y1 - (y2 - y0).powi(2) / (8.0 * curv);
-            out.push((ts[k] + dt, if curv != 0.0 { y } else { y1 }, is_max));
-        }
-    }
-    out
+/// DOP853 tolerances (atol = rtol) of the Euler-angle runs.
+const TOL: f64 = 1e-14;
+
+/// A turning point of θ (an event θ̇ = 0): time, θ, φ there, and whether θ is at a maximum.
+struct Turn {
+    t: f64,
+    theta: f64,
+    phi: f64,
+    is_max: bool,
 }
 
-/// Quadratic interpolation of samples `ys` at time `t` near sample `k` (uniform step).
-fn interp3(ts: &[f64], ys: &[f64], t: f64) -> f64 {
-    let h = ts[1] - ts[0];
-    let k = (((t - ts[0]) / h).round() as usize).clamp(1, ts.len() - 2);
-    let x = (t - ts[k]) / h;
-    let (y0, y1, y2) = (ys[k - 1], ys[k], ys[k + 1]);
-    y1 + 0.5 * x * (y2 - y0) + 0.5 * x * x * (y2 - 2.0 * y1 + y0)
-}
-
-/// A guarded Euler-angle run: times, θ, φ, the states' drift in the constants, and the largest
-/// deviation of φ̇ from (p_φ − p_ψ cos θ)/(I₁ sin²θ).
+/// An Euler-angle run by DOP853: θ and φ sampled every 10⁻² (for the pictures), the drift in the
+/// constants and the largest deviation of φ̇ from (p_φ − p_ψ cos θ)/(I₁ sin²θ) at the accepted steps,
+/// and the turning points of θ located on the dense output.
 struct EulerRun {
     ts: Vec<f64>,
     theta: Vec<f64>,
     phi: Vec<f64>,
     drift: [f64; 3],
     precession_dev: f64,
+    turns: Vec<Turn>,
 }
 
-fn run_euler(top: HeavyTop, start: State, h: f64, t_end: f64) -> Result<EulerRun> {
+fn run_euler(top: HeavyTop, start: State, t_end: f64) -> Result<EulerRun, BoxError> {
     let el = EulerLagrange::new(top);
     let (pf0, pp0, e0) = constants(&el, &start)?;
+    let dt = 1e-2;
     let mut run = EulerRun {
-        ts: vec![start.t],
-        theta: vec![start.q[0]],
-        phi: vec![start.q[1]],
+        ts: vec![],
+        theta: vec![],
+        phi: vec![],
         drift: [0.0; 3],
         precession_dev: 0.0,
+        turns: vec![],
     };
-    let steps = (t_end / h).round() as usize;
-    let traj = Trajectory::new(euler_angle_stepper(top), start, h)?;
-    for s in traj.take(steps) {
-        let s = s?;
-        let (pf, pp, e) = constants(&el, &s)?;
+    let dop853 = Dop853::new(EulerLagrange::new(top)).tolerances(TOL, TOL);
+    drive_dense(dop853, start, t_end, |s, dense| {
+        // The chart: these runs stay far from the poles; say so loudly if one did not.
+        if s.q[0].sin() < 1e-2 {
+            return Err(format!("θ = {} reached a pole of the Euler-angle chart", s.q[0]).into());
+        }
+        let (pf, pp, e) = constants(&el, s)?;
         for (d, x) in run.drift.iter_mut().zip([pf - pf0, pp - pp0, e - e0]) {
             *d = d.max(x.abs());
         }
         let (th, dphi) = (s.q[0], s.v[1]);
         let predicted = (pf0 - pp0 * th.cos()) / (top.i1 * th.sin().powi(2));
         run.precession_dev = run.precession_dev.max((dphi - predicted).abs());
-        run.ts.push(s.t);
-        run.theta.push(th);
-        run.phi.push(s.q[1]);
-    }
+        while run.ts.len() as f64 * dt <= dense.t_end() {
+            let x = dense.state_at(run.ts.len() as f64 * dt);
+            run.ts.push(x.t);
+            run.theta.push(x.q[0]);
+            run.phi.push(x.q[1]);
+        }
+        // Event θ̇ = 0 (a turning point of the nutation), inside the step (the start at rest excluded).
+        let rising = dense.state_at(dense.t_start()).v[0] > 0.0;
+        if let Some(t) = dense.locate(|x| x.v[0]).filter(|&t| t > dense.t_start()) {
+            let x = dense.state_at(t);
+            run.turns.push(Turn {
+                t,
+                theta: x.q[0],
+                phi: x.q[1],
+                is_max: rising,
+            });
+        }
+        Ok(())
+    })?;
     Ok(run)
 }
 
@@ -232,12 +236,12 @@ pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + 
     let mut checks = Vec::new();
     let el = EulerLagrange::new(top);
 
-    // 1. A generic nutating top: θ₀ = 0.8, θ̇₀ = 0, φ̇₀ = 0.5, ψ̇₀ = 8; 12 time units, h = 10⁻³.
+    // 1. A generic nutating top: θ₀ = 0.8, θ̇₀ = 0, φ̇₀ = 0.5, ψ̇₀ = 8; 12 time units.
     let start = State::new(0.0, [0.8, 0.0, 0.0], [0.0, 0.5, 8.0]);
     let (pf, pp, e) = constants(&el, &start)?;
-    let run = run_euler(top, start, 1e-3, 12.0)?;
-    // RK4 at h = 10⁻³ (≈ 800 steps per nutation) keeps the constants to ~1e-12 relative; 1e-9 allows
-    // rounding growth over 12 000 steps and fails for any error in the derived equations.
+    let run = run_euler(top, start, 12.0)?;
+    // DOP853 at tolerances 1e-14 keeps the constants near the rounding level (as RK4 at h = 10⁻³ did,
+    // ~2e-14); 1e-9 allows rounding growth and fails for any error in the derived equations.
     let names = ["p_φ drift", "p_ψ drift", "energy drift"];
     for ((name, d), scale) in names.iter().zip(run.drift).zip([pf.abs(), pp.abs(), e.abs()]) {
         checks.push(Check::abs(NAME, format!("{name}/|value|"), d / scale, 0.0, 1e-9));
@@ -252,20 +256,21 @@ pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + 
         0.0,
         1e-9,
     ));
-    // Turning points of θ against the roots u₁ < u₂ of the cubic: the extremes are refined by a
-    // parabola through three samples, whose error is O(h³ θ⃛) ≈ 1e-9 rad here; 1e-7 relative.
+    // Turning points of θ against the roots u₁ < u₂ of the cubic: events θ̇ = 0 located on the dense
+    // output (7th order), so θ there carries only the run's own error, where the parabola through three
+    // fixed-step samples had an O(h³ θ⃛) error (≈ 1e-9 rad at h = 10⁻³); 1e-7 relative.
     let cubic = nutation_cubic(&top, pf, pp, e);
     let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
     let (theta_min, theta_max) = (roots[1].acos(), roots[0].acos());
-    let ext = extrema(&run.ts, &run.theta);
     let worst = |want_max: bool, exact: f64| {
-        ext.iter()
-            .filter(|x| x.2 == want_max)
-            .map(|x| x.1)
+        run.turns
+            .iter()
+            .filter(|x| x.is_max == want_max)
+            .map(|x| x.theta)
             .max_by(|a, b| (a - exact).abs().total_cmp(&(b - exact).abs()))
     };
-    let n_max = ext.iter().filter(|x| x.2).count();
-    let n_min = ext.len() - n_max;
+    let n_max = run.turns.iter().filter(|x| x.is_max).count();
+    let n_min = run.turns.len() - n_max;
     if n_max < 3 || n_min < 3 {
         return Err(
             format!("expected several nutations in the run, saw {n_min} minima and {n_max} maxima").into(),
@@ -294,9 +299,10 @@ pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + 
         1.0,
         0.0,
     ));
-    // Nutation period: the time between successive θ maxima vs the quadrature of dt = du/sqrt(f(u)).
+    // Nutation period: the time between successive θ maxima (events) vs the quadrature of
+    // dt = du/sqrt(f(u)); the quadrature converges geometrically, the events are located to ~1e-14.
     let (period, _) = nutation_quadrature(&top, cubic, roots, pf, pp);
-    let maxima: Vec<f64> = ext.iter().filter(|x| x.2).map(|x| x.0).collect();
+    let maxima: Vec<f64> = run.turns.iter().filter(|x| x.is_max).map(|x| x.t).collect();
     let observed = (maxima[maxima.len() - 1] - maxima[0]) / (maxima.len() - 1) as f64;
     checks.push(Check::rel(
         NAME,
@@ -310,21 +316,19 @@ pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + 
     let omega3 = 80.0;
     let start = State::new(0.0, [0.5, 0.0, 0.0], [0.0, 0.0, omega3]);
     let (pf, pp, e) = constants(&el, &start)?;
-    let fast = run_euler(top, start, 5e-4, 3.2)?;
-    let ext: Vec<(f64, f64, bool)> = extrema(&fast.ts, &fast.theta)
-        .into_iter()
-        .filter(|x| !x.2)
-        .collect();
-    if ext.len() < 5 {
+    let fast = run_euler(top, start, 3.2)?;
+    let minima: Vec<&Turn> = fast.turns.iter().filter(|x| !x.is_max).collect();
+    if minima.len() < 5 {
         return Err("the fast top made fewer than 5 nutations".into());
     }
-    let (t0, t1) = (ext[0].0, ext[ext.len() - 1].0);
-    let mean_rate = (interp3(&fast.ts, &fast.phi, t1) - interp3(&fast.ts, &fast.phi, t0)) / (t1 - t0);
+    let (first, last) = (minima[0], minima[minima.len() - 1]);
+    let mean_rate = (last.phi - first.phi) / (last.t - first.t);
     let cubic = nutation_cubic(&top, pf, pp, e);
     let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
     let (period, dphi_cycle_fast) = nutation_quadrature(&top, cubic, roots, pf, pp);
     // Exact mean precession Δφ/T per nutation from quadrature; the run averages over whole nutations
-    // located by interpolation (error ~1e-8 of the rate): 1e-6.
+    // between two events θ̇ = 0, with φ read off the dense output there (no interpolation between
+    // samples, which cost ~1e-8 of the rate with fixed steps): 1e-6.
     checks.push(Check::rel(
         NAME,
         "fast top mean φ̇ vs quadrature Δφ/T",
@@ -371,7 +375,7 @@ pub fn run(opts: &Options) -> Result<Report, Box<dyn std::error::Error + Send + 
         .x_label("sin θ cos φ")
         .y_label("sin θ sin φ")
         .equal_aspect()
-        .series("apex path (RK4, 12 time units)", apex(&run))
+        .series("apex path (DOP853, 12 time units)", apex(&run))
         .series("θ = acos u₁ (cubic root)", circle(theta_max))
         .series("θ = acos u₂ (cubic root)", circle(theta_min))
         .save_in(opts, "heavy_top_apex.svg", &mut report)?;

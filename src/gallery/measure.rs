@@ -24,20 +24,24 @@ pub fn drive<S: Stepper>(
 
 /// Steps the adaptive method `stepper` from `start` to `t_end` (its own initial step by Hairer's
 /// `hinit`, then the controller's steps, the last one shortened to land on `t_end`), calling
-/// `observe(dense)` with the continuous extension of every accepted step; returns the final state.
+/// `observe(state, dense)` with the state and the continuous extension of every accepted step; returns
+/// the final state.
 /// The extension is what events and uniform samples are taken from (see [`up_crossing`]).
 pub fn drive_dense<S: Dynamics, M: EmbeddedPair>(
     mut stepper: Adaptive<S, M>,
     start: State,
     t_end: f64,
-    mut observe: impl FnMut(&DenseOutput) -> Result<(), BoxError>,
+    mut observe: impl FnMut(&State, &DenseOutput) -> Result<(), BoxError>,
 ) -> Result<State, BoxError> {
     let mut state = start;
     let mut h = stepper.initial_step(&state)?;
     while t_end - state.t > 1e-14 * t_end.abs().max(1.0) {
         let h_try = h.min(t_end - state.t);
         let info = stepper.step(&mut state, h_try)?;
-        observe(stepper.dense_output().ok_or("the adaptive method has no dense output")?)?;
+        observe(
+            &state,
+            stepper.dense_output().ok_or("the adaptive method has no dense output")?,
+        )?;
         h = info.h_next;
     }
     Ok(state)

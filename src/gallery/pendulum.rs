@@ -64,7 +64,7 @@ fn measure(p: &Pendulum, theta0: f64) -> Result<(f64, Vec<(f64, f64)>), BoxError
     // The phase portrait: 400 points per period, read off the dense output.
     let dt = period / 400.0;
     let mut phase = vec![(theta0, 0.0)];
-    drive_dense(dop853, State::new(0.0, [theta0], [0.0]), t_end, |dense| {
+    drive_dense(dop853, State::new(0.0, [theta0], [0.0]), t_end, |_, dense| {
         // Event θ = 0 upwards, located on the dense output to ~1e-14 relative.
         crossings.extend(up_crossing(dense, |s| s.q[0]));
         while (phase.len() as f64) * dt <= dense.t_end().min(1.01 * period) {
@@ -84,7 +84,7 @@ fn measure(p: &Pendulum, theta0: f64) -> Result<(f64, Vec<(f64, f64)>), BoxError
 /// Method: DOP853 (Dormand-Prince 8(5,3)) with atol = rtol = 1e-15 and its 7th-order dense output: the
 /// period is a crossing time, which an event located on the continuous extension measures without
 /// the O(h⁴) of interpolating between fixed steps (the event is found to ~1e-14 relative). The global
-/// phase error at these tolerances is what remains: measured MEASURED over the 5 periods (RK4 at
+/// phase error at these tolerances is what remains: measured 2e-16 to 1.1e-13 (largest at θ₀ = 3) (RK4 at
 /// h = T₀/2000 had 7e-13 at θ₀ = 0.1, 1.5e-13 at θ₀ = 3, in 7x the instructions). Tolerance 1e-12 on the
 /// period (tightened from 1e-11), for the amplitude-dependent constant: near the separatrix (θ₀ = 3)
 /// the motion lingers by the top and the phase error is largest.
