@@ -117,7 +117,10 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     for step in 1..=steps {
         let s = run.next().ok_or("trajectory ended")??;
         if step % sample == 0 {
-            let en = run.stepper().system().energy(s.t, s.q.as_slice(), s.v.as_slice())?;
+            let en = run
+                .stepper()
+                .system()
+                .energy(s.t, s.q.as_slice(), s.v.as_slice())?;
             let err = ((en - e0) / e0).abs();
             max_err = max_err.max(err);
             energy_err.push((s.t, err));
@@ -158,11 +161,13 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
             path,
         )
         .save_in(opts, "double_pendulum_path.svg", &mut report)?;
-    Figure::new(format!("Double pendulum: relative energy error, Gauss-Legendre 6 (h = {h})"))
-        .x_label("t")
-        .y_label("|E − E0| / |E0|")
-        .log_y()
-        .series("Gauss-Legendre 6", energy_err)
-        .save_in(opts, "double_pendulum_energy_error.svg", &mut report)?;
+    Figure::new(format!(
+        "Double pendulum: relative energy error, Gauss-Legendre 6 (h = {h})"
+    ))
+    .x_label("t")
+    .y_label("|E − E0| / |E0|")
+    .log_y()
+    .series("Gauss-Legendre 6", energy_err)
+    .save_in(opts, "double_pendulum_energy_error.svg", &mut report)?;
     Ok(report)
 }

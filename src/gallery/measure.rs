@@ -40,7 +40,9 @@ pub fn drive_dense<S: Dynamics, M: EmbeddedPair>(
         let info = stepper.step(&mut state, h_try)?;
         observe(
             &state,
-            stepper.dense_output().ok_or("the adaptive method has no dense output")?,
+            stepper
+                .dense_output()
+                .ok_or("the adaptive method has no dense output")?,
         )?;
         h = info.h_next;
     }
@@ -50,7 +52,10 @@ pub fn drive_dense<S: Dynamics, M: EmbeddedPair>(
 /// The time in the step of `dense` at which `g` crosses zero upwards (g < 0 at the start of the step,
 /// ≥ 0 at its end), located on the continuous extension ([`DenseOutput::locate`]); `None` otherwise.
 pub fn up_crossing(dense: &DenseOutput, g: impl Fn(&State) -> f64) -> Option<f64> {
-    let (a, b) = (g(&dense.state_at(dense.t_start())), g(&dense.state_at(dense.t_end())));
+    let (a, b) = (
+        g(&dense.state_at(dense.t_start())),
+        g(&dense.state_at(dense.t_end())),
+    );
     (a < 0.0 && b >= 0.0).then(|| dense.locate(&g)).flatten()
 }
 

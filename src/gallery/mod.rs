@@ -320,4 +320,3 @@ pub fn main_for(name: &str) {
         }
     }
 }
-

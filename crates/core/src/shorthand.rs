@@ -189,7 +189,13 @@ mod tests {
         // The same body; the parameters come in by value from the surrounding scope.
         let short = EulerLagrange::new(lagrangian!(
             dof = 2,
-            params { m1: f64 = m1, m2: f64 = m2, l1: f64 = l1, l2: f64 = l2, g: f64 = g },
+            params {
+                m1: f64 = m1,
+                m2: f64 = m2,
+                l1: f64 = l1,
+                l2: f64 = l2,
+                g: f64 = g
+            },
             |_t, q, v| {
                 v[0] * v[0] * (0.5 * (m1 + m2) * l1 * l1)
                     + v[1] * v[1] * (0.5 * m2 * l2 * l2)
@@ -198,13 +204,20 @@ mod tests {
                     + q[1].cos() * (m2 * g * l2)
             }
         ));
-        for (q, v) in [([0.3, -1.2], [0.5, 2.0]), ([2.0, 2.0], [0.0, 0.0]), ([-0.7, 3.0], [-4.0, 1.5])] {
+        for (q, v) in [
+            ([0.3, -1.2], [0.5, 2.0]),
+            ([2.0, 2.0], [0.0, 0.0]),
+            ([-0.7, 3.0], [-4.0, 1.5]),
+        ] {
             let (mut a_hand, mut a_short) = ([0.0; 2], [0.0; 2]);
             hand.accelerations(0.0, &q, &v, &mut a_hand).unwrap();
             short.accelerations(0.0, &q, &v, &mut a_short).unwrap();
             // The same code instantiated at the same types: equal to the last bit.
             assert_eq!(a_hand, a_short);
-            assert_eq!(hand.energy(0.0, &q, &v).unwrap(), short.energy(0.0, &q, &v).unwrap());
+            assert_eq!(
+                hand.energy(0.0, &q, &v).unwrap(),
+                short.energy(0.0, &q, &v).unwrap()
+            );
         }
     }
 
@@ -214,7 +227,11 @@ mod tests {
         // q̈ = −ω² q + F cos(Ωt).
         let driven = lagrangian!(
             dof = 1,
-            params { w: f64 = 2.0, f: f64 = 0.5, big_w: f64 = 3.0 },
+            params {
+                w: f64 = 2.0,
+                f: f64 = 0.5,
+                big_w: f64 = 3.0
+            },
             |t, q, v| v[0] * v[0] * 0.5 - q[0] * q[0] * (0.5 * w * w) + (t * big_w).cos() * q[0] * f
         );
         let el = EulerLagrange::new(driven);
@@ -235,8 +252,8 @@ mod tests {
                 p[0] * p[0] * 0.5 - q[0].cos() * 9.81
             }
         }
-        let short = HamiltonEquations::new(hamiltonian!(dof = 1, |_t, q, p| p[0] * p[0] * 0.5
-            - q[0].cos() * 9.81));
+        let short =
+            HamiltonEquations::new(hamiltonian!(dof = 1, |_t, q, p| p[0] * p[0] * 0.5 - q[0].cos() * 9.81));
         let hand = HamiltonEquations::new(Pendulum);
         let (mut dq1, mut dp1, mut dq2, mut dp2) = ([0.0], [0.0], [0.0], [0.0]);
         short.rates(0.0, &[1.1], &[-0.4], &mut dq1, &mut dp1).unwrap();
