@@ -160,48 +160,46 @@ macro_rules! hamiltonian {
 mod tests {
     use crate::prelude::*;
 
-    /// The double pendulum written by hand as a trait impl.
-    struct DoublePendulum {
-        m1: f64,
-        m2: f64,
-        l1: f64,
-        l2: f64,
+    /// A pendulum (mass m, length l) hanging from a cart (mass M) on a horizontal rail, q = (x, θ),
+    /// written by hand as a trait impl: L = ½ (M + m) ẋ² + m l ẋ θ̇ cos θ + ½ m l² θ̇² + m g l cos θ.
+    struct CartPendulum {
+        big_m: f64,
+        m: f64,
+        l: f64,
         g: f64,
     }
-    impl Lagrangian for DoublePendulum {
+    impl Lagrangian for CartPendulum {
         fn dof(&self) -> usize {
             2
         }
         fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-            let Self { m1, m2, l1, l2, g } = *self;
-            v[0] * v[0] * (0.5 * (m1 + m2) * l1 * l1)
-                + v[1] * v[1] * (0.5 * m2 * l2 * l2)
-                + v[0] * v[1] * (q[0] - q[1]).cos() * (m2 * l1 * l2)
-                + q[0].cos() * ((m1 + m2) * g * l1)
-                + q[1].cos() * (m2 * g * l2)
+            let Self { big_m, m, l, g } = *self;
+            v[0] * v[0] * (0.5 * (big_m + m))
+                + v[0] * v[1] * q[1].cos() * (m * l)
+                + v[1] * v[1] * (0.5 * m * l * l)
+                + q[1].cos() * (m * g * l)
         }
     }
 
     #[test]
-    fn macro_vs_trait_double_pendulum_accelerations() {
-        let (m1, m2, l1, l2, g) = (1.3, 0.7, 1.1, 0.9, 9.81);
-        let hand = EulerLagrange::new(DoublePendulum { m1, m2, l1, l2, g });
-        // The same body; the parameters come in by value from the surrounding scope.
+    fn macro_vs_trait_cart_pendulum_accelerations() {
+        let (big_m, m, l, g) = (2.5, 0.7, 1.1, 9.81);
+        let hand = EulerLagrange::new(CartPendulum { big_m, m, l, g });
+        // The same body (a configuration-dependent mass matrix); the parameters come in by value from
+        // the surrounding scope.
         let short = EulerLagrange::new(lagrangian!(
             dof = 2,
             params {
-                m1: f64 = m1,
-                m2: f64 = m2,
-                l1: f64 = l1,
-                l2: f64 = l2,
+                big_m: f64 = big_m,
+                m: f64 = m,
+                l: f64 = l,
                 g: f64 = g
             },
             |_t, q, v| {
-                v[0] * v[0] * (0.5 * (m1 + m2) * l1 * l1)
-                    + v[1] * v[1] * (0.5 * m2 * l2 * l2)
-                    + v[0] * v[1] * (q[0] - q[1]).cos() * (m2 * l1 * l2)
-                    + q[0].cos() * ((m1 + m2) * g * l1)
-                    + q[1].cos() * (m2 * g * l2)
+                v[0] * v[0] * (0.5 * (big_m + m))
+                    + v[0] * v[1] * q[1].cos() * (m * l)
+                    + v[1] * v[1] * (0.5 * m * l * l)
+                    + q[1].cos() * (m * g * l)
             }
         ));
         for (q, v) in [
