@@ -1,12 +1,14 @@
 //! AD-derived accelerations against hand-written ones, side by side in one run, for the double pendulum,
-//! the heavy symmetric top (Euler angles) and a 10-link pendulum chain.
+//! the heavy symmetric top (Euler angles) and pendulum chains of 10, 20 and 40 links.
 //!
 //! - `hand`: the hand-derived equations of motion of `tests/ad/systems.rs` (closed forms; Cramer's rule
 //!   for the double pendulum, the cyclic-coordinate closed form for the top, a stack Cholesky of the
 //!   hand-built mass matrix for the chain);
-//! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation, stack Cholesky);
+//! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation and a stack LDLᵀ up to 12 dof;
+//!   one taped evaluation and a heap `MassFactor` beyond: the 20- and 40-link chains);
 //! - `ad_split`: the earlier scheme from the public kernels (gradient, one Hessian-vector product, the
-//!   Hessian in q̇, a heap `MassFactor`), kept as the reference point of the optimisation.
+//!   Hessian in q̇, a heap `MassFactor`), kept as the reference point of the optimisation; it was the
+//!   path of every system above 12 dof before the tape.
 //!
 //! `cargo bench -p noether-core --bench accelerations`; results in docs/benchmarks.md.
 
@@ -80,10 +82,17 @@ fn bench(c: &mut Criterion) {
     group(c, "heavy_top", top, [0.8, 0.3, -1.2], [0.4, 1.1, 7.5], |q, v| {
         top.hand_accelerations(q, v)
     });
-    let chain = Chain::<10>::default();
-    let q: [f64; 10] = std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1);
-    let v: [f64; 10] = std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos());
-    group(c, "chain10", chain, q, v, |q, v| chain.hand_accelerations(q, v));
+    chain_group::<10>(c, "chain10");
+    chain_group::<20>(c, "chain20");
+    chain_group::<40>(c, "chain40");
+}
+
+/// A chain of N links, hand against AD, at a fixed moderate state.
+fn chain_group<const N: usize>(c: &mut Criterion, name: &str) {
+    let chain = Chain::<N>::default();
+    let q: [f64; N] = std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1);
+    let v: [f64; N] = std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos());
+    group(c, name, chain, q, v, |q, v| chain.hand_accelerations(q, v));
 }
 
 fn config() -> Criterion {

@@ -14,8 +14,10 @@
 //! duals and no allocation per arithmetic operation.
 
 mod jet;
+mod tape;
 
 pub use jet::{LagrangeJet, LagrangeJet64, Part};
+pub use tape::{lagrange_terms_taped, LagrangeTermsDyn, TapeVar};
 
 use crate::Scalar;
 use nalgebra::{Const, DMatrix, SMatrix, SVector, U1};

@@ -11,10 +11,14 @@
 //! - up to [`ad::MAX_FIXED`] degrees of freedom, one evaluation of L with a
 //!   [`LagrangeJet`](ad::LagrangeJet) gives ∂L/∂q, the term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (a
 //!   Hessian-vector product, never the full mixed Hessian) and M together, and M is factored by an
-//!   in-place Cholesky on the stack: no heap allocation per call;
+//!   in-place LDLᵀ on the stack: no heap allocation per call;
 //! - a mass matrix declared constant is factored once and never differentiated again (then only a
 //!   gradient and a Hessian-vector product are evaluated);
-//! - larger systems use the chunked gradient, directional-derivative and Hessian kernels of [`ad`].
+//! - larger systems record one evaluation of L on a tape ([`ad::lagrange_terms_taped`]): one reverse
+//!   sweep gives ∂L/∂q, and the second derivatives (M and the mixed term) are pulled back through
+//!   the nonlinear operations only, so their cost follows the model's sparsity in q̇ instead of
+//!   carrying an N×N Hessian through every operation; with a constant mass matrix, the chunked
+//!   gradient and Hessian-vector product kernels of [`ad`] suffice.
 //!
 //! An indefinite (but regular) M is solved by LU; a singular one is reported as
 //! [`Error::SingularMassMatrix`].
@@ -211,16 +215,13 @@ impl<L: Lagrangian> EulerLagrange<L> {
     pub fn mass_matrix(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DMatrix<f64>> {
         self.check(t, q, v)?;
         let n = self.dof();
+        let f = LagrangianField(&self.lagrangian);
+        if n > ad::MAX_FIXED {
+            // One taped evaluation instead of ⌈n/8⌉² chunked hyper-dual evaluations.
+            return Ok(ad::lagrange_terms_taped(&f, t, q, v).hess_yy);
+        }
         let mut m = DMatrix::zeros(n, n);
-        ad::hessian(
-            &LagrangianField(&self.lagrangian),
-            t,
-            q,
-            v,
-            Block::Y,
-            Block::Y,
-            &mut m,
-        );
+        ad::hessian(&f, t, q, v, Block::Y, Block::Y, &mut m);
         Ok(m)
     }
 
@@ -253,7 +254,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
     ///
     /// Up to [`ad::MAX_FIXED`] degrees of freedom everything comes from one evaluation of L with a
     /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack (no heap allocation); larger
-    /// systems use the chunked gradient, directional-derivative and Hessian kernels.
+    /// systems take one taped evaluation of L ([`ad::lagrange_terms_taped`]) and a dense factor.
     pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         self.check(t, q, v)?;
         check_len("q̈ (output)", a, self.dof())?;
@@ -271,7 +272,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
             10 => self.accelerations_fixed::<10>(t, q, v, a),
             11 => self.accelerations_fixed::<11>(t, q, v, a),
             12 => self.accelerations_fixed::<12>(t, q, v, a),
-            _ => self.accelerations_chunked(t, q, v, a),
+            _ => self.accelerations_dyn(t, q, v, a),
         }
     }
 
@@ -310,13 +311,25 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
     }
 
-    /// The run-time-sized path: gradient, one directional derivative and the Hessian in q̇, by chunks.
-    fn accelerations_chunked(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
+    /// The run-time-sized path (more than [`ad::MAX_FIXED`] degrees of freedom). A mass matrix
+    /// declared constant is factored once, and only ∂L/∂q and the mixed term are evaluated (chunked
+    /// gradient and Hessian-vector product); otherwise one taped evaluation of L
+    /// ([`ad::lagrange_terms_taped`]) gives ∂L/∂q, the mixed term and M together, and M is factored
+    /// densely.
+    fn accelerations_dyn(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         let f = LagrangianField(&self.lagrangian);
         let n = self.dof();
-        ad::gradient(&f, t, q, v, Block::X, a);
         let mut mixed = vec![0.0; n];
-        ad::directional_gradient(&f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+        let varying = if self.lagrangian.constant_mass_matrix() {
+            ad::gradient(&f, t, q, v, Block::X, a);
+            ad::directional_gradient(&f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+            None
+        } else {
+            let terms = ad::lagrange_terms_taped(&f, t, q, v);
+            a.copy_from_slice(terms.grad_x.as_slice());
+            mixed.copy_from_slice(terms.mixed.as_slice());
+            Some(MassFactor::new(terms.hess_yy, t)?)
+        };
         for (ai, mi) in a.iter_mut().zip(&mixed) {
             *ai -= mi;
         }
@@ -327,7 +340,10 @@ impl<L: Lagrangian> EulerLagrange<L> {
                 *ai += qi;
             }
         }
-        self.solve_mass(t, q, v, a)?;
+        match varying {
+            Some(factor) => factor.solve_in_place(a),
+            None => self.constant_factor(t, q, v)?.solve_in_place(a),
+        }
         if a.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t });
         }

@@ -1,4 +1,4 @@
-//! q̈ by AD (one Lagrange-jet evaluation, or the chunked kernels beyond 12 dof) against the
+//! q̈ by AD (one Lagrange-jet evaluation up to 12 dof, one taped evaluation beyond) against the
 //! hand-derived equations of motion stated next to each model in `systems.rs`.
 
 use crate::systems::*;
@@ -51,7 +51,7 @@ fn ad_vs_hand_heavy_top() {
     });
 }
 
-/// A chain of N links through `EulerLagrange` (static path for N ≤ 12, chunked beyond).
+/// A chain of N links through `EulerLagrange` (static path for N ≤ 12, taped beyond).
 fn chain<const N: usize>(seed: u64) {
     let chain = Chain::<N>::default();
     // Moderate angles keep M well conditioned (cond ≲ 1e4), so the two Cholesky solves agree.
@@ -72,8 +72,86 @@ fn ad_vs_hand_chain_12_links_largest_static() {
 }
 
 #[test]
-fn ad_vs_hand_chain_15_links_chunked() {
+fn ad_vs_hand_chain_15_links_taped() {
     chain::<15>(5);
+}
+
+#[test]
+fn ad_vs_hand_chain_40_links_taped() {
+    // cond(M) grows with N; at angles within ±0.8 it stays ≲ 1e6 here, and both sides solve with
+    // Cholesky, so the 1e-12 relative tolerance holds with the same margin as at 10 links.
+    chain::<40>(11);
+}
+
+/// `K` independent copies of a model side by side: L = Σ_c L(t, q_c, q̇_c), Q = (Q(q_c, q̇_c))_c, so
+/// q̈ is the hand-derived q̈ of each copy. Takes small models past 12 dof onto the taped path with
+/// everything they exercise (explicit time, velocity-dependent potentials, generalized forces).
+#[derive(Clone, Copy)]
+struct Copies<L, const K: usize>(L);
+
+impl<L: Lagrangian, const K: usize> Lagrangian for Copies<L, K> {
+    fn dof(&self) -> usize {
+        K * self.0.dof()
+    }
+    fn lagrangian<D: noether_core::Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        let n = self.0.dof();
+        (0..K).fold(D::zero(), |s, c| {
+            s + self
+                .0
+                .lagrangian(t, &q[c * n..(c + 1) * n], &v[c * n..(c + 1) * n])
+        })
+    }
+    fn has_generalized_force(&self) -> bool {
+        self.0.has_generalized_force()
+    }
+    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+        let n = self.0.dof();
+        for c in 0..K {
+            let r = c * n..(c + 1) * n;
+            self.0
+                .generalized_force(t, &q[r.clone()], &v[r.clone()], &mut out[r]);
+        }
+    }
+}
+
+/// The hand-derived q̈ of `Copies::<ChargeInField, 5>`: each charge's own.
+fn five_charges_hand(sys: &ChargeInField, t: f64, q: &[f64; 15], v: &[f64; 15]) -> [f64; 15] {
+    let mut a = [0.0; 15];
+    for (c, ac) in a.chunks_exact_mut(3).enumerate() {
+        let r = 3 * c..3 * c + 3;
+        let (qc, vc) = (q[r.clone()].try_into().unwrap(), v[r].try_into().unwrap());
+        ac.copy_from_slice(&sys.hand_accelerations(t, qc, vc));
+    }
+    a
+}
+
+#[test]
+fn ad_vs_hand_charges_and_driven_oscillators_taped() {
+    // 5 charges (15 dof: ∂²L/∂q̇∂t, ∂²L/∂q̇∂q) and 13 damped driven oscillators (Q(t, q, q̇)).
+    let sys = ChargeInField::default();
+    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
+    check_accelerations(
+        "5 charges q̈",
+        Copies::<_, 5>(sys),
+        (12, 50),
+        state,
+        |t, q, v| five_charges_hand(&sys, t, q, v),
+    );
+    let osc = DrivenOscillator::default();
+    let state = |r: &mut StdRng| {
+        (
+            r.random_range(-10.0..10.0),
+            draw(r, -2.0, 2.0),
+            draw(r, -3.0, 3.0),
+        )
+    };
+    check_accelerations::<_, 13>(
+        "13 oscillators q̈",
+        Copies::<_, 13>(osc),
+        (13, 50),
+        state,
+        |t, q, v| std::array::from_fn(|c| osc.hand_acceleration(t, q[c], v[c])),
+    );
 }
 
 #[test]
@@ -143,6 +221,17 @@ impl<L: noether_core::Lagrangian> noether_core::Lagrangian for ConstMass<L> {
     fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
         self.0.generalized_force(t, q, v, out)
     }
+}
+
+#[test]
+fn ad_vs_hand_constant_mass_path_beyond_12_dof() {
+    // 5 charges (15 dof) declared constant-mass: chunked gradient and Hessian-vector product.
+    let sys = ChargeInField::default();
+    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
+    let model = ConstMass(Copies::<_, 5>(sys));
+    check_accelerations("5 charges q̈ (constant M)", model, (14, 50), state, |t, q, v| {
+        five_charges_hand(&sys, t, q, v)
+    });
 }
 
 #[test]

@@ -14,6 +14,7 @@ mod legendre;
 mod momenta;
 #[allow(dead_code)]
 mod systems;
+mod taped;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

@@ -1,0 +1,322 @@
+//! Lagrange's terms for many degrees of freedom: one recorded evaluation of L, one scalar reverse
+//! sweep, and the curvature of each nonlinear operation pulled back by forward gradients in q̇.
+//!
+//! L is evaluated once with a [`TapeVar`], which carries its value, its derivative ∂ₛ along the flow
+//! direction (δt, δq) = (1, q̇) and its gradient ∇_q̇ (stored on the tape over the contiguous range of
+//! q̇-components it depends on), and records each operation v = φ(a, b) with its partials. One reverse
+//! sweep then gives every adjoint ā_v = ∂L/∂v, hence ∂L/∂q and the momenta ∂L/∂q̇ as the adjoints of
+//! the inputs. The second derivatives follow from the second-order chain rule: the inputs
+//! (t + s, q + s·q̇, q̇ + w) are linear in (s, w), so
+//!
+//! ```text
+//! d²L = Σ_v ā_v d²φ_v,   d²φ_v = Σ_ij ∂²φ_v/∂a_i∂a_j da_i da_j
+//!
+//! M     = ∂²L/∂q̇²  = Σ_v ā_v Σ_ij ∂²φ_v/∂a_i∂a_j ∇_q̇a_i ∇_q̇a_jᵀ
+//! mixed = ∂²L/∂s∂q̇ = Σ_v ā_v Σ_ij ∂²φ_v/∂a_i∂a_j ∂ₛa_i ∇_q̇a_j  = (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t
+//! ```
+//!
+//! summed over the nonlinear operations with a q̇-dependent argument (a product, a quotient, a
+//! function of one argument); linear operations and functions of (t, q) alone add nothing. The cost
+//! is the evaluation and one sweep over its operations, plus the length of each gradient in q̇ per
+//! operation, plus its square per nonlinear operation: a chain's velocity sums that depend on
+//! q̇₁…q̇ₖ cost k and k², where a forward second-order jet carries an N×N Hessian through every
+//! operation.
+
+mod var;
+
+pub use var::TapeVar;
+
+use var::{Arg, Span};
+
+use crate::ad::Field;
+use nalgebra::{DMatrix, DVector};
+use std::cell::RefCell;
+
+/// One recorded operation v = φ(a, b): its arguments and the partials ∂φ/∂a, ∂φ/∂b. A missing
+/// argument is the sink (node 0), whose adjoint is never read.
+#[derive(Debug, Clone, Copy)]
+struct Edge {
+    a: u32,
+    b: u32,
+    da: f64,
+    db: f64,
+}
+
+/// A nonlinear operation with a q̇-dependent argument: its node, the arguments' ∂ₛ and ∇_q̇ and the
+/// second partials ∂²φ/∂a², ∂²φ/∂a∂b, ∂²φ/∂b².
+#[derive(Debug, Clone, Copy)]
+struct Curvature {
+    node: u32,
+    a: Span,
+    b: Span,
+    sa: f64,
+    sb: f64,
+    haa: f64,
+    hab: f64,
+    hbb: f64,
+}
+
+/// The thread's recording: operations, q̇-gradients and curvatures of the evaluation in progress
+/// (evaluations may nest: each one truncates back to where it started).
+#[derive(Debug)]
+struct Tape {
+    edges: Vec<Edge>,
+    grads: Vec<f64>,
+    curv: Vec<Curvature>,
+    adj: Vec<f64>,
+}
+
+/// The node every missing argument and every constant points to.
+const SINK: u32 = 0;
+
+thread_local! {
+    static TAPE: RefCell<Tape> = const {
+        RefCell::new(Tape { edges: Vec::new(), grads: Vec::new(), curv: Vec::new(), adj: Vec::new() })
+    };
+}
+
+impl Tape {
+    /// Records v = φ(x, y) with partials `d` and second partials `h` = (∂²φ/∂x², ∂²φ/∂x∂y,
+    /// ∂²φ/∂y²); ∂ₛv = d.0 ∂ₛx + d.1 ∂ₛy and ∇_q̇v = d.0 ∇_q̇x + d.1 ∇_q̇y on the union of the
+    /// arguments' ranges.
+    #[inline]
+    fn push(&mut self, x: &Arg, y: &Arg, d: (f64, f64), h: (f64, f64, f64)) -> Arg {
+        let id = self.edges.len() as u32;
+        self.edges.push(Edge {
+            a: x.id,
+            b: y.id,
+            da: d.0,
+            db: d.1,
+        });
+        let w = match (x.w.is_empty(), y.w.is_empty()) {
+            (true, true) => Span::EMPTY,
+            (false, true) => self.combine(x.w, d.0, Span::EMPTY, 0.0),
+            (true, false) => self.combine(y.w, d.1, Span::EMPTY, 0.0),
+            (false, false) => self.combine(x.w, d.0, y.w, d.1),
+        };
+        if !w.is_empty() && (h.0 != 0.0 || h.1 != 0.0 || h.2 != 0.0) {
+            self.curv.push(Curvature {
+                node: id,
+                a: x.w,
+                b: y.w,
+                sa: x.gs,
+                sb: y.gs,
+                haa: h.0,
+                hab: h.1,
+                hbb: h.2,
+            });
+        }
+        Arg {
+            gs: d.0 * x.gs + d.1 * y.gs,
+            id,
+            w,
+        }
+    }
+
+    /// Appends α ∇a + β ∇b on the union of the two ranges (`b` may be empty) and returns its span.
+    #[inline]
+    fn combine(&mut self, a: Span, alpha: f64, b: Span, beta: f64) -> Span {
+        let (lo, hi) = if b.is_empty() {
+            (a.lo, a.hi)
+        } else {
+            (a.lo.min(b.lo), a.hi.max(b.hi))
+        };
+        let off = self.grads.len();
+        self.grads.resize(off + (hi - lo) as usize, 0.0);
+        let (old, new) = self.grads.split_at_mut(off);
+        for (n, g) in new[(a.lo - lo) as usize..].iter_mut().zip(a.of(old)) {
+            *n = alpha * g;
+        }
+        if !b.is_empty() {
+            for (n, g) in new[(b.lo - lo) as usize..].iter_mut().zip(b.of(old)) {
+                *n += beta * g;
+            }
+        }
+        Span {
+            off: off as u32,
+            lo,
+            hi,
+        }
+    }
+
+    /// An input variable: ∂ₛ = `gs`, and ∇_q̇ = e_k when `k` is given.
+    fn input(&mut self, gs: f64, k: Option<usize>) -> Arg {
+        let id = self.edges.len() as u32;
+        self.edges.push(Edge {
+            a: SINK,
+            b: SINK,
+            da: 0.0,
+            db: 0.0,
+        });
+        let w = match k {
+            Some(k) => {
+                let off = self.grads.len() as u32;
+                self.grads.push(1.0);
+                Span {
+                    off,
+                    lo: k as u32,
+                    hi: k as u32 + 1,
+                }
+            }
+            None => Span::EMPTY,
+        };
+        Arg { gs, id, w }
+    }
+}
+
+/// Records v = φ(x, y) on the thread's tape (see [`Tape::push`]); an operation on constants only is a
+/// constant and is not recorded.
+#[inline]
+fn record(x: &Arg, y: &Arg, d: (f64, f64), h: (f64, f64, f64)) -> Arg {
+    if x.id == SINK && y.id == SINK {
+        return Arg::CONSTANT;
+    }
+    TAPE.with_borrow_mut(|t| t.push(x, y, d, h))
+}
+
+/// Adds c·u_i v_j to h[j + i n] for every j ≤ i (the upper triangle, column-major, of c u vᵀ's lower
+/// half), with u, v the gradients on spans `su`, `sv`.
+#[inline]
+fn add_tri(h: &mut [f64], n: usize, c: f64, (su, u): (Span, &[f64]), (sv, v): (Span, &[f64])) {
+    for (i, ui) in (su.lo as usize..).zip(u) {
+        let top = (sv.hi as usize).min(i + 1);
+        if top <= sv.lo as usize {
+            continue;
+        }
+        let cu = c * ui;
+        let col = &mut h[i * n + sv.lo as usize..i * n + top];
+        for (hij, vj) in col.iter_mut().zip(v) {
+            *hij += cu * vj;
+        }
+    }
+}
+
+/// What [`lagrange_terms_taped`] returns: [`LagrangeTerms`](super::LagrangeTerms) sized at run time.
+#[derive(Debug, Clone)]
+pub struct LagrangeTermsDyn {
+    /// f.
+    pub value: f64,
+    /// ∇_x f (∂L/∂q).
+    pub grad_x: DVector<f64>,
+    /// ∇_y f (the momenta ∂L/∂q̇).
+    pub grad_y: DVector<f64>,
+    /// ∇_y(∂_t f + ∇_x f·y): (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t.
+    pub mixed: DVector<f64>,
+    /// ∂²f/∂y² (the mass matrix ∂²L/∂q̇²).
+    pub hess_yy: DMatrix<f64>,
+}
+
+/// [`LagrangeTerms`](super::LagrangeTerms) of f at (t, x, y) for any number of variables, from one
+/// taped evaluation (module documentation): f, ∇_x f, ∇_y f, the mixed term ∇_y(∂_t f + ∇_x f·y) and
+/// the Hessian ∂²f/∂y² (symmetric). For a Lagrangian these are L, ∂L/∂q, the momenta, the term
+/// (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t of Lagrange's equations and the mass matrix.
+///
+/// ```
+/// use noether_core::ad::{lagrange_terms_taped, Field};
+/// use noether_core::Scalar;
+///
+/// /// L = ½ (q̇₀ + q̇₁)² cosh q₀ − q₁²: M = cosh q₀ [[1, 1], [1, 1]].
+/// struct Toy;
+/// impl Field for Toy {
+///     fn eval<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+///         let s = v[0] + v[1];
+///         s * s * q[0].cosh() * 0.5 - q[1] * q[1]
+///     }
+/// }
+/// let terms = lagrange_terms_taped(&Toy, 0.0, &[0.4, 1.0], &[2.0, -0.5]);
+/// let c = 0.4_f64.cosh();
+/// assert!((terms.hess_yy[(0, 1)] - c).abs() < 1e-15);
+/// assert!((terms.grad_x[1] + 2.0).abs() < 1e-15); // ∂L/∂q₁ = −2 q₁
+/// // mixed_i = Σ_j ∂²L/∂q̇_i∂q_j q̇_j = (q̇₀ + q̇₁) sinh q₀ · q̇₀
+/// assert!((terms.mixed[0] - 1.5 * 0.4_f64.sinh() * 2.0).abs() < 1e-14);
+/// ```
+pub fn lagrange_terms_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> LagrangeTermsDyn {
+    let n = x.len();
+    assert_eq!(y.len(), n, "lagrange_terms_taped: x and y differ in length");
+    assert!(
+        n < u32::MAX as usize / 2,
+        "lagrange_terms_taped: too many variables"
+    );
+    let (mut grad_x, mut grad_y, mut mixed) = (DVector::zeros(n), DVector::zeros(n), DVector::zeros(n));
+    let mut hess_yy = DMatrix::zeros(n, n);
+    let hess = hess_yy.as_mut_slice();
+    let (base, gbase, cbase, tt, xs, ys) = TAPE.with_borrow_mut(|tp| {
+        if tp.edges.is_empty() {
+            tp.input(0.0, None); // the sink
+        }
+        let marks = (tp.edges.len(), tp.grads.len(), tp.curv.len());
+        let tt = TapeVar::with(t, tp.input(1.0, None));
+        let xs: Vec<TapeVar> = (0..n)
+            .map(|i| TapeVar::with(x[i], tp.input(y[i], None)))
+            .collect();
+        let ys: Vec<TapeVar> = (0..n)
+            .map(|i| TapeVar::with(y[i], tp.input(0.0, Some(i))))
+            .collect();
+        (marks.0, marks.1, marks.2, tt, xs, ys)
+    });
+    let r = f.eval(tt, &xs, &ys);
+    TAPE.with_borrow_mut(|tp| {
+        // Reverse sweep: ā_v for every node of this evaluation.
+        let end = tp.edges.len();
+        tp.adj.clear();
+        tp.adj.resize(end, 0.0);
+        let Tape {
+            edges,
+            grads,
+            curv,
+            adj,
+        } = tp;
+        if r.arg.id != SINK {
+            adj[r.arg.id as usize] = 1.0;
+            for v in (base..=r.arg.id as usize).rev() {
+                let (e, g) = (edges[v], adj[v]);
+                adj[e.a as usize] += e.da * g;
+                adj[e.b as usize] += e.db * g;
+            }
+        }
+        for i in 0..n {
+            grad_x[i] = adj[xs[i].arg.id as usize];
+            grad_y[i] = adj[ys[i].arg.id as usize];
+        }
+        let mixed = mixed.as_mut_slice();
+        // Second order: Σ ā_v d²φ_v over the curvatures of this evaluation.
+        for c in &curv[cbase..] {
+            let w = adj[c.node as usize];
+            if w == 0.0 {
+                continue;
+            }
+            let (ga, gb) = (c.a.of(grads), c.b.of(grads));
+            for (m, g) in mixed[c.a.lo as usize..].iter_mut().zip(ga) {
+                *m += w * (c.haa * c.sa + c.hab * c.sb) * g;
+            }
+            for (m, g) in mixed[c.b.lo as usize..].iter_mut().zip(gb) {
+                *m += w * (c.hab * c.sa + c.hbb * c.sb) * g;
+            }
+            if c.haa != 0.0 {
+                add_tri(hess, n, w * c.haa, (c.a, ga), (c.a, ga));
+            }
+            if c.hab != 0.0 {
+                add_tri(hess, n, w * c.hab, (c.a, ga), (c.b, gb));
+                add_tri(hess, n, w * c.hab, (c.b, gb), (c.a, ga));
+            }
+            if c.hbb != 0.0 {
+                add_tri(hess, n, w * c.hbb, (c.b, gb), (c.b, gb));
+            }
+        }
+        for i in 0..n {
+            for j in 0..i {
+                hess[i + j * n] = hess[j + i * n];
+            }
+        }
+        edges.truncate(base);
+        grads.truncate(gbase);
+        curv.truncate(cbase);
+    });
+    LagrangeTermsDyn {
+        value: r.re,
+        grad_x,
+        grad_y,
+        mixed,
+        hess_yy,
+    }
+}
