@@ -4,11 +4,16 @@
 //! - `hand`: the hand-derived equations of motion of `tests/ad/systems.rs` (closed forms; Cramer's rule
 //!   for the double pendulum, the cyclic-coordinate closed form for the top, a stack Cholesky of the
 //!   hand-built mass matrix for the chain);
-//! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation and a stack LDLᵀ up to 12 dof;
+//! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation and a stack LDLᵀ up to 10 dof;
 //!   one taped evaluation and a heap `MassFactor` beyond: the 20- and 40-link chains);
 //! - `ad_split`: the earlier scheme from the public kernels (gradient, one Hessian-vector product, the
 //!   Hessian in q̇, a heap `MassFactor`), kept as the reference point of the optimisation; it was the
 //!   path of every system above 12 dof before the tape.
+//!
+//! A second group, `terms_<system>/{jet,tape}`, times the two fused evaluations of Lagrange's terms
+//! (value, ∂L/∂q, p, mixed term, M) side by side: `ad::lagrange_terms` (forward jet) against
+//! `ad::lagrange_terms_taped` (reverse sweep); it sets where `EulerLagrange` switches from one to the
+//! other.
 //!
 //! `cargo bench -p noether-core --bench accelerations`; results in docs/benchmarks.md.
 
@@ -85,13 +90,44 @@ fn bench(c: &mut Criterion) {
     chain_group::<10>(c, "chain10");
     chain_group::<20>(c, "chain20");
     chain_group::<40>(c, "chain40");
+    terms(c, "terms_double_pendulum", dp, [0.7, -1.9], [1.3, 0.4]);
+    terms(c, "terms_heavy_top", top, [0.8, 0.3, -1.2], [0.4, 1.1, 7.5]);
+    chain_terms::<6>(c, "terms_chain6");
+    chain_terms::<8>(c, "terms_chain8");
+    chain_terms::<10>(c, "terms_chain10");
+    chain_terms::<12>(c, "terms_chain12");
+}
+
+/// Lagrange's terms by the forward jet and by the tape, for one system at one state.
+fn terms<L: Lagrangian, const N: usize>(c: &mut Criterion, name: &str, l: L, q: [f64; N], v: [f64; N]) {
+    let f = AsField(l);
+    let mut g = c.benchmark_group(name);
+    g.bench_function("jet", |b| {
+        b.iter(|| ad::lagrange_terms(&f, 0.0, black_box(&q), black_box(&v)).hess_yy[0])
+    });
+    g.bench_function("tape", |b| {
+        b.iter(|| ad::lagrange_terms_taped(&f, 0.0, black_box(&q), black_box(&v)).hess_yy[0])
+    });
+    g.finish();
+}
+
+fn chain_terms<const N: usize>(c: &mut Criterion, name: &str) {
+    let (q, v) = chain_state::<N>();
+    terms(c, name, Chain::<N>::default(), q, v);
+}
+
+/// The chains' state: moderate angles and rates.
+fn chain_state<const N: usize>() -> ([f64; N], [f64; N]) {
+    (
+        std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1),
+        std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos()),
+    )
 }
 
 /// A chain of N links, hand against AD, at a fixed moderate state.
 fn chain_group<const N: usize>(c: &mut Criterion, name: &str) {
     let chain = Chain::<N>::default();
-    let q: [f64; N] = std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1);
-    let v: [f64; N] = std::array::from_fn(|k| 0.5 * (1.7 * k as f64).cos());
+    let (q, v) = chain_state::<N>();
     group(c, name, chain, q, v, |q, v| chain.hand_accelerations(q, v));
 }
 

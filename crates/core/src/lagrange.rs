@@ -8,7 +8,7 @@
 //! ```
 //!
 //! [`EulerLagrange`] evaluates the right-hand side without any hand-written derivative:
-//! - up to [`ad::MAX_FIXED`] degrees of freedom, one evaluation of L with a
+//! - up to [`JET_MAX`] degrees of freedom, one evaluation of L with a
 //!   [`LagrangeJet`](ad::LagrangeJet) gives ∂L/∂q, the term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (a
 //!   Hessian-vector product, never the full mixed Hessian) and M together, and M is factored by an
 //!   in-place LDLᵀ on the stack: no heap allocation per call;
@@ -29,6 +29,13 @@ use crate::newton::{DenseProblem, Newton};
 use crate::{Error, Lagrangian, Result, Scalar};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::OnceLock;
+
+/// Largest number of degrees of freedom whose accelerations come from one
+/// [`LagrangeJet`](ad::LagrangeJet) evaluation; above it, from one taped evaluation. The jet carries the N×N mass
+/// matrix through every operation on q̇, the tape only the q̇-gradients of the arguments of each
+/// nonlinear operation: on the pendulum chain they cost the same at 10 links and the tape is 1.5×
+/// faster at 12 (docs/benchmarks.md).
+const JET_MAX: usize = 10;
 
 /// A Lagrangian seen as the AD field f(t, x = q, y = q̇).
 pub(crate) struct LagrangianField<'a, L: ?Sized>(pub &'a L);
@@ -216,8 +223,8 @@ impl<L: Lagrangian> EulerLagrange<L> {
         self.check(t, q, v)?;
         let n = self.dof();
         let f = LagrangianField(&self.lagrangian);
-        if n > ad::MAX_FIXED {
-            // One taped evaluation instead of ⌈n/8⌉² chunked hyper-dual evaluations.
+        if n > JET_MAX {
+            // One taped evaluation instead of one wide Dual2 or ⌈n/8⌉² hyper-dual evaluations.
             return Ok(ad::lagrange_terms_taped(&f, t, q, v).hess_yy);
         }
         let mut m = DMatrix::zeros(n, n);
@@ -252,7 +259,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
 
     /// Accelerations q̈ = M⁻¹ (∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q), written into `a`.
     ///
-    /// Up to [`ad::MAX_FIXED`] degrees of freedom everything comes from one evaluation of L with a
+    /// Up to [`JET_MAX`] degrees of freedom everything comes from one evaluation of L with a
     /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack (no heap allocation); larger
     /// systems take one taped evaluation of L ([`ad::lagrange_terms_taped`]) and a dense factor.
     pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
@@ -270,8 +277,6 @@ impl<L: Lagrangian> EulerLagrange<L> {
             8 => self.accelerations_fixed::<8>(t, q, v, a),
             9 => self.accelerations_fixed::<9>(t, q, v, a),
             10 => self.accelerations_fixed::<10>(t, q, v, a),
-            11 => self.accelerations_fixed::<11>(t, q, v, a),
-            12 => self.accelerations_fixed::<12>(t, q, v, a),
             _ => self.accelerations_dyn(t, q, v, a),
         }
     }
@@ -311,7 +316,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
     }
 
-    /// The run-time-sized path (more than [`ad::MAX_FIXED`] degrees of freedom). A mass matrix
+    /// The run-time-sized path (more than [`JET_MAX`] degrees of freedom). A mass matrix
     /// declared constant is factored once, and only ∂L/∂q and the mixed term are evaluated (chunked
     /// gradient and Hessian-vector product); otherwise one taped evaluation of L
     /// ([`ad::lagrange_terms_taped`]) gives ∂L/∂q, the mixed term and M together, and M is factored

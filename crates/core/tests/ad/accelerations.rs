@@ -1,4 +1,4 @@
-//! q̈ by AD (one Lagrange-jet evaluation up to 12 dof, one taped evaluation beyond) against the
+//! q̈ by AD (one Lagrange-jet evaluation up to 10 dof, one taped evaluation beyond) against the
 //! hand-derived equations of motion stated next to each model in `systems.rs`.
 
 use crate::systems::*;
@@ -51,7 +51,7 @@ fn ad_vs_hand_heavy_top() {
     });
 }
 
-/// A chain of N links through `EulerLagrange` (static path for N ≤ 12, taped beyond).
+/// A chain of N links through `EulerLagrange` (one jet evaluation for N ≤ 10, taped beyond).
 fn chain<const N: usize>(seed: u64) {
     let chain = Chain::<N>::default();
     // Moderate angles keep M well conditioned (cond ≲ 1e4), so the two Cholesky solves agree.
@@ -62,12 +62,12 @@ fn chain<const N: usize>(seed: u64) {
 }
 
 #[test]
-fn ad_vs_hand_chain_10_links() {
+fn ad_vs_hand_chain_10_links_largest_jet() {
     chain::<10>(3);
 }
 
 #[test]
-fn ad_vs_hand_chain_12_links_largest_static() {
+fn ad_vs_hand_chain_12_links_taped() {
     chain::<12>(4);
 }
 
@@ -84,7 +84,7 @@ fn ad_vs_hand_chain_40_links_taped() {
 }
 
 /// `K` independent copies of a model side by side: L = Σ_c L(t, q_c, q̇_c), Q = (Q(q_c, q̇_c))_c, so
-/// q̈ is the hand-derived q̈ of each copy. Takes small models past 12 dof onto the taped path with
+/// q̈ is the hand-derived q̈ of each copy. Takes small models past 10 dof onto the taped path with
 /// everything they exercise (explicit time, velocity-dependent potentials, generalized forces).
 #[derive(Clone, Copy)]
 struct Copies<L, const K: usize>(L);
@@ -224,7 +224,7 @@ impl<L: noether_core::Lagrangian> noether_core::Lagrangian for ConstMass<L> {
 }
 
 #[test]
-fn ad_vs_hand_constant_mass_path_beyond_12_dof() {
+fn ad_vs_hand_constant_mass_path_chunked_15_dof() {
     // 5 charges (15 dof) declared constant-mass: chunked gradient and Hessian-vector product.
     let sys = ChargeInField::default();
     let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
