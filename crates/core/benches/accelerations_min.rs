@@ -2,7 +2,8 @@
 //! time per call (interference from other processes only ever adds time), and fixed call counts for
 //! instruction counting with callgrind.
 //!
-//! - `cargo bench -p noether-core --bench accelerations_min`: min-of-rounds times and ratios;
+//! - `cargo bench -p noether-core --bench accelerations_min`: min-of-rounds times and ratios, and the
+//!   time of L alone in f64 (the floor under any method that evaluates L);
 //! - `valgrind --tool=callgrind <binary> dp|top|chain`: 10 000 calls of each side; the inclusive counts
 //!   of `ad_calls::<…>` and `hand_calls::<…>` divided by 10 000 are the instructions per call.
 //!
@@ -62,6 +63,17 @@ fn hand_calls<L: Lagrangian, H: Fn(&L, &[f64; N], &[f64; N]) -> [f64; N], const 
     s
 }
 
+/// `IT` evaluations of L itself in f64: no derivative at all, the floor under any method that
+/// evaluates L (AD by any scheme needs at least this, plus the solve with M).
+#[inline(never)]
+fn value_calls<L: Lagrangian, H, const N: usize>(c: &Case<L, H, N>) -> f64 {
+    let mut s = 0.0;
+    for _ in 0..IT {
+        s += c.el.value(black_box(0.0), black_box(&c.q), black_box(&c.v));
+    }
+    s
+}
+
 /// Min over 60 rounds of `IT` calls of the time per call (ns): interference only adds time.
 fn min_ns(f: impl Fn() -> f64) -> f64 {
     (0..60)
@@ -81,9 +93,14 @@ fn run<L: Lagrangian, H: Fn(&L, &[f64; N], &[f64; N]) -> [f64; N], const N: usiz
 ) {
     if timed {
         let (h, a) = (min_ns(|| hand_calls(c)), min_ns(|| ad_calls(c)));
-        println!("{name}: hand {h:.1} ns, ad {a:.1} ns ({:.2}x)", a / h);
+        let l = min_ns(|| value_calls(c));
+        println!(
+            "{name}: hand {h:.1} ns, ad {a:.1} ns ({:.2}x); L alone in f64 {l:.1} ns ({:.2}x hand)",
+            a / h,
+            l / h
+        );
     } else {
-        println!("{}", ad_calls(c) + hand_calls(c));
+        println!("{}", ad_calls(c) + hand_calls(c) + value_calls(c));
     }
 }
 

@@ -324,35 +324,28 @@ impl<L: Lagrangian> EulerLagrange<L> {
     fn accelerations_dyn(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         let f = LagrangianField(&self.lagrangian);
         let n = self.dof();
-        let mut mixed = vec![0.0; n];
-        let varying = if self.lagrangian.constant_mass_matrix() {
-            ad::gradient(&f, t, q, v, Block::X, a);
+        // b = ∂L/∂q − mixed (+ Q below), then M⁻¹ b; `a` is written only on success.
+        let (mut b, varying) = if self.lagrangian.constant_mass_matrix() {
+            let (mut g, mut mixed) = (vec![0.0; n], vec![0.0; n]);
+            ad::gradient(&f, t, q, v, Block::X, &mut g);
             ad::directional_gradient(&f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
-            None
+            g.iter_mut().zip(&mixed).for_each(|(gi, mi)| *gi -= mi);
+            (g, None)
         } else {
             let terms = ad::lagrange_terms_taped(&f, t, q, v);
-            a.copy_from_slice(terms.grad_x.as_slice());
-            mixed.copy_from_slice(terms.mixed.as_slice());
-            Some(MassFactor::new(terms.hess_yy, t)?)
+            let b = (terms.grad_x - terms.mixed).data.into();
+            (b, Some(MassFactor::new(terms.hess_yy, t)?))
         };
-        for (ai, mi) in a.iter_mut().zip(&mixed) {
-            *ai -= mi;
-        }
         if self.lagrangian.has_generalized_force() {
             let mut qf = vec![0.0; n];
             self.lagrangian.generalized_force(t, q, v, &mut qf);
-            for (ai, qi) in a.iter_mut().zip(&qf) {
-                *ai += qi;
-            }
+            b.iter_mut().zip(&qf).for_each(|(bi, qi)| *bi += qi);
         }
         match varying {
-            Some(factor) => factor.solve_in_place(a),
-            None => self.constant_factor(t, q, v)?.solve_in_place(a),
+            Some(factor) => factor.solve_in_place(&mut b),
+            None => self.constant_factor(t, q, v)?.solve_in_place(&mut b),
         }
-        if a.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        Ok(())
+        finish(&b, a, t)
     }
 
     /// Generalized momenta p = ∂L/∂q̇ (the Legendre map), written into `p`.

@@ -27,7 +27,7 @@ impl Lagrangian for RankDeficient {
     }
 }
 
-/// 14 coordinates where the last velocity does not appear: M singular on the chunked path.
+/// 14 coordinates where the last velocity does not appear: M singular on the taped path.
 struct Degenerate14;
 impl Lagrangian for Degenerate14 {
     fn dof(&self) -> usize {
@@ -64,10 +64,45 @@ fn bad_input_singular_mass_matrix_rank_deficient() {
 }
 
 #[test]
-fn bad_input_singular_mass_matrix_chunked_path() {
+fn bad_input_singular_mass_matrix_taped_path() {
     let el = EulerLagrange::new(Degenerate14);
     let mut a = [0.0; 14];
     singular(el.accelerations(0.0, &[0.1; 14], &[0.2; 14], &mut a));
+    singular(el.mass_factor(0.0, &[0.1; 14], &[0.2; 14]));
+    assert_eq!(a, [0.0; 14], "nothing written on error");
+}
+
+/// 12 free relativistic coordinates, L = −Σ_i sqrt(1 − q̇_i²) − ½ Σ_i q_i² (c = m = 1): NaN for
+/// |q̇_i| > 1, on the taped path (more than 10 dof).
+struct Relativistic12;
+impl Lagrangian for Relativistic12 {
+    fn dof(&self) -> usize {
+        12
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        (0..12).fold(D::zero(), |acc, i| {
+            acc - (-v[i] * v[i] + 1.0).sqrt() - q[i] * q[i] * 0.5
+        })
+    }
+}
+
+#[test]
+fn bad_input_model_returns_nan_taped_path() {
+    let el = EulerLagrange::new(Relativistic12);
+    let mut a = [0.0; 12];
+    let mut v = [0.3; 12];
+    el.accelerations(0.0, &[0.1; 12], &v, &mut a).unwrap();
+    // q̈_i = −q_i (1 − q̇_i²)^{3/2}: the sqrt's curvature enters M = diag((1 − q̇_i²)^{−3/2}).
+    let expected = -0.1 * (1.0 - 0.09_f64).powf(1.5);
+    assert!(
+        a.iter().all(|ai| (ai - expected).abs() < 1e-14 * expected.abs()),
+        "{a:?}"
+    );
+    v[7] = 1.2;
+    let mut a = [0.0; 12];
+    let r = el.accelerations(0.0, &[0.1; 12], &v, &mut a);
+    assert!(matches!(r, Err(Error::NonFiniteState { .. })), "{r:?}");
+    assert_eq!(a, [0.0; 12], "nothing written on error");
 }
 
 #[test]
