@@ -31,10 +31,10 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::OnceLock;
 
 /// Largest number of degrees of freedom whose accelerations come from one
-/// [`LagrangeJet`](ad::LagrangeJet) evaluation; above it, from one taped evaluation. The jet carries the N×N mass
-/// matrix through every operation on q̇, the tape only the q̇-gradients of the arguments of each
-/// nonlinear operation: on the pendulum chain they cost the same at 10 links and the tape is 1.5×
-/// faster at 12 (docs/benchmarks.md).
+/// [`LagrangeJet`](ad::LagrangeJet) evaluation; above it, from one taped evaluation. The jet carries
+/// the N×N mass matrix through every operation on q̇, the tape only the q̇-gradients of the arguments
+/// of each nonlinear operation: on the pendulum chain the jet is 1.1× faster at 10 links, the tape
+/// 1.4× faster at 12 (docs/benchmarks.md, `terms_chain*`).
 const JET_MAX: usize = 10;
 
 /// A Lagrangian seen as the AD field f(t, x = q, y = q̇).
