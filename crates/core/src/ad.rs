@@ -13,6 +13,13 @@
 //! everything on the stack), W = 8 with ⌈n/8⌉ chunks beyond. Models of any size therefore use `Copy`
 //! duals and no allocation per arithmetic operation.
 //!
+//! Forward chunks make a gradient cost ⌈n/8⌉ evaluations and a Hessian ⌈n/8⌉² of them, so large blocks
+//! go to reverse mode instead: one evaluation recorded on a tape ([`TapeVar`]) and one sweep
+//! backwards give the whole gradient ([`gradient_taped`], from n = [`GRADIENT_TAPE_FROM`]), a
+//! Hessian-vector product ([`directional_gradient_taped`], from n = [`DIRECTIONAL_TAPE_FROM`]) or a
+//! diagonal Hessian block ([`hessian_taped`], beyond n = [`MAX_FIXED`]). A FPU chain of 1024
+//! particles: gradient 2.8 ms → 0.15 ms; of 256, Hessian 32 ms → 0.14 ms.
+//!
 //! Lagrange's equations need four of these at once (∇_x f, ∇_y f, the mixed term and ∂²f/∂y²), which
 //! two fused evaluations deliver:
 //! - [`lagrange_terms`]: one evaluation with a [`LagrangeJet`], forward mode, everything on the stack
@@ -27,7 +34,10 @@ mod jet;
 mod tape;
 
 pub use jet::{LagrangeJet, LagrangeJet64, Part};
-pub use tape::{lagrange_terms_taped, LagrangeTermsDyn, TapeVar};
+pub use tape::{
+    directional_gradient_taped, gradient_taped, hessian_taped, lagrange_terms_taped, LagrangeTermsDyn,
+    TapeVar,
+};
 
 use crate::Scalar;
 use nalgebra::{Const, DMatrix, SMatrix, SVector, U1};
@@ -62,6 +72,15 @@ impl Block {
 
 /// Largest block length differentiated in a single evaluation.
 pub const MAX_FIXED: usize = 12;
+/// Block length from which [`gradient`] records one evaluation on the tape ([`gradient_taped`])
+/// instead of one forward evaluation per chunk of [`CHUNK`]: measured on a FPU chain, the chunks cost
+/// 3.8 against 4.8 µs at n = 32 and 12.9 against 9.3 µs at n = 64 (`--bench kernels`,
+/// docs/benchmarks.md).
+pub const GRADIENT_TAPE_FROM: usize = 48;
+/// Block length from which [`directional_gradient`] takes the tape ([`directional_gradient_taped`]):
+/// on a chain of coupled rotors the chunks cost 5.1 against 5.5 µs at n = 16, 19.2 against 11.5 µs
+/// at n = 32.
+pub const DIRECTIONAL_TAPE_FROM: usize = 32;
 /// Chunk width used for blocks longer than [`MAX_FIXED`].
 pub const CHUNK: usize = 8;
 
@@ -176,8 +195,18 @@ fn partial_t_w<F: Field, const W: usize>(f: &F, t: f64, x: &[f64], y: &[f64]) ->
     f.eval(Dual64::new(t, 1.0), &xs, &ys).eps
 }
 
-/// Gradient of f with respect to `block`, written into `out`; returns the value of f.
+/// Gradient of f with respect to `block`, written into `out`; returns the value of f. Forward duals
+/// ([`gradient_forward`]) below [`GRADIENT_TAPE_FROM`] variables, the tape ([`gradient_taped`]) from
+/// there on.
 pub fn gradient<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
+    if block.pick(x, y).len() >= GRADIENT_TAPE_FROM {
+        return gradient_taped(f, t, x, y, block, out);
+    }
+    gradient_forward(f, t, x, y, block, out)
+}
+
+/// [`gradient`] by forward duals for any block length: one `DualSVec64<W>` evaluation per chunk.
+pub fn gradient_forward<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
     let n = block.pick(x, y).len();
     debug_assert_eq!(out.len(), n);
     if n == 0 {
@@ -208,8 +237,28 @@ fn gradient_w<F: Field, const W: usize>(
     val
 }
 
-/// Hessian block ∂²f/∂a∂b (rows: block `a`, columns: block `b`) written into `out`.
+/// Hessian block ∂²f/∂a∂b (rows: block `a`, columns: block `b`) written into `out`. A diagonal block
+/// (a = b) longer than [`MAX_FIXED`] comes from the tape ([`hessian_taped`]), everything else from
+/// forward duals ([`hessian_forward`]).
 pub fn hessian<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, b: Block, out: &mut DMatrix<f64>) {
+    if a == b && a.pick(x, y).len() > MAX_FIXED {
+        // One taped evaluation instead of ⌈n/8⌉(⌈n/8⌉+1)/2 hyper-dual chunk pairs.
+        return hessian_taped(f, t, x, y, a, out);
+    }
+    hessian_forward(f, t, x, y, a, b, out)
+}
+
+/// [`hessian`] by forward duals for any block lengths: one `Dual2SVec64<n>` evaluation for a diagonal
+/// block of n ≤ [`MAX_FIXED`], one `HyperDualSVec64<W, W>` evaluation per pair of chunks otherwise.
+pub fn hessian_forward<F: Field>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    a: Block,
+    b: Block,
+    out: &mut DMatrix<f64>,
+) {
     let (na, nb) = (a.pick(x, y).len(), b.pick(x, y).len());
     debug_assert_eq!(out.shape(), (na, nb));
     if na == 0 || nb == 0 {
@@ -298,9 +347,29 @@ fn hessian_blocks<F: Field, const W: usize>(
 
 /// Directional gradient: `out_j = ∂/∂b_j [∂_t f·δt + ∇_x f·δx + ∇_y f·δy]` (a Hessian-vector product
 /// without the Hessian). Pass an empty slice for δx or δy to mean zero. Returns ∇_b f in `grad_b` if
-/// given (it comes for free).
+/// given (it comes for free). Forward duals ([`directional_gradient_forward`]) below
+/// [`DIRECTIONAL_TAPE_FROM`] variables in b, the tape ([`directional_gradient_taped`]) from there on.
 #[allow(clippy::too_many_arguments)]
 pub fn directional_gradient<F: Field>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    b: Block,
+    out: &mut [f64],
+    grad_b: Option<&mut [f64]>,
+) {
+    if out.len() >= DIRECTIONAL_TAPE_FROM {
+        return directional_gradient_taped(f, t, x, y, dir, b, out, grad_b);
+    }
+    directional_gradient_forward(f, t, x, y, dir, b, out, grad_b)
+}
+
+/// [`directional_gradient`] by forward duals for any block length: one `HyperDualSVec64<1, W>`
+/// evaluation per chunk.
+#[allow(clippy::too_many_arguments)]
+pub fn directional_gradient_forward<F: Field>(
     f: &F,
     t: f64,
     x: &[f64],

@@ -28,7 +28,7 @@ pub use var::TapeVar;
 
 use var::{Arg, Span};
 
-use crate::ad::Field;
+use crate::ad::{Block, Field};
 use nalgebra::{DMatrix, DVector};
 use std::cell::RefCell;
 
@@ -233,24 +233,154 @@ pub struct LagrangeTermsDyn {
 pub fn lagrange_terms_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> LagrangeTermsDyn {
     let n = x.len();
     assert_eq!(y.len(), n, "lagrange_terms_taped: x and y differ in length");
-    assert!(
-        n < u32::MAX as usize / 2,
-        "lagrange_terms_taped: too many variables"
-    );
     let (mut grad_x, mut grad_y, mut mixed) = (DVector::zeros(n), DVector::zeros(n), DVector::zeros(n));
     let mut hess_yy = DMatrix::zeros(n, n);
-    let hess = hess_yy.as_mut_slice();
-    let (base, gbase, cbase, tt, xs, ys) = TAPE.with_borrow_mut(|tp| {
+    let value = sweep(
+        f,
+        (t, x, y),
+        Seeds {
+            dir: (1.0, y, &[]),
+            block: Some(Block::Y),
+        },
+        Outputs {
+            grad_x: Some(grad_x.as_mut_slice()),
+            grad_y: Some(grad_y.as_mut_slice()),
+            mixed: Some(mixed.as_mut_slice()),
+            hess: Some(hess_yy.as_mut_slice()),
+        },
+    );
+    LagrangeTermsDyn {
+        value,
+        grad_x,
+        grad_y,
+        mixed,
+        hess_yy,
+    }
+}
+
+/// ∇_block f (written into `out`) by one taped evaluation and one reverse sweep, with no second-order
+/// bookkeeping: the cost of a few evaluations of f for any number of variables, where
+/// [`gradient`](super::gradient)'s forward duals take one evaluation per chunk of 8. Returns f.
+///
+/// ```
+/// use noether_core::ad::{gradient_taped, Block, Field};
+/// use noether_core::Scalar;
+///
+/// /// V = Σ_i ¼ (x_{i+1} − x_i)⁴: ∂V/∂x_0 = −(x_1 − x_0)³.
+/// struct Fpu;
+/// impl Field for Fpu {
+///     fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+///         x.windows(2).fold(D::zero(), |v, w| v + (w[1] - w[0]).powi(4) * 0.25)
+///     }
+/// }
+/// let x: Vec<f64> = (0..100).map(|i| (i as f64 * 0.1).sin()).collect();
+/// let mut g = vec![0.0; 100];
+/// gradient_taped(&Fpu, 0.0, &x, &[], Block::X, &mut g);
+/// assert!((g[0] + (x[1] - x[0]).powi(3)).abs() < 1e-15);
+/// ```
+pub fn gradient_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
+    assert_eq!(out.len(), block.pick(x, y).len(), "gradient_taped: output length");
+    let mut outputs = Outputs::default();
+    match block {
+        Block::X => outputs.grad_x = Some(out),
+        Block::Y => outputs.grad_y = Some(out),
+    }
+    let seeds = Seeds {
+        dir: (0.0, &[], &[]),
+        block: None,
+    };
+    sweep(f, (t, x, y), seeds, outputs)
+}
+
+/// [`directional_gradient`](super::directional_gradient) by one taped evaluation:
+/// `out_j = ∂/∂b_j [∂_t f·δt + ∇_x f·δx + ∇_y f·δy]` from the curvatures of the nonlinear operations
+/// pulled back along the direction (no Hessian formed), and ∇_b f in `grad_b` if given.
+#[allow(clippy::too_many_arguments)]
+pub fn directional_gradient_taped<F: Field>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    dir: (f64, &[f64], &[f64]),
+    b: Block,
+    out: &mut [f64],
+    grad_b: Option<&mut [f64]>,
+) {
+    assert_eq!(
+        out.len(),
+        b.pick(x, y).len(),
+        "directional_gradient_taped: output length"
+    );
+    let mut outputs = Outputs {
+        mixed: Some(out),
+        ..Outputs::default()
+    };
+    match b {
+        Block::X => outputs.grad_x = grad_b,
+        Block::Y => outputs.grad_y = grad_b,
+    }
+    sweep(f, (t, x, y), Seeds { dir, block: Some(b) }, outputs);
+}
+
+/// The diagonal Hessian block ∂²f/∂a² (written into the square `out`) by one taped evaluation: the
+/// cost follows the coupling of the model (Σ over nonlinear operations of the squared length of
+/// their arguments' gradients), not the n²/W² chunk pairs of [`hessian`](super::hessian).
+pub fn hessian_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, out: &mut DMatrix<f64>) {
+    let n = a.pick(x, y).len();
+    assert_eq!(out.shape(), (n, n), "hessian_taped: output shape");
+    let seeds = Seeds {
+        dir: (0.0, &[], &[]),
+        block: Some(a),
+    };
+    let outputs = Outputs {
+        hess: Some(out.as_mut_slice()),
+        ..Outputs::default()
+    };
+    sweep(f, (t, x, y), seeds, outputs);
+}
+
+/// A point or a direction (t, x, y); an empty slice stands for zeros.
+type Point<'a> = (f64, &'a [f64], &'a [f64]);
+
+/// How an evaluation is seeded: every node carries its derivative ∂ₛ along `dir`, and, when `block`
+/// is given, its gradient with respect to that block's variables.
+struct Seeds<'a> {
+    dir: Point<'a>,
+    block: Option<Block>,
+}
+
+/// What a sweep writes (each slice sized for its block; `hess` n_b², column-major).
+#[derive(Default)]
+struct Outputs<'a> {
+    grad_x: Option<&'a mut [f64]>,
+    grad_y: Option<&'a mut [f64]>,
+    /// ∇_b ∂ₛf, b the seeded block.
+    mixed: Option<&'a mut [f64]>,
+    /// ∂²f/∂b².
+    hess: Option<&'a mut [f64]>,
+}
+
+/// Records f at `at` with `seeds`, sweeps it backwards and writes `outputs`; returns f.
+fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: Outputs<'_>) -> f64 {
+    let n = seeds.block.map_or(0, |b| b.pick(x, y).len());
+    assert!(
+        x.len().max(y.len()) < u32::MAX as usize / 2,
+        "taped evaluation: too many variables"
+    );
+    let (dt, dx, dy) = seeds.dir;
+    let dir = |d: &[f64], i: usize| d.get(i).copied().unwrap_or(0.0);
+    let span = |b: Block, i: usize| (seeds.block == Some(b)).then_some(i);
+    let (base, cbase, gbase, tt, xs, ys) = TAPE.with_borrow_mut(|tp| {
         if tp.edges.is_empty() {
             tp.input(0.0, None); // the sink
         }
-        let marks = (tp.edges.len(), tp.grads.len(), tp.curv.len());
-        let tt = TapeVar::with(t, tp.input(1.0, None));
-        let xs: Vec<TapeVar> = (0..n)
-            .map(|i| TapeVar::with(x[i], tp.input(y[i], None)))
+        let marks = (tp.edges.len(), tp.curv.len(), tp.grads.len());
+        let tt = TapeVar::with(t, tp.input(dt, None));
+        let xs: Vec<TapeVar> = (0..x.len())
+            .map(|i| TapeVar::with(x[i], tp.input(dir(dx, i), span(Block::X, i))))
             .collect();
-        let ys: Vec<TapeVar> = (0..n)
-            .map(|i| TapeVar::with(y[i], tp.input(0.0, Some(i))))
+        let ys: Vec<TapeVar> = (0..y.len())
+            .map(|i| TapeVar::with(y[i], tp.input(dir(dy, i), span(Block::Y, i))))
             .collect();
         (marks.0, marks.1, marks.2, tt, xs, ys)
     });
@@ -274,49 +404,58 @@ pub fn lagrange_terms_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> La
                 adj[e.b as usize] += e.db * g;
             }
         }
-        for i in 0..n {
-            grad_x[i] = adj[xs[i].arg.id as usize];
-            grad_y[i] = adj[ys[i].arg.id as usize];
+        let adjoints = |vars: &[TapeVar], out: &mut [f64]| {
+            for (o, v) in out.iter_mut().zip(vars) {
+                *o = adj[v.arg.id as usize];
+            }
+        };
+        if let Some(g) = outputs.grad_x.as_deref_mut() {
+            adjoints(&xs, g);
         }
-        let mixed = mixed.as_mut_slice();
+        if let Some(g) = outputs.grad_y.as_deref_mut() {
+            adjoints(&ys, g);
+        }
         // Second order: Σ ā_v d²φ_v over the curvatures of this evaluation.
+        let (mut mixed, mut hess) = (outputs.mixed, outputs.hess);
+        mixed.iter_mut().for_each(|m| m.fill(0.0));
+        hess.iter_mut().for_each(|h| h.fill(0.0));
         for c in &curv[cbase..] {
             let w = adj[c.node as usize];
             if w == 0.0 {
                 continue;
             }
             let (ga, gb) = (c.a.of(grads), c.b.of(grads));
-            for (m, g) in mixed[c.a.lo as usize..].iter_mut().zip(ga) {
-                *m += w * (c.haa * c.sa + c.hab * c.sb) * g;
+            if let Some(m) = mixed.as_deref_mut() {
+                for (m, g) in m[c.a.lo as usize..].iter_mut().zip(ga) {
+                    *m += w * (c.haa * c.sa + c.hab * c.sb) * g;
+                }
+                for (m, g) in m[c.b.lo as usize..].iter_mut().zip(gb) {
+                    *m += w * (c.hab * c.sa + c.hbb * c.sb) * g;
+                }
             }
-            for (m, g) in mixed[c.b.lo as usize..].iter_mut().zip(gb) {
-                *m += w * (c.hab * c.sa + c.hbb * c.sb) * g;
-            }
-            if c.haa != 0.0 {
-                add_tri(hess, n, w * c.haa, (c.a, ga), (c.a, ga));
-            }
-            if c.hab != 0.0 {
-                add_tri(hess, n, w * c.hab, (c.a, ga), (c.b, gb));
-                add_tri(hess, n, w * c.hab, (c.b, gb), (c.a, ga));
-            }
-            if c.hbb != 0.0 {
-                add_tri(hess, n, w * c.hbb, (c.b, gb), (c.b, gb));
+            if let Some(h) = hess.as_deref_mut() {
+                if c.haa != 0.0 {
+                    add_tri(h, n, w * c.haa, (c.a, ga), (c.a, ga));
+                }
+                if c.hab != 0.0 {
+                    add_tri(h, n, w * c.hab, (c.a, ga), (c.b, gb));
+                    add_tri(h, n, w * c.hab, (c.b, gb), (c.a, ga));
+                }
+                if c.hbb != 0.0 {
+                    add_tri(h, n, w * c.hbb, (c.b, gb), (c.b, gb));
+                }
             }
         }
-        for i in 0..n {
-            for j in 0..i {
-                hess[i + j * n] = hess[j + i * n];
+        if let Some(h) = hess {
+            for i in 0..n {
+                for j in 0..i {
+                    h[i + j * n] = h[j + i * n];
+                }
             }
         }
         edges.truncate(base);
         grads.truncate(gbase);
         curv.truncate(cbase);
     });
-    LagrangeTermsDyn {
-        value: r.re,
-        grad_x,
-        grad_y,
-        mixed,
-        hess_yy,
-    }
+    r.re
 }

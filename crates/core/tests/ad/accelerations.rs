@@ -114,12 +114,15 @@ impl<L: Lagrangian, const K: usize> Lagrangian for Copies<L, K> {
     }
 }
 
-/// The hand-derived q̈ of `Copies::<ChargeInField, 5>`: each charge's own.
-fn five_charges_hand(sys: &ChargeInField, t: f64, q: &[f64; 15], v: &[f64; 15]) -> [f64; 15] {
-    let mut a = [0.0; 15];
-    for (c, ac) in a.chunks_exact_mut(3).enumerate() {
-        let r = 3 * c..3 * c + 3;
-        let (qc, vc) = (q[r.clone()].try_into().unwrap(), v[r].try_into().unwrap());
+/// The hand-derived q̈ of `Copies::<ChargeInField, K>` (N = 3K): each charge's own.
+fn charges_hand<const N: usize>(sys: &ChargeInField, t: f64, q: &[f64; N], v: &[f64; N]) -> [f64; N] {
+    let mut a = [0.0; N];
+    for ((ac, qc), vc) in a
+        .chunks_exact_mut(3)
+        .zip(q.chunks_exact(3))
+        .zip(v.chunks_exact(3))
+    {
+        let (qc, vc) = (qc.try_into().unwrap(), vc.try_into().unwrap());
         ac.copy_from_slice(&sys.hand_accelerations(t, qc, vc));
     }
     a
@@ -135,7 +138,7 @@ fn ad_vs_hand_charges_and_driven_oscillators_taped() {
         Copies::<_, 5>(sys),
         (12, 50),
         state,
-        |t, q, v| five_charges_hand(&sys, t, q, v),
+        |t, q, v| charges_hand::<15>(&sys, t, q, v),
     );
     let osc = DrivenOscillator::default();
     let state = |r: &mut StdRng| {
@@ -230,8 +233,24 @@ fn ad_vs_hand_constant_mass_path_chunked_15_dof() {
     let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
     let model = ConstMass(Copies::<_, 5>(sys));
     check_accelerations("5 charges q̈ (constant M)", model, (14, 50), state, |t, q, v| {
-        five_charges_hand(&sys, t, q, v)
+        charges_hand::<15>(&sys, t, q, v)
     });
+}
+
+#[test]
+fn ad_vs_hand_constant_mass_path_taped_33_dof() {
+    // 11 charges declared constant-mass: the Hessian-vector product (with its explicit-time part
+    // ∂²L/∂q̇∂t) by the tape (n ≥ DIRECTIONAL_TAPE_FROM), the gradient still by forward chunks.
+    let sys = ChargeInField::default();
+    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
+    let model = ConstMass(Copies::<_, 11>(sys));
+    check_accelerations(
+        "11 charges q̈ (constant M)",
+        model,
+        (15, 50),
+        state,
+        |t, q, v| charges_hand::<33>(&sys, t, q, v),
+    );
 }
 
 #[test]

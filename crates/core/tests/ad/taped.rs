@@ -117,3 +117,122 @@ fn taped_evaluations_nest() {
     }
     tape_vs_jet::<_, 2>(Nesting, 11, (-3.0, 3.0), (-4.0, 4.0));
 }
+
+/// FPU chain, V = Σ_i ½ d_i² + ¼ β d_i⁴ with d_i = x_{i+1} − x_i: the hand-derived gradient
+/// ∂V/∂x_i = F(d_{i−1}) − F(d_i) and tridiagonal Hessian H_ii = k(d_{i−1}) + k(d_i),
+/// H_{i,i+1} = −k(d_i), with F(d) = d + β d³, k(d) = 1 + 3β d² (terms beyond the ends absent).
+struct Fpu {
+    beta: f64,
+}
+impl Field for Fpu {
+    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+        x.windows(2).fold(D::zero(), |v, w| {
+            let d = w[1] - w[0];
+            v + d * d * 0.5 + d.powi(4) * (0.25 * self.beta)
+        })
+    }
+}
+
+#[test]
+fn taped_gradient_and_hessian_match_hand_fpu_chain() {
+    // n = 1000 takes ad::gradient onto the tape (n ≥ GRADIENT_TAPE_FROM), n = 100 ad::hessian
+    // (n > MAX_FIXED). Tolerance 1e-12 relative to the largest entry (TOL): one rounding per term.
+    let fpu = Fpu { beta: 0.7 };
+    let mut r = rng(12);
+    for n in [1000, 100] {
+        let x: Vec<f64> = (0..n).map(|_| r.random_range(-1.0..1.0)).collect();
+        let d: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+        let force = |i: usize| d.get(i).map_or(0.0, |&d| d + 0.7 * d.powi(3));
+        let stiff = |i: usize| d.get(i).map_or(0.0, |&d| 1.0 + 2.1 * d * d);
+        let hand: Vec<f64> = (0..n)
+            .map(|i| (if i == 0 { 0.0 } else { force(i - 1) }) - force(i))
+            .collect();
+        let mut g = vec![0.0; n];
+        ad::gradient(&fpu, 0.0, &x, &[], ad::Block::X, &mut g);
+        assert_rel("∇V", &g, &hand, 1.0);
+        if n <= 100 {
+            let mut h = nalgebra::DMatrix::zeros(n, n);
+            ad::hessian(&fpu, 0.0, &x, &[], ad::Block::X, ad::Block::X, &mut h);
+            let hand = nalgebra::DMatrix::from_fn(n, n, |i, j| match i.abs_diff(j) {
+                0 => (if i == 0 { 0.0 } else { stiff(i - 1) }) + stiff(i),
+                1 => -stiff(i.min(j)),
+                _ => 0.0,
+            });
+            assert_rel("∇²V", h.as_slice(), hand.as_slice(), 1.0);
+        }
+    }
+}
+
+/// Coupled rotors, L = Σ ½ q̇_i² + ε Σ q̇_i q̇_{i+1} cos(q_i − q_{i+1}) + Σ cos(q_{i+1} − q_i), whose
+/// momenta p_j = q̇_j + ε [q̇_{j+1} cos(q_j − q_{j+1}) + q̇_{j−1} cos(q_{j−1} − q_j)] give the mixed
+/// term d/ds p_j(q + s q̇) = −ε [q̇_{j+1} sin(q_j − q_{j+1}) (q̇_j − q̇_{j+1})
+/// + q̇_{j−1} sin(q_{j−1} − q_j) (q̇_{j−1} − q̇_j)].
+struct Rotors {
+    eps: f64,
+}
+impl Lagrangian for Rotors {
+    fn dof(&self) -> usize {
+        40
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let kinetic = v.iter().fold(D::zero(), |s, &vi| s + vi * vi * 0.5);
+        (0..q.len() - 1).fold(kinetic, |s, i| {
+            s + v[i] * v[i + 1] * (q[i] - q[i + 1]).cos() * self.eps + (q[i + 1] - q[i]).cos()
+        })
+    }
+}
+
+#[test]
+fn taped_directional_gradient_matches_hand_coupled_rotors() {
+    // 40 velocities: ad::directional_gradient takes the tape (n ≥ DIRECTIONAL_TAPE_FROM).
+    let rot = Rotors { eps: 0.3 };
+    let f = F(Rotors { eps: 0.3 });
+    let mut r = rng(13);
+    for _ in 0..10 {
+        let (q, v) = (draw::<40>(&mut r, -3.0, 3.0), draw::<40>(&mut r, -2.0, 2.0));
+        let (mut mixed, mut p) = ([0.0; 40], [0.0; 40]);
+        ad::directional_gradient(
+            &f,
+            0.0,
+            &q,
+            &v,
+            (1.0, &v, &[]),
+            ad::Block::Y,
+            &mut mixed,
+            Some(&mut p),
+        );
+        let e = rot.eps;
+        let hand_p: Vec<f64> = (0..40)
+            .map(|j| {
+                let next = if j + 1 < 40 {
+                    v[j + 1] * (q[j] - q[j + 1]).cos()
+                } else {
+                    0.0
+                };
+                let prev = if j > 0 {
+                    v[j - 1] * (q[j - 1] - q[j]).cos()
+                } else {
+                    0.0
+                };
+                v[j] + e * (next + prev)
+            })
+            .collect();
+        let hand_mixed: Vec<f64> = (0..40)
+            .map(|j| {
+                let next = if j + 1 < 40 {
+                    v[j + 1] * (q[j] - q[j + 1]).sin() * (v[j] - v[j + 1])
+                } else {
+                    0.0
+                };
+                let prev = if j > 0 {
+                    v[j - 1] * (q[j - 1] - q[j]).sin() * (v[j - 1] - v[j])
+                } else {
+                    0.0
+                };
+                -e * (next + prev)
+            })
+            .collect();
+        assert_rel("p", &p, &hand_p, 1.0);
+        assert_rel("mixed", &mixed, &hand_mixed, 1.0);
+    }
+}
