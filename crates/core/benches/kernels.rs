@@ -105,7 +105,7 @@ fn bench(c: &mut Criterion) {
         });
         g.bench_function("tape", |b| {
             b.iter(|| {
-                ad::hessian_taped(&Fpu, 0.0, black_box(&x), &[], Block::X, &mut h);
+                ad::hessian_taped(&Fpu, 0.0, black_box(&x), &[], Block::X, Block::X, &mut h);
                 h[0]
             })
         });

@@ -240,7 +240,7 @@ pub fn lagrange_terms_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> La
         (t, x, y),
         Seeds {
             dir: (1.0, y, &[]),
-            block: Some(Block::Y),
+            grad: Grad::Block(Block::Y),
         },
         Outputs {
             grad_x: Some(grad_x.as_mut_slice()),
@@ -287,7 +287,7 @@ pub fn gradient_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Bloc
     }
     let seeds = Seeds {
         dir: (0.0, &[], &[]),
-        block: None,
+        grad: Grad::None,
     };
     sweep(f, (t, x, y), seeds, outputs)
 }
@@ -319,57 +319,107 @@ pub fn directional_gradient_taped<F: Field>(
         Block::X => outputs.grad_x = grad_b,
         Block::Y => outputs.grad_y = grad_b,
     }
-    sweep(f, (t, x, y), Seeds { dir, block: Some(b) }, outputs);
+    let seeds = Seeds {
+        dir,
+        grad: Grad::Block(b),
+    };
+    sweep(f, (t, x, y), seeds, outputs);
 }
 
-/// The diagonal Hessian block ∂²f/∂a² (written into the square `out`) by one taped evaluation: the
-/// cost follows the coupling of the model (Σ over nonlinear operations of the squared length of
-/// their arguments' gradients), not the n²/W² chunk pairs of [`hessian`](super::hessian).
-pub fn hessian_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], a: Block, out: &mut DMatrix<f64>) {
-    let n = a.pick(x, y).len();
-    assert_eq!(out.shape(), (n, n), "hessian_taped: output shape");
+/// The Hessian block ∂²f/∂a∂b (rows: block `a`, columns: block `b`, written into `out`) by one taped
+/// evaluation: the cost follows the coupling of the model (Σ over nonlinear operations of the squared
+/// length of their arguments' gradients), not the ⌈n/8⌉² chunk pairs of
+/// [`hessian_forward`](super::hessian_forward). A block across x and y (a ≠ b) is cut out of the
+/// Hessian in (x, y) together.
+pub fn hessian_taped<F: Field>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    a: Block,
+    b: Block,
+    out: &mut DMatrix<f64>,
+) {
+    let (na, nb) = (a.pick(x, y).len(), b.pick(x, y).len());
+    assert_eq!(out.shape(), (na, nb), "hessian_taped: output shape");
+    let (grad, mut joint) = if a == b {
+        (Grad::Block(a), DMatrix::zeros(0, 0))
+    } else {
+        let n = x.len() + y.len();
+        (Grad::Both, DMatrix::zeros(n, n))
+    };
+    let hess = if a == b {
+        out.as_mut_slice()
+    } else {
+        joint.as_mut_slice()
+    };
     let seeds = Seeds {
         dir: (0.0, &[], &[]),
-        block: Some(a),
+        grad,
     };
     let outputs = Outputs {
-        hess: Some(out.as_mut_slice()),
+        hess: Some(hess),
         ..Outputs::default()
     };
     sweep(f, (t, x, y), seeds, outputs);
+    if a != b {
+        let offset = |blk: Block| if blk == Block::X { 0 } else { x.len() };
+        out.copy_from(&joint.view((offset(a), offset(b)), (na, nb)));
+    }
 }
 
 /// A point or a direction (t, x, y); an empty slice stands for zeros.
 type Point<'a> = (f64, &'a [f64], &'a [f64]);
 
-/// How an evaluation is seeded: every node carries its derivative ∂ₛ along `dir`, and, when `block`
-/// is given, its gradient with respect to that block's variables.
+/// How an evaluation is seeded: every node carries its derivative ∂ₛ along `dir` and its gradient
+/// with respect to the variables `grad` names.
 struct Seeds<'a> {
     dir: Point<'a>,
-    block: Option<Block>,
+    grad: Grad,
 }
 
-/// What a sweep writes (each slice sized for its block; `hess` n_b², column-major).
+/// The variables whose gradients the nodes carry (for the second-order outputs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Grad {
+    /// None: a first-order sweep.
+    None,
+    /// One block.
+    Block(Block),
+    /// x and y together, x first.
+    Both,
+}
+
+/// What a sweep writes (gradients sized for their block; `mixed` for the seeded variables, `hess` their
+/// number squared, column-major).
 #[derive(Default)]
 struct Outputs<'a> {
     grad_x: Option<&'a mut [f64]>,
     grad_y: Option<&'a mut [f64]>,
-    /// ∇_b ∂ₛf, b the seeded block.
+    /// ∇ ∂ₛf in the seeded variables.
     mixed: Option<&'a mut [f64]>,
-    /// ∂²f/∂b².
+    /// The Hessian in the seeded variables.
     hess: Option<&'a mut [f64]>,
 }
 
 /// Records f at `at` with `seeds`, sweeps it backwards and writes `outputs`; returns f.
 fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: Outputs<'_>) -> f64 {
-    let n = seeds.block.map_or(0, |b| b.pick(x, y).len());
+    let n = match seeds.grad {
+        Grad::None => 0,
+        Grad::Block(b) => b.pick(x, y).len(),
+        Grad::Both => x.len() + y.len(),
+    };
     assert!(
         x.len().max(y.len()) < u32::MAX as usize / 2,
         "taped evaluation: too many variables"
     );
     let (dt, dx, dy) = seeds.dir;
     let dir = |d: &[f64], i: usize| d.get(i).copied().unwrap_or(0.0);
-    let span = |b: Block, i: usize| (seeds.block == Some(b)).then_some(i);
+    let span = |b: Block, i: usize| match seeds.grad {
+        Grad::Block(g) if g == b => Some(i),
+        Grad::Both if b == Block::Y => Some(x.len() + i),
+        Grad::Both => Some(i),
+        _ => None,
+    };
     let (base, cbase, gbase, tt, xs, ys) = TAPE.with_borrow_mut(|tp| {
         if tp.edges.is_empty() {
             tp.input(0.0, None); // the sink
