@@ -36,15 +36,16 @@ impl<L: Lagrangian> Field for AsField<L> {
     }
 }
 
-/// The three-kernel scheme: M q̈ = ∇_q L − ∇_q̇(∂_t L + q̇·∇_q L), M = ∂²L/∂q̇² (Dual2Vec), heap factor.
+/// The three-kernel scheme in forward mode: M q̈ = ∇_q L − ∇_q̇(∂_t L + q̇·∇_q L), M = ∂²L/∂q̇²
+/// (Dual2Vec, or hyper-dual chunk pairs beyond 12), heap factor.
 fn ad_split<L: Lagrangian>(f: &AsField<L>, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) {
     let n = q.len();
-    ad::gradient(f, t, q, v, Block::X, a);
+    ad::gradient_forward(f, t, q, v, Block::X, a);
     let mut mixed = vec![0.0; n];
-    ad::directional_gradient(f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
+    ad::directional_gradient_forward(f, t, q, v, (1.0, v, &[]), Block::Y, &mut mixed, None);
     a.iter_mut().zip(&mixed).for_each(|(ai, mi)| *ai -= mi);
     let mut m = DMatrix::zeros(n, n);
-    ad::hessian(f, t, q, v, Block::Y, Block::Y, &mut m);
+    ad::hessian_forward(f, t, q, v, Block::Y, Block::Y, &mut m);
     MassFactor::new(m, t).unwrap().solve_in_place(a);
 }
 

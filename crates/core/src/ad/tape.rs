@@ -1,9 +1,10 @@
 //! Lagrange's terms for many degrees of freedom: one recorded evaluation of L, one scalar reverse
 //! sweep, and the curvature of each nonlinear operation pulled back by forward gradients in q̇.
 //!
-//! L is evaluated once with a [`TapeVar`], which carries its value, its derivative ∂ₛ along the flow
-//! direction (δt, δq) = (1, q̇) and its gradient ∇_q̇ (stored on the tape over the contiguous range of
-//! q̇-components it depends on), and records each operation v = φ(a, b) with its partials. One reverse
+//! L is evaluated once with a [`TapeVar`] (a value and a node handle, two words), which records each
+//! operation v = φ(a, b) with its partials; each node also carries forward, on the tape, its
+//! derivative ∂ₛ along the flow direction (δt, δq) = (1, q̇) and its gradient ∇_q̇ (stored over the
+//! contiguous range of q̇-components it depends on). One reverse
 //! sweep then gives every adjoint ā_v = ∂L/∂v, hence ∂L/∂q and the momenta ∂L/∂q̇ as the adjoints of
 //! the inputs. The second derivatives follow from the second-order chain rule: the inputs
 //! (t + s, q + s·q̇, q̇ + w) are linear in (s, w), so
@@ -21,6 +22,14 @@
 //! operation, plus its square per nonlinear operation: a chain's velocity sums that depend on
 //! q̇₁…q̇ₖ cost k and k², where a forward second-order jet carries an N×N Hessian through every
 //! operation.
+//!
+//! The same recording serves the first-order and Hessian-vector kernels of [`ad`](super) for large
+//! blocks: with no gradients carried it is plain reverse mode (the whole gradient for a few
+//! evaluations' cost), with a direction (δt, δx, δy) it is forward-over-reverse.
+//!
+//! # References
+//! - A. Griewank, A. Walther, *Evaluating Derivatives*, 2nd ed., SIAM 2008: chapters 3–4 (reverse
+//!   mode on a tape) and 5 (second-order adjoints).
 
 mod var;
 
@@ -56,11 +65,20 @@ struct Curvature {
     hbb: f64,
 }
 
-/// The thread's recording: operations, q̇-gradients and curvatures of the evaluation in progress
-/// (evaluations may nest: each one truncates back to where it started).
+/// What a node carries forward: its derivative ∂ₛ along the seeded direction and where its gradient
+/// in the seeded variables lives.
+#[derive(Debug, Clone, Copy)]
+struct Flow {
+    gs: f64,
+    w: Span,
+}
+
+/// The thread's recording: operations (with their flows, one per node), gradients and curvatures of
+/// the evaluation in progress (evaluations may nest: each one truncates back to where it started).
 #[derive(Debug)]
 struct Tape {
     edges: Vec<Edge>,
+    flows: Vec<Flow>,
     grads: Vec<f64>,
     curv: Vec<Curvature>,
     adj: Vec<f64>,
@@ -71,7 +89,13 @@ const SINK: u32 = 0;
 
 thread_local! {
     static TAPE: RefCell<Tape> = const {
-        RefCell::new(Tape { edges: Vec::new(), grads: Vec::new(), curv: Vec::new(), adj: Vec::new() })
+        RefCell::new(Tape {
+            edges: Vec::new(),
+            flows: Vec::new(),
+            grads: Vec::new(),
+            curv: Vec::new(),
+            adj: Vec::new(),
+        })
     };
 }
 
@@ -88,29 +112,30 @@ impl Tape {
             da: d.0,
             db: d.1,
         });
-        let w = match (x.w.is_empty(), y.w.is_empty()) {
+        let (fx, fy) = (self.flows[x.id as usize], self.flows[y.id as usize]);
+        let w = match (fx.w.is_empty(), fy.w.is_empty()) {
             (true, true) => Span::EMPTY,
-            (false, true) => self.combine(x.w, d.0, Span::EMPTY, 0.0),
-            (true, false) => self.combine(y.w, d.1, Span::EMPTY, 0.0),
-            (false, false) => self.combine(x.w, d.0, y.w, d.1),
+            (false, true) => self.combine(fx.w, d.0, Span::EMPTY, 0.0),
+            (true, false) => self.combine(fy.w, d.1, Span::EMPTY, 0.0),
+            (false, false) => self.combine(fx.w, d.0, fy.w, d.1),
         };
         if !w.is_empty() && (h.0 != 0.0 || h.1 != 0.0 || h.2 != 0.0) {
             self.curv.push(Curvature {
                 node: id,
-                a: x.w,
-                b: y.w,
-                sa: x.gs,
-                sb: y.gs,
+                a: fx.w,
+                b: fy.w,
+                sa: fx.gs,
+                sb: fy.gs,
                 haa: h.0,
                 hab: h.1,
                 hbb: h.2,
             });
         }
-        Arg {
-            gs: d.0 * x.gs + d.1 * y.gs,
-            id,
+        self.flows.push(Flow {
+            gs: d.0 * fx.gs + d.1 * fy.gs,
             w,
-        }
+        });
+        Arg { id }
     }
 
     /// Appends α ∇a + β ∇b on the union of the two ranges (`b` may be empty) and returns its span.
@@ -160,7 +185,8 @@ impl Tape {
             }
             None => Span::EMPTY,
         };
-        Arg { gs, id, w }
+        self.flows.push(Flow { gs, w });
+        Arg { id }
     }
 }
 
@@ -442,6 +468,7 @@ fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: O
         tp.adj.resize(end, 0.0);
         let Tape {
             edges,
+            flows,
             grads,
             curv,
             adj,
@@ -504,6 +531,7 @@ fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: O
             }
         }
         edges.truncate(base);
+        flows.truncate(base);
         grads.truncate(gbase);
         curv.truncate(cbase);
     });

@@ -44,25 +44,18 @@ impl Span {
     }
 }
 
-/// What an operation needs of an argument besides its value: its node, its derivative along the flow
-/// direction and its gradient in q̇.
-#[derive(Debug, Clone, Copy)]
+/// A node of the tape: what an operation needs of an argument besides its value (its derivative
+/// along the flow direction and its gradient) is stored there, under this handle, so that a
+/// [`TapeVar`] stays two words and travels in registers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Arg {
-    /// ∂ₛ (the derivative along (δt, δq) = (1, q̇)).
-    pub gs: f64,
     /// The node (the sink for a constant).
     pub id: u32,
-    /// ∇_q̇ on the tape.
-    pub w: Span,
 }
 
 impl Arg {
     /// A constant: no node, no derivative.
-    pub const CONSTANT: Arg = Arg {
-        gs: 0.0,
-        id: SINK,
-        w: Span::EMPTY,
-    };
+    pub const CONSTANT: Arg = Arg { id: SINK };
 
     #[inline(always)]
     fn is_constant(&self) -> bool {
@@ -150,7 +143,7 @@ impl<T: DualNum<F>, F: Float> Taped<T, F> {
             return o.scale(self.re.clone());
         }
         let (a, b) = (real(&self.re), real(&o.re));
-        let arg = if self.arg.id == o.arg.id {
+        let arg = if self.arg == o.arg {
             // A square a·a: one argument, d/da = 2a, d²/da² = 2 (one outer product ∇a ∇aᵀ, not two).
             record(&self.arg, &Arg::CONSTANT, (2.0 * a, 0.0), (2.0, 0.0, 0.0))
         } else {
