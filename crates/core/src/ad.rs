@@ -18,7 +18,7 @@
 //! backwards give the whole gradient ([`gradient_taped`], from n = [`GRADIENT_TAPE_FROM`]), a
 //! Hessian-vector product ([`directional_gradient_taped`], from n = [`DIRECTIONAL_TAPE_FROM`]) or a
 //! Hessian block ([`hessian_taped`], beyond n = [`MAX_FIXED`]). A FPU chain of 1024
-//! particles: gradient 2.8 ms → 0.15 ms; of 256, Hessian 32 ms → 0.14 ms.
+//! particles: gradient 2.85 ms → 0.11 ms; of 256, Hessian 29.5 ms → 0.16 ms.
 //!
 //! Lagrange's equations need four of these at once (∇_x f, ∇_y f, the mixed term and ∂²f/∂y²), which
 //! two fused evaluations deliver:
@@ -27,7 +27,7 @@
 //! - [`lagrange_terms_taped`]: one evaluation recorded with a [`TapeVar`] and one reverse sweep, for
 //!   any number of variables: ∂²f/∂y² is accumulated from the curvature of each nonlinear operation
 //!   and the q̇-gradients of its arguments, so its cost follows the model's coupling instead of
-//!   carrying an N×N Hessian through every operation (a 40-link chain: 43 µs, against 359 µs for the
+//!   carrying an N×N Hessian through every operation (a 40-link chain: 38 µs, against 414 µs for the
 //!   chunked kernels above; docs/benchmarks.md).
 
 mod jet;
@@ -74,13 +74,13 @@ impl Block {
 pub const MAX_FIXED: usize = 12;
 /// Block length from which [`gradient`] records one evaluation on the tape ([`gradient_taped`])
 /// instead of one forward evaluation per chunk of [`CHUNK`]: measured on a FPU chain, the chunks cost
-/// 3.8 against 4.8 µs at n = 32 and 12.9 against 9.3 µs at n = 64 (`--bench kernels`,
+/// 1.23 against 1.75 µs at n = 16 and 3.81 against 3.54 µs at n = 32 (`--bench kernels`,
 /// docs/benchmarks.md).
-pub const GRADIENT_TAPE_FROM: usize = 48;
+pub const GRADIENT_TAPE_FROM: usize = 32;
 /// Block length from which [`directional_gradient`] takes the tape ([`directional_gradient_taped`]):
-/// on a chain of coupled rotors the chunks cost 5.1 against 5.5 µs at n = 16, 19.2 against 11.5 µs
+/// on a chain of coupled rotors the chunks cost 5.18 against 5.13 µs at n = 16, 19.6 against 10.8 µs
 /// at n = 32.
-pub const DIRECTIONAL_TAPE_FROM: usize = 32;
+pub const DIRECTIONAL_TAPE_FROM: usize = 16;
 /// Chunk width used for blocks longer than [`MAX_FIXED`].
 pub const CHUNK: usize = 8;
 

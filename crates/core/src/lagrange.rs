@@ -33,8 +33,9 @@ use std::sync::OnceLock;
 /// Largest number of degrees of freedom whose accelerations come from one
 /// [`LagrangeJet`](ad::LagrangeJet) evaluation; above it, from one taped evaluation. The jet carries
 /// the N×N mass matrix through every operation on q̇, the tape only the q̇-gradients of the arguments
-/// of each nonlinear operation: on the pendulum chain the jet is 1.1× faster at 10 links, the tape
-/// 1.4× faster at 12 (docs/benchmarks.md, `terms_chain*`).
+/// of each nonlinear operation: on the pendulum chain the jet is 1.2× faster at 8 links, they are
+/// within 10 % at 10 (where the jet's stack solve keeps its path allocation-free), and the tape is
+/// 1.7× faster at 12 (docs/benchmarks.md, `terms_chain*`).
 const JET_MAX: usize = 10;
 
 /// A Lagrangian seen as the AD field f(t, x = q, y = q̇).

@@ -240,7 +240,7 @@ fn ad_vs_hand_constant_mass_path_chunked_15_dof() {
 #[test]
 fn ad_vs_hand_constant_mass_path_taped_33_dof() {
     // 11 charges declared constant-mass: the Hessian-vector product (with its explicit-time part
-    // ∂²L/∂q̇∂t) by the tape (n ≥ DIRECTIONAL_TAPE_FROM), the gradient still by forward chunks.
+    // ∂²L/∂q̇∂t) and the gradient ∂L/∂q by the tape (n ≥ DIRECTIONAL_TAPE_FROM, GRADIENT_TAPE_FROM).
     let sys = ChargeInField::default();
     let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
     let model = ConstMass(Copies::<_, 11>(sys));
