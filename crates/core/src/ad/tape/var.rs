@@ -64,12 +64,13 @@ impl Arg {
 }
 
 /// A recording scalar: its value and [`Arg`]. `T` is always `f64` here (the type parameters are the
-/// shape num-dual's macros expect); see [`TapeVar`].
+/// shape num-dual's macros expect); see [`TapeVar`]. Neither `Send` nor `Sync`: its node lives on
+/// the tape of the thread that recorded it.
 #[derive(Clone, Copy, Debug)]
 pub struct Taped<T, F> {
     pub(super) re: T,
     pub(super) arg: Arg,
-    f: PhantomData<F>,
+    f: PhantomData<(F, *const ())>,
 }
 
 /// The recording scalar a model is evaluated with on the tape.
