@@ -43,73 +43,72 @@ fn state(n: usize) -> (Vec<f64>, Vec<f64>) {
     )
 }
 
+/// The kernels' signatures, shared by the forward and the taped variant of each.
+type Gradient = fn(&Fpu, f64, &[f64], &[f64], Block, &mut [f64]) -> f64;
+type Directional =
+    fn(&Rotors, f64, &[f64], &[f64], (f64, &[f64], &[f64]), Block, &mut [f64], Option<&mut [f64]>);
+type Hessian = fn(&Fpu, f64, &[f64], &[f64], Block, Block, &mut DMatrix<f64>);
+
+/// One group `name`: the forward kernel against the taped one, side by side.
+fn forward_vs_tape(
+    c: &mut Criterion,
+    name: String,
+    mut forward: impl FnMut() -> f64,
+    mut tape: impl FnMut() -> f64,
+) {
+    let mut g = c.benchmark_group(name);
+    g.bench_function("forward", |b| b.iter(&mut forward));
+    g.bench_function("tape", |b| b.iter(&mut tape));
+    g.finish();
+}
+
 fn bench(c: &mut Criterion) {
     for n in [16, 32, 64, 1024] {
         let (x, _) = state(n);
-        let mut g = c.benchmark_group(format!("gradient_n{n}"));
-        let mut out = vec![0.0; n];
-        g.bench_function("forward", |b| {
-            b.iter(|| ad::gradient_forward(&Fpu, 0.0, black_box(&x), &[], Block::X, &mut out))
-        });
-        g.bench_function("tape", |b| {
-            b.iter(|| ad::gradient_taped(&Fpu, 0.0, black_box(&x), &[], Block::X, &mut out))
-        });
-        g.finish();
+        let run = |k: Gradient| {
+            let (x, mut out) = (&x, vec![0.0; n]);
+            move || k(&Fpu, 0.0, black_box(x), &[], Block::X, &mut out)
+        };
+        let name = format!("gradient_n{n}");
+        forward_vs_tape(c, name, run(ad::gradient_forward), run(ad::gradient_taped));
     }
     for n in [16, 32, 64, 1024] {
         let (q, v) = state(n);
-        let mut g = c.benchmark_group(format!("directional_n{n}"));
-        let mut out = vec![0.0; n];
-        let dir = (1.0, v.as_slice(), &[][..]);
-        g.bench_function("forward", |b| {
-            b.iter(|| {
-                ad::directional_gradient_forward(
+        let run = |k: Directional| {
+            let (q, v, mut out) = (&q, &v, vec![0.0; n]);
+            move || {
+                k(
                     &Rotors,
                     0.0,
-                    black_box(&q),
-                    &v,
-                    dir,
+                    black_box(q),
+                    v,
+                    (1.0, v, &[]),
                     Block::Y,
                     &mut out,
                     None,
                 );
                 out[0]
-            })
-        });
-        g.bench_function("tape", |b| {
-            b.iter(|| {
-                ad::directional_gradient_taped(
-                    &Rotors,
-                    0.0,
-                    black_box(&q),
-                    &v,
-                    dir,
-                    Block::Y,
-                    &mut out,
-                    None,
-                );
-                out[0]
-            })
-        });
-        g.finish();
+            }
+        };
+        let name = format!("directional_n{n}");
+        forward_vs_tape(
+            c,
+            name,
+            run(ad::directional_gradient_forward),
+            run(ad::directional_gradient_taped),
+        );
     }
     for n in [16, 64, 256] {
         let (x, _) = state(n);
-        let mut g = c.benchmark_group(format!("hessian_n{n}"));
-        let mut h = DMatrix::zeros(n, n);
-        g.bench_function("forward", |b| {
-            b.iter(|| {
-                ad::hessian_forward(&Fpu, 0.0, black_box(&x), &[], Block::X, Block::X, &mut h);
+        let run = |k: Hessian| {
+            let (x, mut h) = (&x, DMatrix::zeros(n, n));
+            move || {
+                k(&Fpu, 0.0, black_box(x), &[], Block::X, Block::X, &mut h);
                 h[0]
-            })
-        });
-        g.bench_function("tape", |b| {
-            b.iter(|| {
-                ad::hessian_taped(&Fpu, 0.0, black_box(&x), &[], Block::X, Block::X, &mut h);
-                h[0]
-            })
-        });
-        g.finish();
+            }
+        };
+        let name = format!("hessian_n{n}");
+        forward_vs_tape(c, name, run(ad::hessian_forward), run(ad::hessian_taped));
     }
 }
 
