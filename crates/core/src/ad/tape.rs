@@ -4,9 +4,8 @@
 //! L is evaluated once with a [`TapeVar`] (a value and a node handle, two words), which records each
 //! operation v = φ(a, b) with its partials; each node also carries forward, on the tape, its
 //! derivative ∂ₛ along the flow direction (δt, δq) = (1, q̇) and its gradient ∇_q̇ (stored over the
-//! contiguous range of q̇-components it depends on). One reverse
-//! sweep then gives every adjoint ā_v = ∂L/∂v, hence ∂L/∂q and the momenta ∂L/∂q̇ as the adjoints of
-//! the inputs. The second derivatives follow from the second-order chain rule: the inputs
+//! contiguous range of q̇-components it depends on). One reverse sweep then gives every adjoint
+//! ā_v = ∂L/∂v, hence ∂L/∂q and the momenta ∂L/∂q̇ as the adjoints of the inputs. The second derivatives follow from the second-order chain rule: the inputs
 //! (t + s, q + s·q̇, q̇ + w) are linear in (s, w), so
 //!
 //! ```text
@@ -51,15 +50,11 @@ struct Edge {
     db: f64,
 }
 
-/// A nonlinear operation with a q̇-dependent argument: its node, the arguments' ∂ₛ and ∇_q̇ and the
-/// second partials ∂²φ/∂a², ∂²φ/∂a∂b, ∂²φ/∂b².
+/// A nonlinear operation with a q̇-dependent argument: its node (whose edge names the arguments, whose
+/// flows hold their ∂ₛ and ∇_q̇) and the second partials ∂²φ/∂a², ∂²φ/∂a∂b, ∂²φ/∂b².
 #[derive(Debug, Clone, Copy)]
 struct Curvature {
     node: u32,
-    a: Span,
-    b: Span,
-    sa: f64,
-    sb: f64,
     haa: f64,
     hab: f64,
     hbb: f64,
@@ -122,10 +117,6 @@ impl Tape {
         if !w.is_empty() && (h.0 != 0.0 || h.1 != 0.0 || h.2 != 0.0) {
             self.curv.push(Curvature {
                 node: id,
-                a: fx.w,
-                b: fy.w,
-                sa: fx.gs,
-                sb: fy.gs,
                 haa: h.0,
                 hab: h.1,
                 hbb: h.2,
@@ -306,11 +297,7 @@ pub fn lagrange_terms_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> La
 /// ```
 pub fn gradient_taped<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
     assert_eq!(out.len(), block.pick(x, y).len(), "gradient_taped: output length");
-    let mut outputs = Outputs::default();
-    match block {
-        Block::X => outputs.grad_x = Some(out),
-        Block::Y => outputs.grad_y = Some(out),
-    }
+    let outputs = Outputs::default().gradient(block, Some(out));
     let seeds = Seeds {
         dir: (0.0, &[], &[]),
         grad: Grad::None,
@@ -337,14 +324,11 @@ pub fn directional_gradient_taped<F: Field>(
         b.pick(x, y).len(),
         "directional_gradient_taped: output length"
     );
-    let mut outputs = Outputs {
+    let outputs = Outputs {
         mixed: Some(out),
         ..Outputs::default()
-    };
-    match b {
-        Block::X => outputs.grad_x = grad_b,
-        Block::Y => outputs.grad_y = grad_b,
     }
+    .gradient(b, grad_b);
     let seeds = Seeds {
         dir,
         grad: Grad::Block(b),
@@ -368,30 +352,25 @@ pub fn hessian_taped<F: Field>(
 ) {
     let (na, nb) = (a.pick(x, y).len(), b.pick(x, y).len());
     assert_eq!(out.shape(), (na, nb), "hessian_taped: output shape");
-    let (grad, mut joint) = if a == b {
-        (Grad::Block(a), DMatrix::zeros(0, 0))
-    } else {
-        let n = x.len() + y.len();
-        (Grad::Both, DMatrix::zeros(n, n))
+    let hessian = |grad, h: &mut [f64]| {
+        let seeds = Seeds {
+            dir: (0.0, &[], &[]),
+            grad,
+        };
+        let outputs = Outputs {
+            hess: Some(h),
+            ..Outputs::default()
+        };
+        sweep(f, (t, x, y), seeds, outputs);
     };
-    let hess = if a == b {
-        out.as_mut_slice()
-    } else {
-        joint.as_mut_slice()
-    };
-    let seeds = Seeds {
-        dir: (0.0, &[], &[]),
-        grad,
-    };
-    let outputs = Outputs {
-        hess: Some(hess),
-        ..Outputs::default()
-    };
-    sweep(f, (t, x, y), seeds, outputs);
-    if a != b {
-        let offset = |blk: Block| if blk == Block::X { 0 } else { x.len() };
-        out.copy_from(&joint.view((offset(a), offset(b)), (na, nb)));
+    if a == b {
+        return hessian(Grad::Block(a), out.as_mut_slice());
     }
+    let n = x.len() + y.len();
+    let mut joint = DMatrix::zeros(n, n);
+    hessian(Grad::Both, joint.as_mut_slice());
+    let offset = |blk: Block| if blk == Block::X { 0 } else { x.len() };
+    out.copy_from(&joint.view((offset(a), offset(b)), (na, nb)));
 }
 
 /// A point or a direction (t, x, y); an empty slice stands for zeros.
@@ -425,6 +404,17 @@ struct Outputs<'a> {
     mixed: Option<&'a mut [f64]>,
     /// The Hessian in the seeded variables.
     hess: Option<&'a mut [f64]>,
+}
+
+impl<'a> Outputs<'a> {
+    /// These outputs with ∇_block f written into `g`.
+    fn gradient(mut self, block: Block, g: Option<&'a mut [f64]>) -> Self {
+        match block {
+            Block::X => self.grad_x = g,
+            Block::Y => self.grad_y = g,
+        }
+        self
+    }
 }
 
 /// Records f at `at` with `seeds`, sweeps it backwards and writes `outputs`; returns f.
@@ -501,25 +491,27 @@ fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: O
             if w == 0.0 {
                 continue;
             }
-            let (ga, gb) = (c.a.of(grads), c.b.of(grads));
+            let e = edges[c.node as usize];
+            let (fa, fb) = (flows[e.a as usize], flows[e.b as usize]);
+            let (ga, gb) = (fa.w.of(grads), fb.w.of(grads));
             if let Some(m) = mixed.as_deref_mut() {
-                for (m, g) in m[c.a.lo as usize..].iter_mut().zip(ga) {
-                    *m += w * (c.haa * c.sa + c.hab * c.sb) * g;
+                for (m, g) in m[fa.w.lo as usize..].iter_mut().zip(ga) {
+                    *m += w * (c.haa * fa.gs + c.hab * fb.gs) * g;
                 }
-                for (m, g) in m[c.b.lo as usize..].iter_mut().zip(gb) {
-                    *m += w * (c.hab * c.sa + c.hbb * c.sb) * g;
+                for (m, g) in m[fb.w.lo as usize..].iter_mut().zip(gb) {
+                    *m += w * (c.hab * fa.gs + c.hbb * fb.gs) * g;
                 }
             }
             if let Some(h) = hess.as_deref_mut() {
                 if c.haa != 0.0 {
-                    add_tri(h, n, w * c.haa, (c.a, ga), (c.a, ga));
+                    add_tri(h, n, w * c.haa, (fa.w, ga), (fa.w, ga));
                 }
                 if c.hab != 0.0 {
-                    add_tri(h, n, w * c.hab, (c.a, ga), (c.b, gb));
-                    add_tri(h, n, w * c.hab, (c.b, gb), (c.a, ga));
+                    add_tri(h, n, w * c.hab, (fa.w, ga), (fb.w, gb));
+                    add_tri(h, n, w * c.hab, (fb.w, gb), (fa.w, ga));
                 }
                 if c.hbb != 0.0 {
-                    add_tri(h, n, w * c.hbb, (c.b, gb), (c.b, gb));
+                    add_tri(h, n, w * c.hbb, (fb.w, gb), (fb.w, gb));
                 }
             }
         }
