@@ -2,7 +2,7 @@
 //! hand-derived equations of motion stated next to each model in `systems.rs`.
 
 use crate::systems::*;
-use crate::{assert_rel, draw, for_states, rng, Sample};
+use crate::{assert_rel, charge_state, draw, for_states, rng, Sample};
 use noether_core::{EulerLagrange, Lagrangian};
 use rand::rngs::StdRng;
 use rand::Rng;
@@ -78,8 +78,8 @@ fn ad_vs_hand_chain_15_links_taped() {
 
 #[test]
 fn ad_vs_hand_chain_40_links_taped() {
-    // cond(M) grows with N; at angles within ±0.8 it stays ≲ 1e6 here, and both sides solve with
-    // Cholesky, so the 1e-12 relative tolerance holds with the same margin as at 10 links.
+    // cond(M) grows with N; both sides solve with Cholesky, and the 1e-12 relative tolerance (TOL)
+    // is the same as at 10 links.
     chain::<40>(11);
 }
 
@@ -132,12 +132,11 @@ fn charges_hand<const N: usize>(sys: &ChargeInField, t: f64, q: &[f64; N], v: &[
 fn ad_vs_hand_charges_and_driven_oscillators_taped() {
     // 5 charges (15 dof: ∂²L/∂q̇∂t, ∂²L/∂q̇∂q) and 13 damped driven oscillators (Q(t, q, q̇)).
     let sys = ChargeInField::default();
-    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
     check_accelerations(
         "5 charges q̈",
         Copies::<_, 5>(sys),
         (12, 50),
-        state,
+        charge_state,
         |t, q, v| charges_hand::<15>(&sys, t, q, v),
     );
     let osc = DrivenOscillator::default();
@@ -161,8 +160,7 @@ fn ad_vs_hand_charges_and_driven_oscillators_taped() {
 fn ad_vs_hand_charge_in_time_dependent_field() {
     // Exercises ∂²L/∂q̇∂t = e ∂A/∂t (the induced electric field −∂A/∂t) and ∂²L/∂q̇∂q.
     let sys = ChargeInField::default();
-    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
-    check_accelerations("charge q̈", sys, (6, STATES), state, |t, q, v| {
+    check_accelerations("charge q̈", sys, (6, STATES), charge_state, |t, q, v| {
         sys.hand_accelerations(t, q, v)
     });
 }
@@ -230,11 +228,14 @@ impl<L: noether_core::Lagrangian> noether_core::Lagrangian for ConstMass<L> {
 fn ad_vs_hand_constant_mass_path_chunked_15_dof() {
     // 5 charges (15 dof) declared constant-mass: chunked gradient and Hessian-vector product.
     let sys = ChargeInField::default();
-    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
     let model = ConstMass(Copies::<_, 5>(sys));
-    check_accelerations("5 charges q̈ (constant M)", model, (14, 50), state, |t, q, v| {
-        charges_hand::<15>(&sys, t, q, v)
-    });
+    check_accelerations(
+        "5 charges q̈ (constant M)",
+        model,
+        (14, 50),
+        charge_state,
+        |t, q, v| charges_hand::<15>(&sys, t, q, v),
+    );
 }
 
 #[test]
@@ -242,13 +243,12 @@ fn ad_vs_hand_constant_mass_path_taped_33_dof() {
     // 11 charges declared constant-mass: the Hessian-vector product (with its explicit-time part
     // ∂²L/∂q̇∂t) and the gradient ∂L/∂q by the tape (n ≥ DIRECTIONAL_TAPE_FROM, GRADIENT_TAPE_FROM).
     let sys = ChargeInField::default();
-    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
     let model = ConstMass(Copies::<_, 11>(sys));
     check_accelerations(
         "11 charges q̈ (constant M)",
         model,
         (15, 50),
-        state,
+        charge_state,
         |t, q, v| charges_hand::<33>(&sys, t, q, v),
     );
 }

@@ -1,6 +1,6 @@
 //! Hamilton's equations q̇ = ∂H/∂p, ṗ = −∂H/∂q by AD against hand-derived right-hand sides.
 
-use crate::{assert_rel, draw, for_states, Sample};
+use crate::{assert_rel, charge_state, draw, for_states, Sample};
 use noether_core::{HamiltonEquations, Hamiltonian, Scalar};
 use rand::rngs::StdRng;
 use rand::Rng;
@@ -127,9 +127,7 @@ fn ad_vs_hand_hamilton_charge_explicit_time() {
     // ṗ_x = (e/m) π_y B/2 − e κ x, ṗ_y = −(e/m) π_x B/2 − e κ y, ṗ_z = −e E0 cos ωt.
     let s = crate::systems::ChargeInField::default();
     let h = HamiltonEquations::new(ChargeH(s));
-    let state =
-        |r: &mut StdRng| -> Sample<3> { (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0)) };
-    for_states(34, 100, state, |t, q, p| {
+    for_states(34, 100, charge_state::<3>, |t, q, p| {
         let (dq, dp) = rates(&h, t, q, p);
         let (b, _) = s.field(t);
         let pi = [p[0] + 0.5 * s.e * b * q[1], p[1] - 0.5 * s.e * b * q[0], p[2]];

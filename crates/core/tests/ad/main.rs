@@ -35,6 +35,12 @@ pub fn draw<const N: usize>(rng: &mut StdRng, lo: f64, hi: f64) -> [f64; N] {
 /// A drawn state (t, q, v).
 pub type Sample<const N: usize> = (f64, [f64; N], [f64; N]);
 
+/// A state of charges in a field (q and q̇ of one or more charges, or their momenta p in place of
+/// q̇): t ∈ [−5, 5), q ∈ [−2, 2)ᴺ, q̇ ∈ [−3, 3)ᴺ.
+pub fn charge_state<const N: usize>(r: &mut StdRng) -> Sample<N> {
+    (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0))
+}
+
 /// Calls `check(t, q, v)` at `count` states drawn by `state` from a generator seeded with `seed`.
 pub fn for_states<const N: usize>(
     seed: u64,

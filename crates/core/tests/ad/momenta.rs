@@ -2,7 +2,7 @@
 //! the hand formulas stated in `systems.rs`.
 
 use crate::systems::*;
-use crate::{assert_rel, draw, for_states, rng, Sample};
+use crate::{assert_rel, charge_state, draw, for_states, rng, Sample};
 use noether_core::{EulerLagrange, Lagrangian};
 use rand::rngs::StdRng;
 use rand::Rng;
@@ -48,8 +48,7 @@ fn ad_vs_hand_momenta_energy_heavy_top() {
 #[test]
 fn ad_vs_hand_momenta_energy_charge_in_field() {
     let sys = ChargeInField::default();
-    let state = |r: &mut StdRng| (r.random_range(-5.0..5.0), draw(r, -2.0, 2.0), draw(r, -3.0, 3.0));
-    check_momenta_energy("charge", sys, 13, state, |t, q, v| {
+    check_momenta_energy("charge", sys, 13, charge_state, |t, q, v| {
         sys.hand_momenta_energy(t, q, v)
     });
 }
