@@ -142,8 +142,9 @@ fn taped_gradient_and_hessian_match_hand_fpu_chain() {
     for n in [1000, 100] {
         let x: Vec<f64> = (0..n).map(|_| r.random_range(-1.0..1.0)).collect();
         let d: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
-        let force = |i: usize| d.get(i).map_or(0.0, |&d| d + 0.7 * d.powi(3));
-        let stiff = |i: usize| d.get(i).map_or(0.0, |&d| 1.0 + 2.1 * d * d);
+        let beta = fpu.beta;
+        let force = |i: usize| d.get(i).map_or(0.0, |&d| d + beta * d.powi(3));
+        let stiff = |i: usize| d.get(i).map_or(0.0, |&d| 1.0 + 3.0 * beta * d * d);
         let hand: Vec<f64> = (0..n)
             .map(|i| (if i == 0 { 0.0 } else { force(i - 1) }) - force(i))
             .collect();
@@ -185,7 +186,6 @@ impl Lagrangian for Rotors {
 #[test]
 fn taped_directional_gradient_matches_hand_coupled_rotors() {
     // 40 velocities: ad::directional_gradient takes the tape (n ≥ DIRECTIONAL_TAPE_FROM).
-    let rot = Rotors { eps: 0.3 };
     let f = F(Rotors { eps: 0.3 });
     let mut r = rng(13);
     for _ in 0..10 {
@@ -201,7 +201,7 @@ fn taped_directional_gradient_matches_hand_coupled_rotors() {
             &mut mixed,
             Some(&mut p),
         );
-        let e = rot.eps;
+        let e = f.0.eps;
         let hand_p: Vec<f64> = (0..40)
             .map(|j| {
                 let next = if j + 1 < 40 {
