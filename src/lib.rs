@@ -1,30 +1,117 @@
-//! # noether
+//! # noether-gallery
 //!
-//! Lagrangian and Hamiltonian mechanics with automatic differentiation. This facade re-exports the
-//! workspace crates; `use noether::prelude::*` brings in what a model and a simulation need.
+//! The worked examples of noether, each a complete program in `examples/` that runs a textbook system
+//! and checks it against closed forms. `cargo run --release` runs them all and prints one table;
+//! `cargo run --release --example pendulum` runs one. This library is what they share: the [`Check`]
+//! of a computed value against its closed form, the [`Report`] of an example, the registry [`all`],
+//! and a few closed forms and measurements.
+//!
+//! To add an example: write `examples/NAME.rs` with `pub fn run(opts: &Options) -> Result<Report,
+//! BoxError>` and `fn main() -> ExitCode { noether_gallery::example_main("NAME", run) }`, then list it
+//! in the `examples!` registry at the end of this file.
 
-pub use noether_analysis as analysis;
-pub use noether_constraints as constraints;
-pub use noether_core as core;
-pub use noether_discrete as discrete;
-pub use noether_particles as particles;
+// The examples refer to this library by its name, also when they are compiled into it.
+extern crate self as noether_gallery;
 
-/// Closure-like shorthands for small models (see [`noether_core::shorthand`]).
-pub use noether_core::{hamiltonian, lagrangian};
+mod check;
+pub mod closed_form;
+pub mod measure;
 
-/// Everything a model and a simulation need, in one import.
-pub mod prelude {
-    pub use noether_core::prelude::*;
+pub use check::{Check, Tolerance};
+
+use noether::plot::Figure;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// The error an example returns: whatever went wrong, from noether or from drawing.
+pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Options shared by all examples.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Folder for SVG pictures; `None` writes no pictures.
+    pub out_dir: Option<PathBuf>,
 }
 
-pub mod gallery;
+/// What an example produced.
+#[derive(Debug, Clone, Default)]
+pub struct Report {
+    /// Checks against closed forms.
+    pub checks: Vec<Check>,
+    /// Pictures written.
+    pub figures: Vec<PathBuf>,
+}
 
-/// The README's example, compiled and run as a doctest so that it stays true.
-#[cfg(doctest)]
-#[doc = include_str!("../README.md")]
-pub struct ReadmeDoctests;
+impl Report {
+    /// Saves `figure` as `file` in the options' output folder (if any) and records its path.
+    pub fn save(&mut self, opts: &Options, figure: &Figure, file: &str) -> Result<(), BoxError> {
+        if let Some(dir) = &opts.out_dir {
+            std::fs::create_dir_all(dir)?;
+            self.figures.push(figure.save(&dir.join(file))?);
+        }
+        Ok(())
+    }
+}
 
-/// The code blocks of `docs/guide.md` run as doc-tests, so the guide stays true.
-#[cfg(doctest)]
-#[doc = include_str!("../docs/guide.md")]
-pub struct GuideDoctests;
+/// A worked example of the gallery.
+#[derive(Debug, Clone, Copy)]
+pub struct Example {
+    /// Short name (`--only NAME`), the name of its file in `examples/`.
+    pub name: &'static str,
+    /// One line on what it shows.
+    pub about: &'static str,
+    /// Runs it.
+    pub run: fn(&Options) -> Result<Report, BoxError>,
+}
+
+/// Runs an example as a program (the `main` of each `examples/*.rs`): prints its checks and pictures,
+/// and fails if a check fails or the example returns an error. Pictures go to `gallery-out/`.
+pub fn example_main(name: &str, run: fn(&Options) -> Result<Report, BoxError>) -> ExitCode {
+    let opts = Options {
+        out_dir: Some(PathBuf::from("gallery-out")),
+    };
+    match run(&opts) {
+        Ok(report) => {
+            for c in &report.checks {
+                println!("{c}");
+            }
+            for f in &report.figures {
+                println!("figure {}", f.display());
+            }
+            if report.checks.iter().all(Check::passed) {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+        Err(e) => {
+            eprintln!("{name} failed: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Declares each example file as a module of this library and lists it in [`all`], in the order a
+/// newcomer should read them.
+macro_rules! examples {
+    ($($name:ident: $about:literal,)*) => {
+        /// The example programs (`examples/*.rs`), compiled into the library so the gallery runner and
+        /// the tests can run them (their `main` is for `cargo run --example`).
+        #[path = "../examples"]
+        pub mod examples {
+            $(
+                #[allow(dead_code)]
+                pub mod $name;
+            )*
+        }
+
+        /// Every example of the gallery, in the order a newcomer should read them.
+        pub fn all() -> Vec<Example> {
+            vec![$(Example { name: stringify!($name), about: $about, run: examples::$name::run },)*]
+        }
+    };
+}
+
+examples! {
+    pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
+}

@@ -3,7 +3,7 @@
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use noether::gallery::{self, Check, Example, Options, Report, Tolerance};
+use noether_gallery::{self as gallery, Check, Example, Options, Report, Tolerance};
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::mpsc;

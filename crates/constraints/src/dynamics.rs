@@ -280,6 +280,7 @@ pub(crate) fn max_abs(x: &[f64]) -> f64 {
 }
 
 impl<L: Lagrangian, K: ConstraintSet> Dynamics for Constrained<L, K> {
+    type Partner = noether_core::Velocities;
     fn dof(&self) -> usize {
         Constrained::dof(self)
     }

@@ -48,8 +48,8 @@
 //! // RK4 with a projection after every step stays on the circle.
 //! let stepper = Projected::new(Rk4::new(&sys), sys.constraints());
 //! let start = State::new(0.0, [0.6, -0.8], [0.8, 0.6]);
-//! let mut run = Trajectory::new(stepper, start, 1e-3).unwrap();
-//! let end = run.run_until(1.0).unwrap();
+//! let mut run = Driver::with_step(stepper, start, 1e-3).unwrap();
+//! let end = run.run_until(1.0).unwrap().last().clone();
 //! assert!((end.q.norm() - 1.0).abs() < 1e-13);
 //! ```
 

@@ -20,7 +20,7 @@ use crate::dynamics::{max_abs, rank_error, within};
 use crate::set::ConstraintSet;
 use nalgebra::{DMatrix, DVector};
 use noether_core::newton::{DenseProblem, Newton};
-use noether_core::{Error, Result, State, StepInfo, Stepper};
+use noether_core::{Error, Result, State, StepInfo, Stepper, Velocities};
 
 /// Settings of a projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -183,7 +183,7 @@ pub struct Projected<S, K> {
     worst: (f64, f64),
 }
 
-impl<S: Stepper, K: ConstraintSet> Projected<S, K> {
+impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Projected<S, K> {
     /// Wraps `stepper`, projecting onto `set` (often `system.constraints()` of the
     /// [`Constrained`](crate::Constrained) system the stepper integrates).
     pub fn new(stepper: S, set: K) -> Self {
@@ -218,7 +218,8 @@ impl<S: Stepper, K: ConstraintSet> Projected<S, K> {
     }
 }
 
-impl<S: Stepper, K: ConstraintSet> Stepper for Projected<S, K> {
+impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Stepper for Projected<S, K> {
+    type Partner = Velocities;
     fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
         let (t, n, m) = (state.t, self.set.dof(), self.set.count());
         state.validate(n)?;
@@ -256,13 +257,7 @@ impl<S: Stepper, K: ConstraintSet> Stepper for Projected<S, K> {
             }
         }
     }
-    fn dof(&self) -> usize {
-        self.stepper.dof()
-    }
-    fn order(&self) -> u32 {
-        self.stepper.order()
-    }
-    fn name(&self) -> &'static str {
-        self.stepper.name()
-    }
+    // The inner method's own extension ends at the unprojected state: the driver interpolates by
+    // cubic Hermite between the projected states instead.
+    noether_core::__forward_stepper!(stepper);
 }

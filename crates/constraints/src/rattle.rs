@@ -65,7 +65,7 @@ use nalgebra::{DMatrix, DVector};
 use noether_core::error::check_step;
 use noether_core::newton::{lu_solve, Dense, DenseProblem};
 use noether_core::{
-    Error, EulerLagrange, Lagrangian, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
+    Error, EulerLagrange, Lagrangian, Momenta, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
 };
 use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian};
 
@@ -93,7 +93,7 @@ pub struct Rattle<Ld, C> {
     worst: (f64, f64),
     multipliers: (DVector<f64>, DVector<f64>),
     /// The last output (t, q, p) and its velocities: a state equal to it needs no re-validation.
-    cache: Option<(State, DVector<f64>)>,
+    cache: Option<(State<Momenta>, DVector<f64>)>,
     mass_scale: Option<f64>,
     symmetric: Option<(f64, DVector<f64>)>,
     constant_mass: Option<DMatrix<f64>>,
@@ -191,23 +191,23 @@ where
 
     /// The state (t, q, p = ∂L/∂q̇) of positions and velocities; both must satisfy the constraints
     /// (see [`check_state`](Self::check_state)).
-    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
+    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State<Momenta>> {
         self.ld.state_from_velocities(t, q, v)
     }
 
     /// The velocities q̇ of a state (t, q, p) by the inverse Legendre map.
-    pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
+    pub fn velocities(&self, state: &State<Momenta>) -> Result<DVector<f64>> {
         self.ld.velocities_at(state)
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a state (t, q, p).
-    pub fn energy(&self, state: &State) -> Result<f64> {
+    pub fn energy(&self, state: &State<Momenta>) -> Result<f64> {
         self.ld.energy_at(state)
     }
 
     /// Checks that a state (t, q, p) lies on the constraint manifold to within the violation tolerance:
     /// φ(t, q) = 0 and G q̇ + φ_t = 0 with q̇ from p; returns q̇. The error names the residual.
-    pub fn check_state(&self, state: &State) -> Result<DVector<f64>> {
+    pub fn check_state(&self, state: &State<Momenta>) -> Result<DVector<f64>> {
         state.validate(self.ld.dof())?;
         let (t, q) = (state.t, state.q.as_slice());
         let mut r = vec![0.0; self.constraints.count()];
@@ -261,11 +261,11 @@ where
     /// One step from (t, q, p) with incoming velocities `v0`; returns the new (q, p, q̇).
     fn advance(
         &mut self,
-        state: &State,
+        state: &State<Momenta>,
         v0: &DVector<f64>,
         h: f64,
         continued: bool,
-    ) -> Result<(State, DVector<f64>)> {
+    ) -> Result<(State<Momenta>, DVector<f64>)> {
         let (n, m) = (self.ld.dof(), self.constraints.count());
         let (t0, t1) = (state.t, state.t + h);
         let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
@@ -374,7 +374,7 @@ where
         // Μ_{k−1}/h from the previous step (stored as 2Μ/h) plus Λ_k/h.
         self.symmetric = continued.then(|| (t0, (&self.multipliers.1 + &start) * 0.5));
         self.multipliers = (start, big_mu * (2.0 / h));
-        Ok((State { t: t1, q: q1, v: p1 }, v1))
+        Ok((State::from_vectors(t1, q1, p1), v1))
     }
 }
 
@@ -529,7 +529,8 @@ where
     Ld: DiscreteLagrangian + FromLagrangian,
     C: Holonomic,
 {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = Momenta;
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         // A state that is exactly the last output is on the manifold; anything else is checked.
         let (v0, continued) = match &self.cache {
@@ -543,10 +544,10 @@ where
         let (next, v1) = self.advance(state, &v0, h, continued)?;
         *state = next;
         self.cache = Some((state.clone(), v1));
-        Ok(StepInfo {
-            newton_iterations: self.last.iterations + self.last.momentum_iterations,
-            ..StepInfo::fixed(h)
-        })
+        let iterations = self.last.iterations + self.last.momentum_iterations;
+        Ok(StepInfo::fixed(h)
+            .with_newton(iterations, 0)
+            .with_evaluations(iterations + 2))
     }
     fn dof(&self) -> usize {
         self.ld.dof()

@@ -20,28 +20,31 @@
 //! let guarded = ChartGuard::new(Rk4::new(EulerLagrange::new(Slide)), |s: &State| {
 //!     (s.q[0] <= 0.1).then(|| format!("x = {} left the chart x > 0.1", s.q[0]))
 //! });
-//! let mut traj = Trajectory::new(guarded, State::new(0.0, [1.0], [-1.0]), 0.01).unwrap();
-//! let err = traj.run_until(2.0).unwrap_err();
+//! let mut run = Driver::new(guarded, State::new(0.0, [1.0], [-1.0])).unwrap().step(0.01).unwrap();
+//! let err = run.run_until(2.0).unwrap_err();
 //! assert!(matches!(err, Error::CoordinateSingularity { .. }));
-//! assert!(traj.state().q[0] > 0.1 && (traj.state().t - 0.9).abs() < 0.011);
+//! assert!(run.state().q[0] > 0.1 && (run.state().t - 0.9).abs() < 0.011);
 //! ```
 
-use crate::{Error, Result, State, StepInfo, Stepper};
+use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 
 /// A chart test: `None` while the state is inside the chart, `Some(description)` when it has left it.
-pub type ChartCheck = Box<dyn Fn(&State) -> Option<String> + Send + Sync>;
+pub type ChartCheck<K> = Box<dyn Fn(&State<K>) -> Option<String> + Send + Sync>;
 
 /// A stepper that refuses to step out of (or from outside) a coordinate chart.
-pub struct ChartGuard<S> {
+pub struct ChartGuard<S: Stepper> {
     stepper: S,
-    check: ChartCheck,
+    check: ChartCheck<S::Partner>,
     saved_q: Vec<f64>,
     saved_v: Vec<f64>,
 }
 
 impl<S: Stepper> ChartGuard<S> {
     /// Guards `stepper` with the chart test `check`.
-    pub fn new(stepper: S, check: impl Fn(&State) -> Option<String> + Send + Sync + 'static) -> Self {
+    pub fn new(
+        stepper: S,
+        check: impl Fn(&State<S::Partner>) -> Option<String> + Send + Sync + 'static,
+    ) -> Self {
         let n = stepper.dof();
         ChartGuard {
             stepper,
@@ -55,7 +58,7 @@ impl<S: Stepper> ChartGuard<S> {
     /// `min_sin`. Near θ = 0 or π the Euler-angle mass matrix has det ∝ sin²θ, so relative errors grow
     /// like 1/sin²θ: `min_sin` = 1e-2 keeps the amplification below 10⁴.
     pub fn polar_angle(stepper: S, index: usize, name: &'static str, min_sin: f64) -> Self {
-        Self::new(stepper, move |s: &State| {
+        Self::new(stepper, move |s: &State<S::Partner>| {
             let th = s.q[index];
             (th.sin().abs() < min_sin).then(|| {
                 format!(
@@ -73,7 +76,8 @@ impl<S: Stepper> ChartGuard<S> {
 }
 
 impl<S: Stepper> Stepper for ChartGuard<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         if let Some(what) = (self.check)(state) {
             return Err(Error::CoordinateSingularity { what, t: state.t });
         }
@@ -90,15 +94,11 @@ impl<S: Stepper> Stepper for ChartGuard<S> {
         }
         Ok(info)
     }
-    fn dof(&self) -> usize {
-        self.stepper.dof()
+    /// The wrapped method's own extension (the guard does not change the states it computes).
+    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
+        self.stepper.dense_output()
     }
-    fn order(&self) -> u32 {
-        self.stepper.order()
-    }
-    fn name(&self) -> &'static str {
-        self.stepper.name()
-    }
+    crate::__forward_stepper!(stepper);
 }
 
 #[cfg(test)]
@@ -123,7 +123,7 @@ mod tests {
         // Released from θ = 0.5 toward the bottom with no azimuthal momentum: it swings through θ = 0,
         // the pole of the chart, after t ≈ quarter period ≈ 1.6.
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
-        let mut traj = Trajectory::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0]), 1e-3).unwrap();
+        let mut traj = Driver::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0])).unwrap().step(1e-3).unwrap();
         let err = traj.run_until(10.0).unwrap_err();
         match &err {
             Error::CoordinateSingularity { what, t } => {
@@ -136,7 +136,7 @@ mod tests {
         assert!(s.is_finite() && s.q[0].sin().abs() >= 1e-2);
         // A run started at the pole is refused before any step.
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
-        let mut traj = Trajectory::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0]), 1e-3).unwrap();
+        let mut traj = Driver::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0])).unwrap().step(1e-3).unwrap();
         assert!(matches!(
             traj.run_steps(1),
             Err(Error::CoordinateSingularity { t, .. }) if t == 0.0

@@ -1,12 +1,16 @@
 //! First-order dynamics on phase space, the interface every continuous integrator steps.
 //!
 //! A phase state is (t, q, v) where the second half `v` is q̇ for Lagrangian dynamics
-//! ([`EulerLagrange`]) and p for Hamiltonian dynamics ([`HamiltonEquations`]).
+//! ([`EulerLagrange`]) and p for Hamiltonian dynamics ([`HamiltonEquations`]); the associated type
+//! [`Dynamics::Partner`] says which, so the states a system is stepped with carry it in their type.
 
-use crate::{EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Result};
+use crate::{EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Momenta, Partner, Result, Velocities};
 
 /// A vector field (q̇, v̇) = F(t, q, v) on phase space.
 pub trait Dynamics {
+    /// What `v` is: [`Velocities`] q̇ or [`Momenta`] p.
+    type Partner: Partner;
+
     /// Number of degrees of freedom (length of q and of v).
     fn dof(&self) -> usize;
 
@@ -25,6 +29,7 @@ pub trait Dynamics {
 }
 
 impl<L: Lagrangian> Dynamics for EulerLagrange<L> {
+    type Partner = Velocities;
     fn dof(&self) -> usize {
         EulerLagrange::dof(self)
     }
@@ -45,6 +50,7 @@ impl<L: Lagrangian> Dynamics for EulerLagrange<L> {
 }
 
 impl<H: Hamiltonian> Dynamics for HamiltonEquations<H> {
+    type Partner = Momenta;
     fn dof(&self) -> usize {
         HamiltonEquations::dof(self)
     }
@@ -60,6 +66,7 @@ impl<H: Hamiltonian> Dynamics for HamiltonEquations<H> {
 }
 
 impl<S: Dynamics + ?Sized> Dynamics for &S {
+    type Partner = S::Partner;
     fn dof(&self) -> usize {
         (**self).dof()
     }

@@ -84,6 +84,23 @@ pub enum Error {
         /// Last normalised error estimate.
         error: f64,
     },
+    /// A step too small for the time axis: at this t, t + h differs from t by less than h (or not at
+    /// all); the run cannot advance with this step.
+    #[error("step h = {h:e} is below the resolution of the time axis at t = {t:e} (t + h is not t + h to 1%)")]
+    StepBelowTimeResolution {
+        /// Time of the state.
+        t: f64,
+        /// Step asked for.
+        h: f64,
+    },
+    /// A run took the largest number of steps it was allowed ([`Driver::max_steps`](crate::Driver::max_steps)).
+    #[error("step limit reached: {steps} steps, at t = {t}")]
+    StepLimit {
+        /// Steps taken.
+        steps: usize,
+        /// Time reached.
+        t: f64,
+    },
     /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),

@@ -26,7 +26,7 @@
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len};
 use crate::newton::{DenseProblem, Newton};
-use crate::{Error, Lagrangian, Result, Scalar};
+use crate::{Error, Lagrangian, Momenta, Result, Scalar, State, Velocities};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use std::sync::OnceLock;
 
@@ -371,6 +371,22 @@ impl<L: Lagrangian> EulerLagrange<L> {
         check_len("∂L/∂q (output)", out, self.dof())?;
         ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::X, out);
         Ok(())
+    }
+
+    /// The state in momenta: (t, q, q̇) ↦ (t, q, p = ∂L/∂q̇), the Legendre map at a visible boundary
+    /// between Lagrangian steppers and Hamiltonian or variational ones.
+    pub fn to_momenta(&self, state: &State<Velocities>) -> Result<State<Momenta>> {
+        let mut p = DVector::zeros(self.dof());
+        self.momenta(state.t, state.q.as_slice(), state.v.as_slice(), p.as_mut_slice())?;
+        Ok(State::from_vectors(state.t, state.q.clone(), p))
+    }
+
+    /// The state in velocities: (t, q, p) ↦ (t, q, q̇) by the inverse Legendre map
+    /// ([`velocities`](Self::velocities)).
+    pub fn to_velocities(&self, state: &State<Momenta>) -> Result<State<Velocities>> {
+        state.validate(self.dof())?;
+        let v = self.velocities(state.t, state.q.as_slice(), state.v.as_slice())?;
+        Ok(State::from_vectors(state.t, state.q.clone(), v))
     }
 
     /// Inverse Legendre map: the velocities q̇ with ∂L/∂q̇(t, q, q̇) = p, by Newton's method with the

@@ -22,13 +22,15 @@
 //! assert!((a[0] - (-8.0 * 0.5 / 2.0)).abs() < 1e-14); // q̈ = −(k/m) q
 //!
 //! // One period 2π sqrt(m/k) = π with RK4 returns to the start.
-//! let mut traj = Trajectory::new(Rk4::new(el), State::new(0.0, [0.5], [0.0]), 1e-3).unwrap();
-//! let end = traj.run_until(std::f64::consts::PI).unwrap();
-//! assert!((end.q[0] - 0.5).abs() < 1e-10);
+//! let mut run = Driver::new(Rk4::new(el), State::new(0.0, [0.5], [0.0])).unwrap().step(1e-3).unwrap();
+//! let sol = run.run_until(std::f64::consts::PI).unwrap();
+//! assert!((sol.last().q[0] - 0.5).abs() < 1e-10);
 //! ```
 
 pub mod ad;
 pub mod chart;
+pub mod dense;
+pub mod driver;
 pub mod dynamics;
 pub mod error;
 pub mod hamilton;
@@ -37,12 +39,15 @@ pub mod lagrange;
 pub mod model;
 pub mod natural;
 pub mod newton;
+pub mod roots;
 pub mod scalar;
 pub mod shorthand;
 pub mod state;
 pub mod stepper;
 
 pub use chart::ChartGuard;
+pub use dense::DenseOutput;
+pub use driver::{Direction, Driver, Event, EventRecord, Save, Solution, Stats, Stop};
 pub use dynamics::Dynamics;
 pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;
@@ -51,15 +56,16 @@ pub use model::{Hamiltonian, Lagrangian, Separable, SeparableHamiltonian};
 pub use natural::{Natural, Potential};
 pub use newton::{Newton, NewtonInfo, NewtonSystem};
 pub use scalar::Scalar;
-pub use state::State;
-pub use stepper::{StepInfo, Stepper, Trajectory};
+pub use state::{Momenta, Partner, State, Velocities};
+pub use stepper::{StepInfo, Stepper};
 
 /// Everything a model and a simulation need, in one import.
 pub mod prelude {
     pub use crate::integrators::*;
     pub use crate::{hamiltonian, lagrangian};
     pub use crate::{
-        Dynamics, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Natural, Potential,
-        Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper, Trajectory,
+        Direction, Driver, Dynamics, Error, EulerLagrange, Event, HamiltonEquations, Hamiltonian, Lagrangian,
+        Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable, SeparableHamiltonian, Solution,
+        State, StepInfo, Stepper, Stop, Velocities,
     };
 }

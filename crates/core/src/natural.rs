@@ -230,6 +230,22 @@ impl<P: Potential> Natural<P> {
         self.solve_mass(v);
     }
 
+    /// The state in momenta, (t, q, q̇) ↦ (t, q, M q̇).
+    pub fn to_momenta(&self, state: &crate::State) -> crate::Result<crate::State<crate::Momenta>> {
+        state.validate(self.dof())?;
+        let mut s = crate::State::from_vectors(state.t, state.q.clone(), state.v.clone());
+        self.momenta(state.v.as_slice(), s.v.as_mut_slice());
+        Ok(s)
+    }
+
+    /// The state in velocities, (t, q, p) ↦ (t, q, M⁻¹ p).
+    pub fn to_velocities(&self, state: &crate::State<crate::Momenta>) -> crate::Result<crate::State> {
+        state.validate(self.dof())?;
+        let mut s = crate::State::from_vectors(state.t, state.q.clone(), state.v.clone());
+        self.solve_mass(s.v.as_mut_slice());
+        Ok(s)
+    }
+
     /// Kinetic energy ½ q̇ᵀ M q̇ in terms of velocities.
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
         quadratic(&self.mass_as(false), v)
@@ -325,6 +341,7 @@ impl<P: Potential> Separable for Natural<P> {
 
 /// State (q, q̇): q̇ = q̇, q̈ = −M⁻¹∇V(q).
 impl<P: Potential> Dynamics for Natural<P> {
+    type Partner = crate::Velocities;
     fn dof(&self) -> usize {
         Natural::dof(self)
     }

@@ -1,45 +1,121 @@
-//! The phase state (t, q, v) that steppers advance.
+//! The phase state (t, q, ·) that steppers advance, and what its second half means.
+//!
+//! A state carries the coordinates q and their partner: the velocities q̇ for Lagrangian dynamics
+//! ([`EulerLagrange`](crate::EulerLagrange), [`Natural`](crate::Natural), particles, constraints) or the
+//! momenta p for Hamiltonian dynamics ([`HamiltonEquations`](crate::HamiltonEquations), separable
+//! Hamiltonians, the variational integrators in position-momentum form). The type says which:
+//! `State<Velocities>` (the default, `State`) or `State<Momenta>`. A stepper declares the kind it
+//! advances ([`Stepper::Partner`](crate::Stepper::Partner)), so handing a momentum state to a
+//! velocity stepper does not compile; the Legendre maps convert at a visible boundary
+//! ([`EulerLagrange::to_momenta`](crate::EulerLagrange::to_momenta),
+//! [`EulerLagrange::to_velocities`](crate::EulerLagrange::to_velocities)).
+//!
+//! ```
+//! use noether_core::{Momenta, State, Velocities};
+//!
+//! let s: State = State::new(0.0, [1.0, 0.0], [0.0, 2.0]); // q̇, by default
+//! assert_eq!(s.v[1], 2.0);
+//! let p: State<Momenta> = State::new(0.0, [1.0, 0.0], [0.0, 4.0]);
+//! assert_eq!(p.p()[1], 4.0);
+//! ```
 
 use crate::error::check_phase_point;
 use crate::Result;
 use nalgebra::DVector;
+use std::fmt::Debug;
+use std::marker::PhantomData;
 
-/// A point of the (extended) phase space: time, coordinates and their partner.
-///
-/// `v` is q̇ for Lagrangian dynamics and p for Hamiltonian (and discrete, position-momentum) dynamics;
-/// [`State::p`] names the second reading.
+/// What the second half of a [`State`] holds: [`Velocities`] q̇ or [`Momenta`] p.
+pub trait Partner: Copy + Debug + PartialEq + Send + Sync + 'static {
+    /// Symbol of a component in names and file headers: `"v"` (q̇) or `"p"`.
+    const SYMBOL: &'static str;
+    /// What the components are, for messages: `"velocities q̇"` or `"momenta p"`.
+    const NAME: &'static str;
+}
+
+/// The second half of a state is the velocities q̇ (Lagrangian dynamics).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Velocities;
+
+/// The second half of a state is the momenta p (Hamiltonian dynamics, position-momentum form).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Momenta;
+
+impl Partner for Velocities {
+    const SYMBOL: &'static str = "v";
+    const NAME: &'static str = "velocities q̇";
+}
+
+impl Partner for Momenta {
+    const SYMBOL: &'static str = "p";
+    const NAME: &'static str = "momenta p";
+}
+
+/// A point of the (extended) phase space: time, coordinates q and their partner `v`, which is q̇ in a
+/// `State<Velocities>` (the default) and p in a `State<Momenta>` ([`State::p`] reads it by that name).
 #[derive(Debug, Clone, PartialEq)]
-pub struct State {
+pub struct State<K = Velocities> {
     /// Time.
     pub t: f64,
     /// Generalized coordinates q.
     pub q: DVector<f64>,
-    /// Velocities q̇ or momenta p.
+    /// The partner of q: velocities q̇ or momenta p, as `K` says.
     pub v: DVector<f64>,
+    partner: PhantomData<K>,
 }
 
-impl State {
-    /// A state from time, coordinates and velocities (or momenta).
+impl<K: Partner> State<K> {
+    /// A state from time, coordinates and velocities (or momenta, for a `State<Momenta>`).
     pub fn new(t: f64, q: impl Into<Vec<f64>>, v: impl Into<Vec<f64>>) -> Self {
+        Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(v.into()))
+    }
+
+    /// A state from time and the two vectors.
+    pub fn from_vectors(t: f64, q: DVector<f64>, v: DVector<f64>) -> Self {
         State {
             t,
-            q: DVector::from_vec(q.into()),
-            v: DVector::from_vec(v.into()),
+            q,
+            v,
+            partner: PhantomData,
         }
     }
 
-    /// The momenta, for Hamiltonian states.
-    pub fn p(&self) -> &DVector<f64> {
-        &self.v
+    /// A state of `dof` zeros at time `t`.
+    pub fn zeros(t: f64, dof: usize) -> Self {
+        Self::from_vectors(t, DVector::zeros(dof), DVector::zeros(dof))
+    }
+
+    /// Number of coordinates.
+    pub fn dof(&self) -> usize {
+        self.q.len()
     }
 
     /// Checks dimensions against `dof` and that every number is finite.
     pub fn validate(&self, dof: usize) -> Result<()> {
-        check_phase_point(dof, self.t, self.q.as_slice(), self.v.as_slice(), "v")
+        check_phase_point(dof, self.t, self.q.as_slice(), self.v.as_slice(), K::SYMBOL)
     }
 
     /// `true` when every component is finite.
     pub fn is_finite(&self) -> bool {
         self.t.is_finite() && self.q.iter().chain(self.v.iter()).all(|x| x.is_finite())
+    }
+
+    /// Copies `other` into `self` without allocating (same dimensions).
+    pub fn copy_from(&mut self, other: &Self) {
+        self.t = other.t;
+        self.q.copy_from(&other.q);
+        self.v.copy_from(&other.v);
+    }
+}
+
+impl State<Momenta> {
+    /// The momenta p.
+    pub fn p(&self) -> &DVector<f64> {
+        &self.v
+    }
+
+    /// The momenta p, to change them.
+    pub fn p_mut(&mut self) -> &mut DVector<f64> {
+        &mut self.v
     }
 }

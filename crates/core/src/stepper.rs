@@ -1,17 +1,21 @@
-//! Steppers (one step: state → state) and the driver that turns a stepper into an iterator of states.
+//! Steppers: one step of a method, state → state. The [`Driver`](crate::Driver) runs any stepper.
 
-use crate::error::check_step;
-use crate::{Error, Result, State};
+use crate::{DenseOutput, Partner, Result, State};
 
 /// What a step did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub struct StepInfo {
     /// Step size actually taken.
     pub h: f64,
     /// Suggested size of the next step (equal to `h` for fixed-step methods).
     pub h_next: f64,
+    /// Evaluations of the vector field (or of the discrete Euler-Lagrange residual) spent.
+    pub evaluations: usize,
     /// Newton iterations spent (implicit methods), 0 otherwise.
     pub newton_iterations: usize,
+    /// Newton solves that failed and were retried (with a fresh Jacobian), 0 otherwise.
+    pub newton_failures: usize,
     /// Rejected trial steps (adaptive methods), 0 otherwise.
     pub rejected: usize,
 }
@@ -25,25 +29,113 @@ impl StepInfo {
             ..Default::default()
         }
     }
+
+    /// The same info with `n` evaluations of the vector field.
+    pub fn with_evaluations(mut self, n: usize) -> Self {
+        self.evaluations = n;
+        self
+    }
+
+    /// The same info with `iterations` Newton iterations and `failures` failed Newton solves.
+    pub fn with_newton(mut self, iterations: usize, failures: usize) -> Self {
+        self.newton_iterations = iterations;
+        self.newton_failures = failures;
+        self
+    }
+
+    /// The same info with `rejected` rejected trial steps and the proposal `h_next`.
+    pub fn with_control(mut self, rejected: usize, h_next: f64) -> Self {
+        self.rejected = rejected;
+        self.h_next = h_next;
+        self
+    }
 }
 
 /// A one-step method.
 ///
-/// Contract: `step` advances `state` (time included) by one step of (proposed) size `h`; on error the
-/// state is left exactly as it was.
+/// Contract: `step` advances `state` (time included) by one step of (proposed) size `h > 0`; on
+/// error the state is left exactly as it was. The other methods let the [`Driver`](crate::Driver)
+/// choose step sizes and interpolate between steps; their defaults describe a fixed-step method
+/// without a continuous extension or a vector field.
 pub trait Stepper {
+    /// What the second half of the state holds: [`Velocities`](crate::Velocities) or
+    /// [`Momenta`](crate::Momenta).
+    type Partner: Partner;
+
     /// Advances `state` by one step.
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo>;
+    fn step(&mut self, state: &mut State<Self::Partner>, h: f64) -> Result<StepInfo>;
     /// Number of degrees of freedom of the system stepped.
     fn dof(&self) -> usize;
     /// Nominal order of accuracy.
     fn order(&self) -> u32;
     /// Short name, e.g. "RK4".
     fn name(&self) -> &'static str;
+
+    /// `true` when the method chooses its own step sizes: `h` is then a proposal, [`StepInfo::h`] the
+    /// step taken and [`StepInfo::h_next`] the next proposal.
+    fn is_adaptive(&self) -> bool {
+        false
+    }
+
+    /// A first step size for an adaptive method at `state` (`None` for fixed-step methods).
+    fn initial_step(&mut self, _state: &State<Self::Partner>) -> Result<Option<f64>> {
+        Ok(None)
+    }
+
+    /// Asks the method to build (`true`) or skip (`false`) its continuous extension on the next steps;
+    /// the driver asks for it only when it samples output times or locates events.
+    fn request_dense_output(&mut self, _on: bool) {}
+
+    /// The method's own continuous extension of the last step, when it has one.
+    fn dense_output(&self) -> Option<&DenseOutput<Self::Partner>> {
+        None
+    }
+
+    /// The vector field (q̇, v̇) at `state` into `dq`, `dv`, for the driver's cubic Hermite interpolant
+    /// ([`DenseOutput::hermite`]); `None` for methods without a vector field (the driver then
+    /// interpolates linearly).
+    fn rates(&self, _state: &State<Self::Partner>, _dq: &mut [f64], _dv: &mut [f64]) -> Option<Result<()>> {
+        None
+    }
+}
+
+/// Forwards every method of [`Stepper`] to `$field` (a wrapper that changes only `step`).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! __forward_stepper {
+    ($field:ident) => {
+        fn dof(&self) -> usize {
+            self.$field.dof()
+        }
+        fn order(&self) -> u32 {
+            self.$field.order()
+        }
+        fn name(&self) -> &'static str {
+            self.$field.name()
+        }
+        fn is_adaptive(&self) -> bool {
+            self.$field.is_adaptive()
+        }
+        fn initial_step(&mut self, state: &$crate::State<Self::Partner>) -> $crate::Result<Option<f64>> {
+            self.$field.initial_step(state)
+        }
+        fn request_dense_output(&mut self, on: bool) {
+            self.$field.request_dense_output(on)
+        }
+        fn rates(
+            &self,
+            state: &$crate::State<Self::Partner>,
+            dq: &mut [f64],
+            dv: &mut [f64],
+        ) -> Option<$crate::Result<()>> {
+            self.$field.rates(state, dq, dv)
+        }
+    };
 }
 
 impl<S: Stepper + ?Sized> Stepper for Box<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         (**self).step(state, h)
     }
     fn dof(&self) -> usize {
@@ -55,140 +147,19 @@ impl<S: Stepper + ?Sized> Stepper for Box<S> {
     fn name(&self) -> &'static str {
         (**self).name()
     }
-}
-
-/// The driver: an iterator of states `stepper` produces from `state` with step `h`.
-///
-/// Yields `Ok(state)` after each step (the initial state is not repeated); after the first error it
-/// yields that error (with the step index and time filled in) and then ends.
-pub struct Trajectory<S> {
-    stepper: S,
-    state: State,
-    h: f64,
-    step: usize,
-    failed: bool,
-}
-
-impl<S: Stepper> Trajectory<S> {
-    /// Validates the initial state and step, then returns the iterator.
-    pub fn new(stepper: S, state: State, h: f64) -> Result<Self> {
-        check_step(h)?;
-        state.validate(stepper.dof())?;
-        Ok(Trajectory {
-            stepper,
-            state,
-            h,
-            step: 0,
-            failed: false,
-        })
+    fn is_adaptive(&self) -> bool {
+        (**self).is_adaptive()
     }
-
-    /// The last state reached.
-    pub fn state(&self) -> &State {
-        &self.state
+    fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
+        (**self).initial_step(state)
     }
-
-    /// The stepper.
-    pub fn stepper(&self) -> &S {
-        &self.stepper
+    fn request_dense_output(&mut self, on: bool) {
+        (**self).request_dense_output(on)
     }
-
-    /// Steps until `t >= t_end` (the last step is shortened to land on `t_end`); returns the final state.
-    pub fn run_until(&mut self, t_end: f64) -> Result<State> {
-        while self.state.t < t_end {
-            let remaining = t_end - self.state.t;
-            let h = self.h.min(remaining);
-            if remaining <= 1e-14 * t_end.abs().max(1.0) {
-                break;
-            }
-            let nominal = self.h;
-            let info = self.advance(h)?;
-            // A final step shortened to land on t_end must not become the nominal step of a fixed-step
-            // method (which echoes h as h_next): later steps would crawl.
-            if h < nominal && info.h_next == info.h {
-                self.h = nominal;
-            }
-        }
-        Ok(self.state.clone())
+    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
+        (**self).dense_output()
     }
-
-    /// Takes `n` steps; returns the final state.
-    pub fn run_steps(&mut self, n: usize) -> Result<State> {
-        for _ in 0..n {
-            self.advance(self.h)?;
-        }
-        Ok(self.state.clone())
-    }
-
-    fn advance(&mut self, h: f64) -> Result<StepInfo> {
-        if self.failed {
-            return Err(Error::Unsupported("trajectory already failed"));
-        }
-        let t = self.state.t;
-        let res = self.stepper.step(&mut self.state, h).and_then(|info| {
-            if self.state.is_finite() {
-                Ok(info)
-            } else {
-                Err(Error::NonFiniteState { step: self.step, t })
-            }
-        });
-        match res {
-            Ok(info) => {
-                self.step += 1;
-                self.h = if info.h_next.is_finite() && info.h_next > 0.0 {
-                    info.h_next
-                } else {
-                    self.h
-                };
-                Ok(info)
-            }
-            Err(e) => {
-                self.failed = true;
-                Err(match e {
-                    Error::NonFiniteState { .. } => Error::NonFiniteState { step: self.step, t },
-                    other => other,
-                })
-            }
-        }
-    }
-}
-
-impl<S: Stepper> Iterator for Trajectory<S> {
-    type Item = Result<State>;
-    fn next(&mut self) -> Option<Result<State>> {
-        if self.failed {
-            return None;
-        }
-        Some(self.advance(self.h).map(|_| self.state.clone()))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::prelude::*;
-
-    struct Free;
-    impl Lagrangian for Free {
-        fn dof(&self) -> usize {
-            1
-        }
-        fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
-            v[0] * v[0] * 0.5
-        }
-    }
-
-    #[test]
-    fn regress_run_until_keeps_the_nominal_step() {
-        let mut traj = Trajectory::new(
-            Rk4::new(EulerLagrange::new(Free)),
-            State::new(0.0, [0.0], [1.0]),
-            0.1,
-        )
-        .unwrap();
-        // 0.25 needs a shortened last step of 0.05; the next step must again be 0.1.
-        let s = traj.run_until(0.25).unwrap();
-        assert!((s.t - 0.25).abs() < 1e-15);
-        let s = traj.next().unwrap().unwrap();
-        assert!((s.t - 0.35).abs() < 1e-14, "t = {}", s.t);
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        (**self).rates(state, dq, dv)
     }
 }

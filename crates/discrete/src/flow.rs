@@ -1,9 +1,9 @@
 //! The one-step map of a variational integrator in position-momentum form, (q_k, p_k) ↦ (q_{k+1}, p_{k+1}),
 //! as a [`DiscreteFlow`]; every flow is also a core [`Stepper`](noether_core::Stepper) on a
-//! [`State`] whose second half `v` holds the momenta p.
+//! `State<Momenta>` (q, p).
 
 use noether_core::error::{check_phase_point, check_step};
-use noether_core::{Error, Result, State, StepInfo};
+use noether_core::{Error, Momenta, Result, State, StepInfo};
 
 /// A discrete flow (q, p) ↦ (q', p') over a step h, the discrete Hamiltonian map of a discrete Lagrangian.
 ///
@@ -19,6 +19,12 @@ pub trait DiscreteFlow {
     /// Advances `(q, p)` from time `t` by the signed step `h`; on error `q` and `p` are left exactly as
     /// they were. Returns the Newton iterations spent.
     fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize>;
+
+    /// Hamilton's vector field (q̇, ṗ) of the continuous system the flow discretizes, when it has one
+    /// (for the driver's Hermite interpolant between steps); `None` otherwise.
+    fn rates(&self, _t: f64, _q: &[f64], _p: &[f64], _dq: &mut [f64], _dp: &mut [f64]) -> Option<Result<()>> {
+        None
+    }
 }
 
 impl<F: DiscreteFlow + ?Sized> DiscreteFlow for &mut F {
@@ -34,6 +40,9 @@ impl<F: DiscreteFlow + ?Sized> DiscreteFlow for &mut F {
     fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
         (**self).flow(t, h, q, p)
     }
+    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        (**self).rates(t, q, p, dq, dp)
+    }
 }
 
 /// Checks the arguments of a flow call: lengths, finiteness, and a finite non-zero signed step.
@@ -47,7 +56,7 @@ pub(crate) fn check_flow_args(dof: usize, t: f64, h: f64, q: &[f64], p: &[f64]) 
 /// One [`Stepper`](noether_core::Stepper) step of a flow: a positive step, the state left untouched on error.
 pub(crate) fn step_state<F: DiscreteFlow + ?Sized>(
     flow: &mut F,
-    state: &mut State,
+    state: &mut State<Momenta>,
     h: f64,
 ) -> Result<StepInfo> {
     check_step(h)?;
@@ -55,22 +64,31 @@ pub(crate) fn step_state<F: DiscreteFlow + ?Sized>(
     let t = state.t;
     let iterations = flow.flow(t, h, state.q.as_mut_slice(), state.v.as_mut_slice())?;
     state.t = t + h;
-    Ok(StepInfo {
-        newton_iterations: iterations,
-        ..StepInfo::fixed(h)
-    })
+    // One residual evaluation per Newton iteration and one to check the start.
+    Ok(StepInfo::fixed(h)
+        .with_newton(iterations, 0)
+        .with_evaluations(iterations + 1))
 }
 
 /// Implements [`noether_core::Stepper`] for a type that implements [`DiscreteFlow`].
 macro_rules! stepper_via_flow {
     ($ty:ident < $($g:ident : $b:path),* >) => {
         impl<$($g: $b),*> noether_core::Stepper for $ty<$($g),*> {
+            type Partner = noether_core::Momenta;
             fn step(
                 &mut self,
-                state: &mut noether_core::State,
+                state: &mut noether_core::State<noether_core::Momenta>,
                 h: f64,
             ) -> noether_core::Result<noether_core::StepInfo> {
                 $crate::flow::step_state(self, state, h)
+            }
+            fn rates(
+                &self,
+                state: &noether_core::State<noether_core::Momenta>,
+                dq: &mut [f64],
+                dp: &mut [f64],
+            ) -> Option<noether_core::Result<()>> {
+                $crate::DiscreteFlow::rates(self, state.t, state.q.as_slice(), state.v.as_slice(), dq, dp)
             }
             fn dof(&self) -> usize {
                 $crate::DiscreteFlow::dof(self)

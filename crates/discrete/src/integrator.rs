@@ -37,8 +37,8 @@
 //!
 //! let mut vi = VariationalIntegrator::new(Midpoint::new(Oscillator));
 //! let start = vi.state_from_velocities(0.0, &[1.0], &[0.0]).unwrap();
-//! let mut traj = Trajectory::new(vi, start, 0.01).unwrap();
-//! let end = traj.run_steps(100).unwrap();
+//! let mut traj = Driver::with_step(vi, start, 0.01).unwrap();
+//! let end = traj.run_steps(100).unwrap().last().clone();
 //! // Midpoint is second order: q(1) = cos 1 up to O(h²).
 //! assert!((end.q[0] - 1f64.cos()).abs() < 1e-4);
 //! ```
@@ -49,7 +49,7 @@ use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::{check_finite, check_len};
 use noether_core::newton::{lu_factor, lu_solve, DenseLu};
-use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result, State};
+use noether_core::{Error, Momenta, Newton, NewtonInfo, NewtonSystem, Result, State};
 
 /// Default absolute Newton tolerance on the momentum residual.
 pub(crate) const DEFAULT_TOL: f64 = 1e-16;
@@ -182,7 +182,7 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
 
     /// The state at `t0 + h` reached from two positions q₀ (at t₀) and q₁ (at t₀ + h), as the paper
     /// starts: p₁ = D₂L_d(q₀, q₁) + f⁺(q₀, q₁).
-    pub fn state_from_positions(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<State> {
+    pub fn state_from_positions(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<State<Momenta>> {
         check_flow_args(self.ld.dof(), t0, h, q0, q1)?;
         let n = self.ld.dof();
         let mut p1 = vec![0.0; n];
@@ -215,18 +215,18 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
 impl<Ld: DiscreteLagrangian + FromLagrangian> VariationalIntegrator<Ld> {
     /// The state (t, q, p) from positions and velocities through the continuous Legendre map
     /// p = ∂L/∂q̇(t, q, q̇).
-    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
+    pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State<Momenta>> {
         self.ld.state_from_velocities(t, q, v)
     }
 
     /// The velocities q̇ of a state (t, q, p) through the inverse continuous Legendre map.
-    pub fn velocities(&self, state: &State) -> Result<DVector<f64>> {
+    pub fn velocities(&self, state: &State<Momenta>) -> Result<DVector<f64>> {
         self.ld.velocities_at(state)
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a discrete state (t, q, p), with q̇ from
     /// the inverse Legendre map.
-    pub fn energy(&self, state: &State) -> Result<f64> {
+    pub fn energy(&self, state: &State<Momenta>) -> Result<f64> {
         self.ld.energy_at(state)
     }
 }

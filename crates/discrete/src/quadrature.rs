@@ -15,7 +15,7 @@
 
 use crate::lagrangian::{DiscreteLagrangian, Scratch};
 use nalgebra::DVector;
-use noether_core::{EulerLagrange, Lagrangian, Result, Scalar, State};
+use noether_core::{EulerLagrange, Lagrangian, Momenta, Result, Scalar, State};
 
 /// A discrete Lagrangian built from a continuous Lagrangian: gives access to the continuous equations
 /// (Legendre map, energy) so a discrete trajectory can be started from velocities and reported in the
@@ -28,21 +28,21 @@ pub trait FromLagrangian {
 
     /// The state (t, q, p) from positions and velocities through the continuous Legendre map
     /// p = ∂L/∂q̇(t, q, q̇).
-    fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State> {
+    fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State<Momenta>> {
         let mut p = vec![0.0; q.len()];
         self.continuous().momenta(t, q, v, &mut p)?;
         Ok(State::new(t, q.to_vec(), p))
     }
 
     /// The velocities q̇ of a state (t, q, p) through the inverse continuous Legendre map.
-    fn velocities_at(&self, state: &State) -> Result<DVector<f64>> {
+    fn velocities_at(&self, state: &State<Momenta>) -> Result<DVector<f64>> {
         self.continuous()
             .velocities(state.t, state.q.as_slice(), state.v.as_slice())
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a state (t, q, p), with q̇ from the
     /// inverse Legendre map.
-    fn energy_at(&self, state: &State) -> Result<f64> {
+    fn energy_at(&self, state: &State<Momenta>) -> Result<f64> {
         let v = self.velocities_at(state)?;
         self.continuous()
             .energy(state.t, state.q.as_slice(), v.as_slice())

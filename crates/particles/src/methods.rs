@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::interaction::Interaction;
 use crate::system::System;
 use noether_core::integrators::{Composition, Euler, EulerCromer, Rk4, SplitDynamics};
-use noether_core::{State, StepInfo, Stepper, Trajectory};
+use noether_core::{Driver, State, StepInfo, Stepper, Velocities};
 
 /// A state-update method for particle systems.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,7 +52,7 @@ enum Inner<'a, I> {
     Split(Composition<&'a System<I>>),
 }
 
-/// A [`Stepper`] for a particle system with one of the [`Method`]s (use it with core's [`Trajectory`]).
+/// A [`Stepper`] for a particle system with one of the [`Method`]s (run it with core's [`Driver`]).
 pub struct ParticleStepper<'a, I> {
     sys: &'a System<I>,
     inner: Inner<'a, I>,
@@ -71,7 +71,7 @@ impl<'a, I: Interaction> ParticleStepper<'a, I> {
         ParticleStepper { sys, inner }
     }
 
-    fn stepper(&mut self) -> &mut dyn Stepper {
+    fn stepper(&mut self) -> &mut dyn Stepper<Partner = Velocities> {
         match &mut self.inner {
             Inner::Euler(s) => s,
             Inner::EulerCromer(s) => s,
@@ -80,7 +80,7 @@ impl<'a, I: Interaction> ParticleStepper<'a, I> {
         }
     }
 
-    fn stepper_ref(&self) -> &dyn Stepper {
+    fn stepper_ref(&self) -> &dyn Stepper<Partner = Velocities> {
         match &self.inner {
             Inner::Euler(s) => s,
             Inner::EulerCromer(s) => s,
@@ -91,6 +91,7 @@ impl<'a, I: Interaction> ParticleStepper<'a, I> {
 }
 
 impl<I: Interaction> Stepper for ParticleStepper<'_, I> {
+    type Partner = Velocities;
     fn step(&mut self, state: &mut State, h: f64) -> noether_core::Result<StepInfo> {
         if matches!(self.inner, Inner::Split(_)) {
             self.sys.check_split()?;
@@ -105,6 +106,9 @@ impl<I: Interaction> Stepper for ParticleStepper<'_, I> {
     }
     fn name(&self) -> &'static str {
         self.stepper_ref().name()
+    }
+    fn rates(&self, state: &State, dq: &mut [f64], dv: &mut [f64]) -> Option<noether_core::Result<()>> {
+        self.stepper_ref().rates(state, dq, dv)
     }
 }
 
@@ -130,8 +134,8 @@ impl<I: Interaction> System<I> {
         method: Method,
         state: State,
         h: f64,
-    ) -> Result<Trajectory<ParticleStepper<'_, I>>> {
-        Trajectory::new(ParticleStepper::new(self, method), state, h).map_err(Error::from)
+    ) -> Result<Driver<'_, ParticleStepper<'_, I>>> {
+        Driver::with_step(ParticleStepper::new(self, method), state, h).map_err(Error::from)
     }
 
     /// Symplectic (split) methods need potential forces that depend on positions only.

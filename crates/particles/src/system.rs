@@ -320,6 +320,7 @@ impl<I: Interaction> Lagrangian for System<I> {
 
 /// q̇ = v, v̇ = F/m with forces assembled term by term (cost linear in the number of terms).
 impl<I: Interaction> Dynamics for System<I> {
+    type Partner = noether_core::Velocities;
     fn dof(&self) -> usize {
         3 * self.particles.len()
     }

@@ -28,7 +28,7 @@ fn bad_input_initial_state_violating_constraints_names_the_residual() {
         }
         e => panic!("unexpected {e}"),
     }
-    let mut run = Trajectory::new(
+    let mut run = Driver::with_step(
         Projected::new(Rk4::new(&sys), sys.constraints()),
         off.clone(),
         1e-3,
@@ -55,7 +55,7 @@ fn bad_input_redundant_constraints_reported_with_rank() {
     };
     expect(sys.check_state(&s, 1e-10).unwrap_err());
     expect(sys.multipliers(0.0, s.q.as_slice(), s.v.as_slice()).unwrap_err());
-    let mut run = Trajectory::new(Rk4::new(&sys), s.clone(), 1e-3).unwrap();
+    let mut run = Driver::with_step(Rk4::new(&sys), s.clone(), 1e-3).unwrap();
     expect(run.next().unwrap().unwrap_err());
     let mut s2 = s.clone();
     expect(project(sys.constraints(), &mut s2, &Projection::default()).unwrap_err());

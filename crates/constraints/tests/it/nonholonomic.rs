@@ -48,7 +48,7 @@ fn closed_form_knife_edge_on_incline() {
     let start = State::new(0.0, [0.0, 0.0, 0.0], [0.0, 0.0, w]);
     sys.check_state(&start, 1e-14).unwrap();
     let e0 = sys.energy(0.0, start.q.as_slice(), start.v.as_slice()).unwrap();
-    let run = Trajectory::new(Projected::new(Rk4::new(&sys), sys.constraints()), start, 1e-3).unwrap();
+    let run = Driver::with_step(Projected::new(Rk4::new(&sys), sys.constraints()), start, 1e-3).unwrap();
     let (mut dx, mut de) = (0.0_f64, 0.0_f64);
     for s in run.take(5000) {
         let s = s.unwrap();

@@ -28,7 +28,7 @@ fn run_rattle<Ld>(
     v: &[f64],
     h: f64,
     steps: usize,
-) -> (Vec<State>, f64, Vec<f64>, (f64, f64))
+) -> (Vec<State<Momenta>>, f64, Vec<f64>, (f64, f64))
 where
     Ld: noether_discrete::DiscreteLagrangian + noether_discrete::FromLagrangian,
 {
@@ -101,8 +101,8 @@ fn order_two_cartesian_pendulum() {
     let t_end = 1.0;
     let reference = {
         let el = EulerLagrange::new(AnglePendulum { m, l, g });
-        let mut tr = Trajectory::new(Rk4::new(el), State::new(0.0, [th0], [om0]), 1e-4).unwrap();
-        tr.run_until(t_end).unwrap().q[0]
+        let mut tr = Driver::with_step(Rk4::new(el), State::new(0.0, [th0], [om0]), 1e-4).unwrap();
+        tr.run_until(t_end).unwrap().last().q[0]
     };
     let err = |h: f64| {
         let mut r = Rattle::new(
@@ -132,7 +132,7 @@ fn order_two_cartesian_pendulum() {
 #[test]
 fn order_rattle_tension_estimates() {
     let (m, l, g) = (2.0, 0.5, 9.81);
-    let tension = |s: &State, v: &[f64]| {
+    let tension = |s: &State<Momenta>, v: &[f64]| {
         let theta = s.q[0].atan2(-s.q[1]);
         let rate = (s.q[0] * v[1] - s.q[1] * v[0]) / (l * l);
         m * g * theta.cos() + m * l * rate * rate
@@ -304,8 +304,8 @@ fn order_two_rattle_time_dependent_hoop() {
     let t_end = 1.0;
     let reference = {
         let el = EulerLagrange::new(HoopAngle { a, w, g });
-        let mut tr = Trajectory::new(Rk4::new(el), State::new(0.0, [th0], [0.0]), 1e-4).unwrap();
-        tr.run_until(t_end).unwrap().q[0]
+        let mut tr = Driver::with_step(Rk4::new(el), State::new(0.0, [th0], [0.0]), 1e-4).unwrap();
+        tr.run_until(t_end).unwrap().last().q[0]
     };
     let err = |h: f64| {
         let mut r = Rattle::new(

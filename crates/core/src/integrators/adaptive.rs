@@ -19,11 +19,13 @@
 //! running into a singularity ends in a step-size underflow rather than a NaN state.
 //!
 //! After every accepted step a continuous extension ([`DenseOutput`]) gives y(t) inside the step to
-//! the method's dense order (4 for DOPRI5, 7 for DOP853): sample at given times
-//! ([`Adaptive::integrate`]) or locate events ([`DenseOutput::locate`]).
+//! the method's dense order (4 for DOPRI5, 7 for DOP853), on which the [`Driver`](crate::Driver)
+//! samples output times and locates events. It is built only when the driver needs it (DOP853 spends
+//! three more evaluations of the vector field per step on it).
 
-use crate::error::{check_finite, check_step};
-use crate::{Dynamics, Error, Result, State, StepInfo, Stepper};
+use crate::dense::DenseEval;
+use crate::error::check_step;
+use crate::{DenseOutput, Dynamics, Error, Result, State, StepInfo, Stepper};
 
 /// The coefficients and formulas of an embedded pair with dense output.
 pub trait EmbeddedPair {
@@ -80,81 +82,6 @@ pub struct Controller {
     pub beta: f64,
 }
 
-/// Counters of an adaptive integration.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct AdaptiveStats {
-    /// Accepted steps.
-    pub accepted: usize,
-    /// Rejected trial steps.
-    pub rejected: usize,
-    /// Evaluations of the vector field.
-    pub evaluations: usize,
-}
-
-/// y(t₀ + θh) from θ, y₀ and the coefficients of a continuous extension.
-type DenseEval = fn(f64, &[f64], &[Vec<f64>], &mut [f64]);
-
-/// The continuous extension of the last accepted step, valid for t in [t₀, t₀ + h].
-#[derive(Debug, Clone)]
-pub struct DenseOutput {
-    t0: f64,
-    h: f64,
-    n: usize,
-    y0: Vec<f64>,
-    coeffs: Vec<Vec<f64>>,
-    eval: DenseEval,
-}
-
-impl DenseOutput {
-    /// Start of the step.
-    pub fn t_start(&self) -> f64 {
-        self.t0
-    }
-    /// End of the step.
-    pub fn t_end(&self) -> f64 {
-        self.t0 + self.h
-    }
-    /// The interpolated state at time `t` (which should lie in [t_start, t_end]; outside, the
-    /// polynomial extrapolates).
-    pub fn state_at(&self, t: f64) -> State {
-        let mut y = vec![0.0; 2 * self.n];
-        (self.eval)((t - self.t0) / self.h, &self.y0, &self.coeffs, &mut y);
-        let v = y.split_off(self.n);
-        State::new(t, y, v)
-    }
-
-    /// A time in the step where `g(state)` vanishes, when g changes sign between the ends of the step,
-    /// located to ~1e-14 relative accuracy by the Illinois (modified regula falsi) method on the dense
-    /// output; `None` when g has the same sign at both ends (or is not finite there).
-    pub fn locate(&self, mut g: impl FnMut(&State) -> f64) -> Option<f64> {
-        let (mut a, mut b) = (self.t0, self.t_end());
-        let (mut ga, mut gb) = (g(&self.state_at(a)), g(&self.state_at(b)));
-        if !(ga.is_finite() && gb.is_finite()) || ga * gb > 0.0 {
-            return None;
-        }
-        if ga == 0.0 {
-            return Some(a);
-        }
-        for _ in 0..200 {
-            if gb == 0.0 || (b - a).abs() <= 1e-14 * (a.abs() + b.abs()).max(self.h.abs()) {
-                return Some(b);
-            }
-            let c = b - gb * (b - a) / (gb - ga);
-            let gc = g(&self.state_at(c));
-            if !gc.is_finite() {
-                return Some(b);
-            }
-            if gc * gb < 0.0 {
-                (a, ga) = (b, gb);
-            } else {
-                ga *= 0.5;
-            }
-            (b, gb) = (c, gc);
-        }
-        Some(b)
-    }
-}
-
 /// An adaptive embedded Runge-Kutta method `M` (see the [module](self) docs) stepping a [`Dynamics`].
 ///
 /// ```
@@ -164,22 +91,26 @@ impl DenseOutput {
 ///     fn dof(&self) -> usize { 1 }
 ///     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D { (v[0] * v[0] - q[0] * q[0]) * 0.5 }
 /// }
-/// let mut dp = Dopri5::new(EulerLagrange::new(Oscillator)).tolerances(1e-10, 1e-10);
-/// let mut state = State::new(0.0, [1.0], [0.0]);
-/// let samples = dp.integrate(&mut state, 10.0, &[1.0, 2.0, 3.0]).unwrap();
-/// for s in &samples {
-///     assert!((s.q[0] - s.t.cos()).abs() < 1e-8); // q = cos t
+/// let dp = Dopri5::new(EulerLagrange::new(Oscillator)).tolerances(1e-10, 1e-10)?;
+/// let sol = Driver::new(dp, State::new(0.0, [1.0], [0.0]))?
+///     .save(Save::Times(vec![1.0, 2.0, 3.0]))?
+///     .run_until(10.0)?;
+/// for i in 0..sol.len() {
+///     assert!((sol.q(i)[0] - sol.times()[i].cos()).abs() < 1e-8); // q = cos t, from the dense output
 /// }
-/// assert!((state.t - 10.0).abs() < 1e-15 && (state.q[0] - 10f64.cos()).abs() < 1e-8);
+/// assert!(sol.last().t == 10.0 && (sol.last().q[0] - 10f64.cos()).abs() < 1e-8);
+/// # Ok::<(), noether_core::Error>(())
 /// ```
-pub struct Adaptive<S, M> {
+pub struct Adaptive<S: Dynamics, M> {
     system: S,
     atol: f64,
     rtol: f64,
     h_min: f64,
     controller: Controller,
     fixed: bool,
-    dense_enabled: bool,
+    /// The user allows a dense output (`with_dense_output`), and the driver asks for one.
+    dense_allowed: bool,
+    dense_requested: bool,
     n: usize,
     k: Vec<Vec<f64>>,
     y0: Vec<f64>,
@@ -187,8 +118,8 @@ pub struct Adaptive<S, M> {
     tmp: Vec<f64>,
     err_prev: f64,
     fsal: Option<f64>,
-    dense: Option<DenseOutput>,
-    stats: AdaptiveStats,
+    dense: Option<DenseOutput<S::Partner>>,
+    evaluations: usize,
     _method: std::marker::PhantomData<M>,
 }
 
@@ -204,7 +135,8 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             h_min: 1e-14,
             controller: M::CONTROLLER,
             fixed: false,
-            dense_enabled: true,
+            dense_allowed: true,
+            dense_requested: true,
             n,
             k: vec![vec![0.0; 2 * n]; stages],
             y0: vec![0.0; 2 * n],
@@ -213,26 +145,44 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             err_prev: 1e-4,
             fsal: None,
             dense: None,
-            stats: AdaptiveStats::default(),
+            evaluations: 0,
             _method: std::marker::PhantomData,
         }
     }
 
-    /// Sets the absolute and relative tolerances (checked at the next step: finite, ≥ 0, not both 0).
-    pub fn tolerances(mut self, atol: f64, rtol: f64) -> Self {
+    /// Sets the absolute and relative tolerances: finite, ≥ 0, not both 0.
+    pub fn tolerances(mut self, atol: f64, rtol: f64) -> Result<Self> {
         self.atol = atol;
         self.rtol = rtol;
-        self
+        self.check_parameters()?;
+        Ok(self)
     }
-    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14).
-    pub fn h_min(mut self, h_min: f64) -> Self {
+    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14; finite, ≥ 0).
+    pub fn h_min(mut self, h_min: f64) -> Result<Self> {
         self.h_min = h_min;
-        self
+        self.check_parameters()?;
+        Ok(self)
     }
-    /// Sets the step-size controller.
-    pub fn controller(mut self, controller: Controller) -> Self {
+    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max, β ≥ 0, all finite).
+    pub fn controller(mut self, controller: Controller) -> Result<Self> {
+        let c = controller;
+        let ok = c.safety > 0.0
+            && c.safety <= 1.0
+            && c.fac_min > 0.0
+            && c.fac_min <= 1.0
+            && c.fac_max >= 1.0
+            && c.fac_max.is_finite()
+            && c.beta >= 0.0
+            && c.beta.is_finite();
+        if !ok {
+            return Err(Error::InvalidParameter {
+                name: "controller",
+                value: c.safety,
+                reason: "needs 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞ and 0 ≤ β < ∞",
+            });
+        }
         self.controller = controller;
-        self
+        Ok(self)
     }
     /// Fixed steps: every step is accepted with the size asked for (no error control); for
     /// convergence studies and for users who want a plain high-order Runge-Kutta method.
@@ -240,22 +190,19 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         self.fixed = fixed;
         self
     }
-    /// Turns the dense output off (saves the extra stages of DOP853).
+    /// Allows (default) or forbids the dense output; without it the driver interpolates output times and
+    /// events by cubic Hermite (order 3) instead of the method's own extension.
     pub fn with_dense_output(mut self, on: bool) -> Self {
-        self.dense_enabled = on;
+        self.dense_allowed = on;
         self
     }
     /// The system stepped.
     pub fn system(&self) -> &S {
         &self.system
     }
-    /// Counters since construction.
-    pub fn stats(&self) -> AdaptiveStats {
-        self.stats
-    }
-    /// The continuous extension of the last accepted step.
-    pub fn dense_output(&self) -> Option<&DenseOutput> {
-        self.dense.as_ref()
+    /// Evaluations of the vector field since construction.
+    pub fn evaluations(&self) -> usize {
+        self.evaluations
     }
 
     fn check_parameters(&self) -> Result<()> {
@@ -280,7 +227,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let n = self.n;
         let y = if from_tmp { &self.tmp } else { &self.y0 };
         let (dq, dv) = self.k[i].split_at_mut(n);
-        self.stats.evaluations += 1;
+        self.evaluations += 1;
         match self.system.rates(t, &y[..n], &y[n..], dq, dv) {
             Ok(()) => Ok(self.k[i].iter().all(|x| x.is_finite())),
             Err(Error::NonFiniteState { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
@@ -329,24 +276,28 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             }
         }
         let mut coeffs = match self.dense.take() {
-            Some(d) if d.coeffs.len() == M::DENSE_LEN => d.coeffs,
-            _ => vec![vec![0.0; 2 * self.n]; M::DENSE_LEN],
+            Some(d) => d.into_coefficients(),
+            None => Vec::new(),
         };
+        if coeffs.len() != M::DENSE_LEN {
+            coeffs = vec![vec![0.0; 2 * self.n]; M::DENSE_LEN];
+        }
         M::dense_coefficients(h, &self.k, &self.y0, &self.y1, &mut coeffs);
-        self.dense = Some(DenseOutput {
-            t0: t,
+        let eval: DenseEval = M::dense_eval;
+        self.dense = Some(DenseOutput::from_coefficients(
+            t,
             h,
-            n: self.n,
-            y0: self.y0.clone(),
+            M::DENSE_ORDER,
+            self.y0.clone(),
             coeffs,
-            eval: M::dense_eval,
-        });
+            eval,
+        ));
         Ok(())
     }
 
     /// An initial step size for (t, state) by Hairer's `hinit`: h such that the explicit Euler step
     /// and the second derivative estimate give a local error ≈ 0.01 in the scaled norm.
-    pub fn initial_step(&mut self, state: &State) -> Result<f64> {
+    fn hinit<K: crate::Partner>(&mut self, state: &State<K>) -> Result<f64> {
         self.check_parameters()?;
         state.validate(self.n)?;
         let n2 = 2 * self.n;
@@ -384,89 +335,21 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         Ok(h)
     }
 
-    fn load(&mut self, state: &State) {
+    fn load<K: crate::Partner>(&mut self, state: &State<K>) {
         let n = self.n;
         self.y0[..n].copy_from_slice(state.q.as_slice());
         self.y0[n..].copy_from_slice(state.v.as_slice());
     }
-
-    /// Integrates from `state` to `t_end` (adaptive steps, the last one shortened to land on t_end),
-    /// returning the states at the requested `times` (sorted, within [state.t, t_end]) from the dense
-    /// output. `state` ends at t_end.
-    pub fn integrate(&mut self, state: &mut State, t_end: f64, times: &[f64]) -> Result<Vec<State>> {
-        check_finite("t_end", &[t_end])?;
-        check_finite("sample times", times)?;
-        state.validate(self.n)?;
-        if t_end < state.t {
-            return Err(Error::InvalidParameter {
-                name: "t_end",
-                value: t_end,
-                reason: "integration runs forward in time: t_end must not precede the state's time",
-            });
-        }
-        if let Some(w) = times.windows(2).find(|w| w[1] < w[0]) {
-            return Err(Error::InvalidParameter {
-                name: "sample time",
-                value: w[1],
-                reason: "sample times must be sorted",
-            });
-        }
-        if let Some(&t) = times.iter().find(|&&t| t < state.t || t > t_end) {
-            return Err(Error::InvalidParameter {
-                name: "sample time",
-                value: t,
-                reason: "sample times must lie within [t0, t_end]",
-            });
-        }
-        let mut out = Vec::with_capacity(times.len());
-        let mut next = 0;
-        while next < times.len() && times[next] == state.t {
-            out.push(state.clone());
-            next += 1;
-        }
-        let mut h = self.initial_step(state)?;
-        let mut work = state.clone();
-        let mut steps = 0;
-        while work.t < t_end {
-            let remaining = t_end - work.t;
-            let last = h >= remaining || remaining <= 10.0 * f64::EPSILON * t_end.abs();
-            let info = self
-                .step(&mut work, if last { remaining } else { h })
-                .map_err(|e| match e {
-                    Error::NonFiniteState { t, .. } => Error::NonFiniteState { step: steps, t },
-                    other => other,
-                })?;
-            steps += 1;
-            if last && info.h == remaining {
-                work.t = t_end;
-            }
-            h = info.h_next;
-            let dense_ok = self.dense_enabled;
-            while next < times.len() && times[next] <= work.t {
-                let s = match (&self.dense, dense_ok) {
-                    (Some(d), true) => d.state_at(times[next]),
-                    _ => {
-                        return Err(Error::Unsupported(
-                            "sampling at requested times needs the dense output",
-                        ))
-                    }
-                };
-                out.push(s);
-                next += 1;
-            }
-        }
-        *state = work;
-        Ok(out)
-    }
 }
 
 impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
+    type Partner = S::Partner;
     /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
     /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
-        self.check_parameters()?;
         state.validate(self.n)?;
+        let evaluations = self.evaluations;
         let t = state.t;
         let reuse = self.fsal == Some(t)
             && self.y1[..self.n] == *state.q.as_slice()
@@ -484,7 +367,6 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
         loop {
             if h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs() {
-                self.stats.rejected += rejected;
                 return Err(Error::StepSizeUnderflow {
                     t,
                     h,
@@ -504,21 +386,18 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                     h_next = h_next.min(h);
                 }
                 self.err_prev = err.max(1e-4);
-                if self.dense_enabled {
+                if self.dense_allowed && self.dense_requested {
                     self.build_dense(t, h)?;
+                } else {
+                    self.dense = None;
                 }
                 state.q.as_mut_slice().copy_from_slice(&self.y1[..self.n]);
                 state.v.as_mut_slice().copy_from_slice(&self.y1[self.n..]);
                 state.t = t + h;
                 self.fsal = Some(state.t);
-                self.stats.accepted += 1;
-                self.stats.rejected += rejected;
-                return Ok(StepInfo {
-                    h,
-                    h_next,
-                    newton_iterations: 0,
-                    rejected,
-                });
+                return Ok(StepInfo::fixed(h)
+                    .with_control(rejected, h_next)
+                    .with_evaluations(self.evaluations - evaluations));
             }
             if self.fixed {
                 return Err(Error::NonFiniteState { step: 0, t });
@@ -541,5 +420,22 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
     }
     fn name(&self) -> &'static str {
         M::NAME
+    }
+    fn is_adaptive(&self) -> bool {
+        !self.fixed
+    }
+    /// Hairer's `hinit`: h such that the explicit Euler step and the second-derivative estimate give a
+    /// local error ≈ 0.01 in the scaled norm.
+    fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
+        self.hinit(state).map(Some)
+    }
+    fn request_dense_output(&mut self, on: bool) {
+        self.dense_requested = on;
+    }
+    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
+        self.dense.as_ref()
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
 }

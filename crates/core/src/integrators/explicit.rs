@@ -3,7 +3,7 @@
 //! All three step any [`Dynamics`] on (q, v), v = q̇ or p, and leave the state untouched on error.
 
 use crate::error::check_step;
-use crate::{Dynamics, Error, Result, State, StepInfo, Stepper};
+use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper};
 
 /// A pair of work vectors (q-part, v-part) of a one-step method: rates F = (q̇, v̇) or a new state.
 struct Pair {
@@ -20,7 +20,7 @@ impl Pair {
     }
 
     /// Checks this new (q, v) is finite, then writes it and t + h into `state`.
-    fn commit(&self, state: &mut State, h: f64) -> Result<StepInfo> {
+    fn commit<K: Partner>(&self, state: &mut State<K>, h: f64) -> Result<StepInfo> {
         if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t: state.t });
         }
@@ -110,7 +110,8 @@ impl<S: Dynamics, R: FirstOrderRule> FirstOrder<S, R> {
 }
 
 impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
@@ -125,7 +126,10 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
             self.system.position_rates(t, q, &y.v, &mut y.q)?;
         }
         advance(&mut y.q, q, h); // q' = q + h q̇
-        y.commit(state, h)
+        Ok(y.commit(state, h)?.with_evaluations(1))
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -167,7 +171,8 @@ impl<S: Dynamics> Rk4<S> {
 }
 
 impl<S: Dynamics> Stepper for Rk4<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
@@ -184,7 +189,10 @@ impl<S: Dynamics> Stepper for Rk4<S> {
             y.q[i] = q[i] + h / 6.0 * (k1.q[i] + 2.0 * (k2.q[i] + k3.q[i]) + k4.q[i]);
             y.v[i] = v[i] + h / 6.0 * (k1.v[i] + 2.0 * (k2.v[i] + k3.v[i]) + k4.v[i]);
         }
-        y.commit(state, h)
+        Ok(y.commit(state, h)?.with_evaluations(4))
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
     fn dof(&self) -> usize {
         self.system.dof()

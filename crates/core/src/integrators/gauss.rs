@@ -343,7 +343,8 @@ impl<S: LinearizedDynamics> DenseProblem for Stages<'_, S> {
 }
 
 impl<S: LinearizedDynamics> Stepper for Gauss<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         let n = self.system.dof();
         state.validate(n)?;
@@ -392,10 +393,13 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             y_end: y1,
             stages,
         });
-        Ok(StepInfo {
-            newton_iterations: info.iterations,
-            ..StepInfo::fixed(h)
-        })
+        // One vector field per stage and residual (the start guess costs one more on a fresh start).
+        Ok(StepInfo::fixed(h)
+            .with_evaluations(s * (info.iterations + 1))
+            .with_newton(info.iterations, 0))
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
     fn dof(&self) -> usize {
         self.system.dof()

@@ -15,7 +15,7 @@ pub mod explicit;
 pub mod gauss;
 pub mod symplectic;
 
-pub use adaptive::{Adaptive, AdaptiveStats, Controller, DenseOutput, EmbeddedPair};
+pub use adaptive::{Adaptive, Controller, EmbeddedPair};
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
 pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};

@@ -33,7 +33,7 @@
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len, check_step};
 use crate::natural::{Natural, Potential};
-use crate::{Dynamics, Error, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper};
+use crate::{Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper};
 
 /// A vector field split as q̇ = D(v), v̇ = K(q): what explicit symplectic methods need.
 pub trait SplitDynamics: Dynamics {
@@ -69,6 +69,7 @@ fn finite_or(out: &[f64]) -> Result<()> {
 
 /// State (q, p): q̇ = ∇T(p), ṗ = −∇V(q).
 impl<S: Separable> Dynamics for SeparableHamiltonian<S> {
+    type Partner = crate::Momenta;
     fn dof(&self) -> usize {
         self.0.dof()
     }
@@ -139,7 +140,7 @@ fn with_time(e: Error, t: f64) -> Error {
     }
 }
 
-fn check_state(state: &State, n: usize) -> Result<()> {
+fn check_state<K: Partner>(state: &State<K>, n: usize) -> Result<()> {
     state.validate(n)
 }
 
@@ -172,7 +173,7 @@ impl Work {
     fn kick(&mut self, c: f64) {
         self.v.iter_mut().zip(&self.f).for_each(|(v, f)| *v += c * f);
     }
-    fn commit(&self, state: &mut State, h: f64) -> Result<()> {
+    fn commit<K: Partner>(&self, state: &mut State<K>, h: f64) -> Result<()> {
         if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t: state.t });
         }
@@ -207,7 +208,8 @@ impl<S: SplitDynamics> SymplecticEuler<S> {
 }
 
 impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         check_state(state, self.system.dof())?;
         let t = state.t;
@@ -221,7 +223,10 @@ impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
         };
         run(w).map_err(|e| with_time(e, t))?;
         w.commit(state, h)?;
-        Ok(StepInfo::fixed(h))
+        Ok(StepInfo::fixed(h).with_evaluations(1))
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -401,13 +406,15 @@ impl<S: SplitDynamics> Composition<S> {
 }
 
 impl<S: SplitDynamics> Stepper for Composition<S> {
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         check_state(state, self.system.dof())?;
         let t = state.t;
         self.work.q.copy_from_slice(state.q.as_slice());
         self.work.v.copy_from_slice(state.v.as_slice());
-        if self.cached && self.cache_q == self.work.q {
+        let reused = self.cached && self.cache_q == self.work.q;
+        if reused {
             self.work.f.copy_from_slice(&self.cache_f);
         } else {
             self.cached = false;
@@ -420,7 +427,11 @@ impl<S: SplitDynamics> Stepper for Composition<S> {
         self.cache_q.copy_from_slice(&self.work.q);
         self.cache_f.copy_from_slice(&self.work.f);
         self.cached = true;
-        Ok(StepInfo::fixed(h))
+        let kicks = self.drifts.len() + usize::from(!reused);
+        Ok(StepInfo::fixed(h).with_evaluations(kicks))
+    }
+    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
+        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
     }
     fn dof(&self) -> usize {
         self.system.dof()

@@ -88,10 +88,13 @@ fn order_dense_output() {
 
 /// Adaptive run on Kepler e = 0.5 over 5 periods at tolerances 1e-10: (largest error at the ends of
 /// the accepted steps, largest error of the dense output at θ = 1/4, 1/2, 3/4 inside them).
-fn endpoint_and_interior_errors<M: EmbeddedPair>() -> (f64, f64, AdaptiveStats) {
-    let mut s = Adaptive::<_, M>::new(EulerLagrange::new(KeplerL)).tolerances(1e-10, 1e-10);
+fn endpoint_and_interior_errors<M: EmbeddedPair>() -> (f64, f64, usize) {
+    let mut s = Adaptive::<_, M>::new(EulerLagrange::new(KeplerL))
+        .tolerances(1e-10, 1e-10)
+        .unwrap();
     let mut state = kepler_start(ECC);
-    let mut h = s.initial_step(&state).unwrap();
+    let mut h = s.initial_step(&state).unwrap().unwrap();
+    let mut steps = 0;
     let (mut end_err, mut mid_err) = (0.0_f64, 0.0_f64);
     let err = |st: &State| {
         let (q, p) = kepler_exact(ECC, st.t);
@@ -99,13 +102,14 @@ fn endpoint_and_interior_errors<M: EmbeddedPair>() -> (f64, f64, AdaptiveStats) 
     };
     while state.t < 10.0 * std::f64::consts::PI {
         h = s.step(&mut state, h).unwrap().h_next;
+        steps += 1;
         end_err = end_err.max(err(&state));
         let d = s.dense_output().unwrap();
         for theta in [0.25, 0.5, 0.75] {
             mid_err = mid_err.max(err(&d.state_at(d.t_start() + theta * (d.t_end() - d.t_start()))));
         }
     }
-    (end_err, mid_err, s.stats())
+    (end_err, mid_err, steps)
 }
 
 #[test]
@@ -115,11 +119,11 @@ fn closed_form_dense_output_as_accurate_as_steps() {
     // inside the steps the error must stay within 1.5× the largest error at the step ends. Tightening
     // the tolerance is checked to shrink the global error in `closed_form_error_control_tracks_tolerance`;
     // here it must be below 1e4·tol = 1e-6 (a loose sanity bound: ~10³ steps, linear phase growth).
-    for (name, (end, mid, stats)) in [
+    for (name, (end, mid, steps)) in [
         ("DOPRI5", endpoint_and_interior_errors::<Dp5>()),
         ("DOP853", endpoint_and_interior_errors::<Dp853>()),
     ] {
-        eprintln!("{name}: step ends {end:.2e}, inside steps {mid:.2e}, {stats:?}");
+        eprintln!("{name}: step ends {end:.2e}, inside steps {mid:.2e}, {steps} steps");
         assert!(
             mid <= 1.5 * end,
             "{name}: dense output {mid:e} vs step ends {end:e}"
@@ -129,20 +133,25 @@ fn closed_form_dense_output_as_accurate_as_steps() {
 }
 
 #[test]
-fn closed_form_integrate_samples_requested_times() {
-    // `integrate` returns exactly the requested times, lands on t_end, and agrees with the exact orbit
-    // as well as the step ends do (see above: < 1e-6 at tol 1e-10).
+fn closed_form_driver_samples_requested_times() {
+    // The driver returns exactly the requested times (from the dense output), lands on t_end, and
+    // agrees with the exact orbit as well as the step ends do (see above: < 1e-6 at tol 1e-10).
     let times: Vec<f64> = (0..=100).map(|i| i as f64 * 0.1).collect();
-    let mut s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-10, 1e-10);
-    let mut state = kepler_start(ECC);
-    let samples = s.integrate(&mut state, 12.0, &times).unwrap();
-    assert_eq!(samples.iter().map(|s| s.t).collect::<Vec<_>>(), times);
-    assert_eq!(state.t, 12.0);
-    for st in samples.iter().chain(std::iter::once(&state)) {
+    let s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-10, 1e-10).unwrap();
+    let sol = Driver::new(s, kepler_start(ECC))
+        .unwrap()
+        .save(Save::Times(times.clone()))
+        .unwrap()
+        .run_until(12.0)
+        .unwrap();
+    assert_eq!(sol.times(), &times[..]);
+    assert_eq!(sol.last().t, 12.0);
+    assert_eq!(sol.interpolation_order(), Some(4));
+    for st in (0..sol.len()).map(|i| sol.state(i)).chain(std::iter::once(sol.last().clone())) {
         let (q, p) = kepler_exact(ECC, st.t);
-        assert!(distance(st, &q, &p) < 1e-6, "t = {}", st.t);
+        assert!(distance(&st, &q, &p) < 1e-6, "t = {}", st.t);
     }
-    assert_eq!(samples[0], kepler_start(ECC));
+    assert_eq!(sol.state(0), kepler_start(ECC));
 }
 
 #[test]
@@ -150,38 +159,48 @@ fn closed_form_error_control_tracks_tolerance() {
     // Tightening the tolerance 1000× must shrink the global error by between 100× and 10⁵× (the
     // error is proportional to the tolerance up to the step-count factor) and take more steps.
     let run = |tol: f64| {
-        let mut s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(tol, tol);
-        let mut state = kepler_start(ECC);
-        s.integrate(&mut state, T_KEPLER, &[]).unwrap();
+        let s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(tol, tol).unwrap();
+        let sol = Driver::new(s, kepler_start(ECC))
+            .unwrap()
+            .save(Save::End)
+            .unwrap()
+            .run_until(T_KEPLER)
+            .unwrap();
         let (q, p) = kepler_exact(ECC, T_KEPLER);
-        (distance(&state, &q, &p), s.stats())
+        (distance(sol.last(), &q, &p), *sol.stats())
     };
     let (e1, s1) = run(1e-6);
     let (e2, s2) = run(1e-9);
     eprintln!("tol 1e-6: {e1:.2e} {s1:?}; tol 1e-9: {e2:.2e} {s2:?}");
     assert!(e1 / e2 > 100.0 && e1 / e2 < 1e5, "{e1:e} {e2:e}");
-    assert!(s2.accepted > s1.accepted);
+    assert!(s2.steps > s1.steps);
+    // DOPRI5 is FSAL: six new evaluations per accepted or rejected step after the first.
+    for st in [s1, s2] {
+        assert_eq!(st.evaluations, 6 * (st.steps + st.rejected) + 1, "{st:?}");
+    }
 }
 
 #[test]
 fn closed_form_rejections_counted() {
     // A first step of 1.0 on Kepler e = 0.9 near pericentre is far too large: it is rejected (and
     // counted) until the error estimate passes, and the step actually taken is smaller.
-    let mut s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-8, 1e-8);
+    let mut s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-8, 1e-8).unwrap();
     let mut state = kepler_start(0.9);
     let info = s.step(&mut state, 1.0).unwrap();
     assert!(info.rejected > 0 && info.h < 1.0 && state.t == info.h);
-    assert_eq!(s.stats().rejected, info.rejected);
+    assert_eq!(info.evaluations, 1 + 6 * (info.rejected + 1));
 }
 
 /// Steps until the dense output shows θ crossing 0; returns the located time.
 fn first_zero_of_theta<M: EmbeddedPair>() -> f64 {
-    let mut s = Adaptive::<_, M>::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12);
+    let mut s = Adaptive::<_, M>::new(Natural::unit(PendulumV))
+        .tolerances(1e-12, 1e-12)
+        .unwrap();
     let mut state = pendulum_start();
     let mut h = 0.01;
     loop {
         h = s.step(&mut state, h).unwrap().h_next;
-        if let Some(t) = s.dense_output().unwrap().locate(|st| st.q[0]) {
+        if let Some(t) = s.dense_output().unwrap().locate(|st: &State| st.q[0]) {
             return t;
         }
         assert!(state.t < 10.0, "no crossing found");
@@ -202,16 +221,33 @@ fn closed_form_event_quarter_period() {
 }
 
 #[test]
-fn closed_form_trajectory_driver_uses_adaptive_steps() {
+fn closed_form_event_quarter_period_by_the_driver() {
+    // The same event through the driver: θ = 0 falling, terminal; the run stops there.
+    let expected = elliptic_k((THETA0 / 2.0).sin().powi(2));
+    let s = Dop853::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12).unwrap();
+    let sol = Driver::new(s, pendulum_start())
+        .unwrap()
+        .event(Event::new("θ = 0", |s: &State| s.q[0]).falling().terminal())
+        .run_until(10.0)
+        .unwrap();
+    assert_eq!(sol.stop(), Stop::Event(0));
+    assert!((sol.last().t - expected).abs() < 1e-9, "{} vs {expected}", sol.last().t);
+    assert!(sol.last().q[0].abs() < 1e-12 && sol.event_times("θ = 0") == vec![sol.last().t]);
+}
+
+#[test]
+fn closed_form_driver_uses_adaptive_steps() {
     // The driver follows h_next: harmonic-like pendulum at small amplitude, q ≈ 0.01 cos t.
-    let s = Dopri5::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12);
-    let mut traj = Trajectory::new(s, State::new(0.0, [0.01], [0.0]), 1e-3).unwrap();
-    let end = traj.run_until(3.0).unwrap();
+    let s = Dopri5::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12).unwrap();
+    let sol = Driver::new(s, State::new(0.0, [0.01], [0.0]))
+        .unwrap()
+        .step(1e-3)
+        .unwrap()
+        .run_until(3.0)
+        .unwrap();
     let (q, _) = pendulum_exact(0.01, 3.0);
-    assert!((end.t - 3.0).abs() < 1e-12 && (end.q[0] - q).abs() < 1e-11);
-    assert!(
-        traj.stepper().stats().accepted < 200,
-        "{:?}",
-        traj.stepper().stats()
-    );
+    let end = sol.last();
+    assert!(end.t == 3.0 && (end.q[0] - q).abs() < 1e-11);
+    assert!(sol.stats().steps < 200, "{:?}", sol.stats());
+    assert_eq!(sol.len(), sol.stats().steps + 1);
 }

@@ -23,28 +23,49 @@ impl Lagrangian for Fragile {
     }
 }
 
-fn steppers() -> Vec<Box<dyn Stepper>> {
+/// Every core method on a pendulum in velocities (q, q̇).
+fn velocity_steppers() -> Vec<Box<dyn Stepper<Partner = Velocities>>> {
     vec![
         Box::new(Euler::new(EulerLagrange::new(PendulumL))),
         Box::new(EulerCromer::new(EulerLagrange::new(PendulumL))),
         Box::new(Rk4::new(EulerLagrange::new(PendulumL))),
         Box::new(SymplecticEuler::new(Natural::unit(PendulumV))),
         Box::new(Composition::stormer_verlet(Natural::unit(PendulumV))),
-        Box::new(Composition::kahan_li8(SeparableHamiltonian(Natural::unit(
-            PendulumV,
-        )))),
         Box::new(Dopri5::new(EulerLagrange::new(PendulumL))),
         Box::new(Dop853::new(Natural::unit(PendulumV))),
-        Box::new(Gauss::gauss4(HamiltonEquations::new(PendulumH))),
         Box::new(Gauss::implicit_midpoint(Natural::unit(PendulumV))),
     ]
 }
 
+/// The methods that take the pendulum in momenta (q, p).
+fn momentum_steppers() -> Vec<Box<dyn Stepper<Partner = Momenta>>> {
+    vec![
+        Box::new(Composition::kahan_li8(SeparableHamiltonian(Natural::unit(
+            PendulumV,
+        )))),
+        Box::new(Gauss::gauss4(HamiltonEquations::new(PendulumH))),
+        Box::new(Rk4::new(HamiltonEquations::new(PendulumH))),
+    ]
+}
+
+/// Runs `check` on every stepper of both kinds.
+macro_rules! for_all_steppers {
+    (|$s:ident| $body:block) => {{
+        fn run<K: Partner>(steppers: Vec<Box<dyn Stepper<Partner = K>>>) {
+            for mut $s in steppers {
+                $body
+            }
+        }
+        run(velocity_steppers());
+        run(momentum_steppers());
+    }};
+}
+
 #[test]
 fn bad_input_step_zero_negative_nan() {
-    for mut s in steppers() {
+    for_all_steppers!(|s| {
         for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
-            let mut state = State::new(0.0, [1.0], [0.0]);
+            let mut state = State::<K>::new(0.0, [1.0], [0.0]);
             let before = state.clone();
             let err = s.step(&mut state, h).unwrap_err();
             assert!(
@@ -54,19 +75,17 @@ fn bad_input_step_zero_negative_nan() {
             );
             assert_eq!(state, before);
         }
-    }
-    let err = Trajectory::new(
-        Rk4::new(EulerLagrange::new(PendulumL)),
-        State::new(0.0, [1.0], [0.0]),
-        0.0,
-    );
+    });
+    let err = Driver::new(Rk4::new(EulerLagrange::new(PendulumL)), State::new(0.0, [1.0], [0.0]))
+        .unwrap()
+        .step(0.0);
     assert!(matches!(err, Err(Error::InvalidStep { .. })));
 }
 
 #[test]
 fn bad_input_wrong_dimensions() {
-    for mut s in steppers() {
-        let mut state = State::new(0.0, [1.0, 2.0], [0.0]);
+    for_all_steppers!(|s| {
+        let mut state = State::<K>::new(0.0, [1.0, 2.0], [0.0]);
         let before = state.clone();
         let err = s.step(&mut state, 0.1).unwrap_err();
         assert!(
@@ -82,13 +101,13 @@ fn bad_input_wrong_dimensions() {
             s.name()
         );
         assert_eq!(state, before);
-    }
+    });
 }
 
 #[test]
 fn bad_input_nan_initial_state() {
-    for mut s in steppers() {
-        let mut state = State::new(0.0, [f64::NAN], [0.0]);
+    for_all_steppers!(|s| {
+        let mut state = State::<K>::new(0.0, [f64::NAN], [0.0]);
         let err = s.step(&mut state, 0.1).unwrap_err();
         assert!(
             matches!(err, Error::NonFinite { what: "q", .. }),
@@ -96,11 +115,10 @@ fn bad_input_nan_initial_state() {
             s.name()
         );
         assert!(state.q[0].is_nan() && state.v[0] == 0.0 && state.t == 0.0);
-    }
-    let err = Trajectory::new(
+    });
+    let err = Driver::new(
         Composition::stormer_verlet(Natural::unit(PendulumV)),
         State::new(0.0, [0.0], [f64::INFINITY]),
-        0.1,
     );
     assert!(matches!(err, Err(Error::NonFinite { what: "v", .. })));
 }
@@ -113,7 +131,8 @@ fn bad_input_nan_mid_run_names_step_and_time() {
     fn check<S: Stepper>(s: S) {
         let name = s.name();
         let h = 0.01;
-        let mut traj = Trajectory::new(s, State::new(0.0, [1.4], [0.5]), h).unwrap();
+        let start = State::<S::Partner>::new(0.0, [1.4], [0.5]);
+        let mut traj = Driver::new(s, start).unwrap().step(h).unwrap();
         let mut good = 0;
         let err = loop {
             match traj.next().unwrap() {
@@ -195,6 +214,7 @@ fn bad_input_mass_matrix_and_coefficients() {
 /// ẏ = y² (on q; v idle): y = 1/(1 − t) blows up at t = 1.
 struct BlowUp;
 impl Dynamics for BlowUp {
+    type Partner = Velocities;
     fn dof(&self) -> usize {
         1
     }
@@ -212,29 +232,20 @@ impl Dynamics for BlowUp {
 fn bad_input_adaptive_step_size_underflow() {
     // Integrating ẏ = y² from y(0) = 1 past the blow-up at t = 1: the steps shrink to h_min and the
     // integration stops with StepSizeUnderflow at t ≈ 1 (the numerical blow-up time agrees with the true
-    // one to the tolerance), and `integrate` leaves the state untouched on error.
-    for name in ["DOPRI5", "DOP853"] {
-        let mut state = State::new(0.0, [1.0], [0.0]);
-        let res = if name == "DOPRI5" {
-            Dopri5::new(BlowUp)
-                .tolerances(1e-8, 1e-8)
-                .integrate(&mut state, 2.0, &[])
-        } else {
-            Dop853::new(BlowUp)
-                .tolerances(1e-8, 1e-8)
-                .integrate(&mut state, 2.0, &[])
-        };
-        match res {
+    // one to the tolerance), and the driver keeps the last good state, just before the blow-up.
+    fn check<S: Stepper<Partner = Velocities>>(name: &str, s: S) {
+        let mut run = Driver::new(s, State::new(0.0, [1.0], [0.0])).unwrap();
+        match run.run_until(2.0) {
             Err(Error::StepSizeUnderflow { t, h, .. }) => {
                 assert!((t - 1.0).abs() < 1e-3 && h < 1e-13, "{name}: t = {t}, h = {h}");
+                assert_eq!(run.state().t, t, "{name}: the last good state is kept");
             }
             other => panic!("{name}: expected underflow, got {other:?}"),
         }
-        assert!(
-            state.is_finite() && state.t == 0.0,
-            "integrate leaves the state on error"
-        );
+        assert!(run.state().is_finite());
     }
+    check("DOPRI5", Dopri5::new(BlowUp).tolerances(1e-8, 1e-8).unwrap());
+    check("DOP853", Dop853::new(BlowUp).tolerances(1e-8, 1e-8).unwrap());
     // A model turning NaN mid-run (θ > 1.5) is also met by shrinking steps, never by a NaN state.
     let mut s = Dopri5::new(Natural::unit(Fragile));
     let mut traj_state = State::new(0.0, [1.4], [0.5]);
@@ -251,33 +262,35 @@ fn bad_input_adaptive_step_size_underflow() {
 
 #[test]
 fn bad_input_adaptive_parameters() {
-    let mut state = State::new(0.0, [1.0], [0.0]);
-    let before = state.clone();
+    // Tolerances are checked when they are set, not at the first step.
     let sys = || Natural::unit(PendulumV);
     for (atol, rtol) in [(0.0, 0.0), (-1.0, 1e-6), (1e-6, f64::NAN)] {
-        let err = Dopri5::new(sys())
-            .tolerances(atol, rtol)
-            .step(&mut state, 0.1)
-            .unwrap_err();
+        let err = Dopri5::new(sys()).tolerances(atol, rtol).map(|_| ()).unwrap_err();
         assert!(matches!(err, Error::InvalidParameter { .. }), "{err}");
     }
-    let mut dp = Dopri5::new(sys());
-    let unsorted = dp.integrate(&mut state, 1.0, &[0.5, 0.2]);
+    assert!(Dopri5::new(sys()).h_min(f64::NAN).is_err());
+    // The driver checks its output times and end time before any step.
+    let state = State::new(0.0, [1.0], [0.0]);
+    let driver = || Driver::new(Dopri5::new(sys()), state.clone()).unwrap();
+    let unsorted = driver().save(Save::Times(vec![0.5, 0.2]));
     assert!(matches!(
         unsorted,
         Err(Error::InvalidParameter {
-            name: "sample time",
+            name: "output time",
             ..
         })
     ));
-    let outside = dp.integrate(&mut state, 1.0, &[1.5]);
-    assert!(matches!(outside, Err(Error::InvalidParameter { .. })));
-    let backwards = dp.integrate(&mut state, -1.0, &[]);
+    let nan_time = driver().save(Save::Times(vec![0.5, f64::NAN]));
+    assert!(matches!(nan_time, Err(Error::NonFinite { .. })));
+    let mut d = driver().save(Save::Times(vec![1.5])).unwrap();
+    assert!(matches!(d.run_until(1.0), Err(Error::InvalidParameter { .. })));
+    let backwards = driver().run_until(-1.0);
     assert!(matches!(
         backwards,
         Err(Error::InvalidParameter { name: "t_end", .. })
     ));
-    let nan_end = dp.integrate(&mut state, f64::NAN, &[]);
+    let nan_end = driver().run_until(f64::NAN);
     assert!(matches!(nan_end, Err(Error::NonFinite { .. })));
-    assert_eq!(state, before);
+    assert!(matches!(driver().save(Save::Every(0)), Err(Error::InvalidParameter { .. })));
+    assert_eq!(d.state(), &state);
 }

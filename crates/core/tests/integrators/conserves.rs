@@ -15,10 +15,10 @@ pub const H: f64 = 0.1;
 pub const THETA0: f64 = 2.0;
 
 /// (max |ΔE| over the first tenth, over the last tenth) of `steps` steps of size `h`.
-pub fn energy_errors<S: Stepper, D: Dynamics>(
+pub fn energy_errors<S: Stepper, D: Dynamics<Partner = S::Partner>>(
     stepper: &mut S,
     sys: &D,
-    start: State,
+    start: State<S::Partner>,
     steps: usize,
     h: f64,
 ) -> (f64, f64) {
@@ -44,7 +44,7 @@ pub fn energy_errors<S: Stepper, D: Dynamics>(
     (first, last)
 }
 
-fn start() -> State {
+fn start<K: Partner>() -> State<K> {
     State::new(0.0, [THETA0], [0.0])
 }
 

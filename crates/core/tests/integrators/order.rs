@@ -16,7 +16,7 @@ pub const T_KEPLER: f64 = 5.0;
 /// Errors against `exact` = (q, v) at t_end for n steps in `ns`.
 pub fn errors_vs<S: Stepper>(
     mut make: impl FnMut() -> S,
-    start: &State,
+    start: &State<S::Partner>,
     t_end: f64,
     exact: &(Vec<f64>, Vec<f64>),
     ns: &[usize],
@@ -34,7 +34,7 @@ pub fn errors_vs<S: Stepper>(
 /// closed form, by the dimension of `start`.
 pub fn errors<S: Stepper>(
     make: impl FnMut() -> S,
-    start: &State,
+    start: &State<S::Partner>,
     t_end: f64,
     ns: &[usize],
 ) -> Vec<(f64, f64)> {
@@ -74,7 +74,7 @@ pub fn assert_order(what: &str, nominal: u32, e: &[(f64, f64)]) {
     );
 }
 
-pub fn pendulum_start() -> State {
+pub fn pendulum_start<K: Partner>() -> State<K> {
     State::new(0.0, [THETA0], [0.0])
 }
 

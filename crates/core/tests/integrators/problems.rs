@@ -145,13 +145,13 @@ pub fn kepler_exact(e: f64, t: f64) -> ([f64; 2], [f64; 2]) {
 }
 
 /// Initial state of [`kepler_exact`].
-pub fn kepler_start(e: f64) -> State {
+pub fn kepler_start<K: Partner>(e: f64) -> State<K> {
     let (q, p) = kepler_exact(e, 0.0);
     State::new(0.0, q, p)
 }
 
 /// Max-norm distance between a state and (q, v).
-pub fn distance(s: &State, q: &[f64], v: &[f64]) -> f64 {
+pub fn distance<K: Partner>(s: &State<K>, q: &[f64], v: &[f64]) -> f64 {
     s.q.iter()
         .zip(q)
         .chain(s.v.iter().zip(v))
@@ -159,7 +159,7 @@ pub fn distance(s: &State, q: &[f64], v: &[f64]) -> f64 {
 }
 
 /// Takes `n` steps of size `h` from `state`.
-pub fn run<S: Stepper>(stepper: &mut S, mut state: State, h: f64, n: usize) -> State {
+pub fn run<S: Stepper>(stepper: &mut S, mut state: State<S::Partner>, h: f64, n: usize) -> State<S::Partner> {
     for _ in 0..n {
         stepper.step(&mut state, h).expect("step failed");
     }

@@ -1,7 +1,10 @@
 //! Bad input gets a clear error and the state is left untouched.
 
 use crate::models::{Kepler, Pendulum};
-use noether_core::{Error, Newton, State, Stepper};
+use noether_core::{Error, Newton, Stepper};
+
+/// Every state here is in position-momentum form (q, p).
+type State = noether_core::State<noether_core::Momenta>;
 use noether_discrete::{DiscreteFlow, Galerkin, Midpoint, VariationalIntegrator};
 
 #[test]

@@ -3,7 +3,10 @@
 //! Lagrange-d'Alembert steps.
 
 use crate::models::Chains;
-use noether_core::{Error, State, Stepper};
+use noether_core::{Error, Stepper};
+
+/// Every state here is in position-momentum form (q, p).
+type State = noether_core::State<noether_core::Momenta>;
 use noether_discrete::chains::{CoupledChains, QuarticChain};
 use noether_discrete::{
     Composition, DiscreteFlow, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal,
@@ -176,7 +179,7 @@ fn order_damped_oscillator_lagrange_dalembert() {
     let (g, t_end) = (0.1_f64, 10.0);
     let wd = (1.0 - g * g).sqrt();
     let exact = (-g * t_end).exp() * ((wd * t_end).cos() + g / wd * (wd * t_end).sin());
-    fn error<S: Stepper>(mut s: S, n: usize, exact: f64) -> f64 {
+    fn error<S: Stepper<Partner = noether_core::Momenta>>(mut s: S, n: usize, exact: f64) -> f64 {
         let mut st = State::new(0.0, [1.0], [0.0]);
         for _ in 0..n {
             s.step(&mut st, 10.0 / n as f64).unwrap();
@@ -214,7 +217,7 @@ fn order_composition4_verlet_chain() {
         b: 1.0,
     };
     let start = State::new(0.0, [0.5, -0.2, 0.1, 0.3, -0.4], [0.0; 5]);
-    let run = |mut s: Box<dyn Stepper>, n: usize| {
+    let run = |mut s: Box<dyn Stepper<Partner = noether_core::Momenta>>, n: usize| {
         let mut st = start.clone();
         for _ in 0..n {
             s.step(&mut st, 4.0 / n as f64).unwrap();

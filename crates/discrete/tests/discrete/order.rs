@@ -5,13 +5,16 @@
 //! in the asymptotic range and with errors far above rounding).
 
 use crate::models::{kepler_start, pendulum_period, Kepler, Pendulum};
-use noether_core::{Lagrangian, State, Stepper};
+use noether_core::{Lagrangian, Stepper};
+
+/// Every state here is in position-momentum form (q, p).
+type State = noether_core::State<noether_core::Momenta>;
 use noether_discrete::{
     Composition, DiscreteFlow, FromLagrangian, Galerkin, Midpoint, Trapezoidal, VariationalIntegrator,
 };
 
 /// Max-norm error of the state after `n` steps of size `period/n` from `start`.
-fn period_error<S: Stepper>(stepper: &mut S, start: &State, period: f64, n: usize) -> f64 {
+fn period_error<S: Stepper<Partner = noether_core::Momenta>>(stepper: &mut S, start: &State, period: f64, n: usize) -> f64 {
     let h = period / n as f64;
     let mut s = start.clone();
     for _ in 0..n {
@@ -25,7 +28,7 @@ fn start_state<L: Lagrangian>(vi: &VariationalIntegrator<Midpoint<L>>, q: &[f64]
 }
 
 /// Asserts the observed order of `make()` on the orbit from `start` with `n` and `2n` steps per period.
-fn assert_order<S: Stepper + DiscreteFlow>(
+fn assert_order<S: Stepper<Partner = noether_core::Momenta> + DiscreteFlow>(
     mut make: impl FnMut() -> S,
     start: &State,
     period: f64,

@@ -1,8 +1,12 @@
-//! Pictures for the gallery: line plots of several named series, with a legend and axis labels, written
-//! as SVG by `plotters`.
+//! # noether-plot
+//!
+//! Pictures of noether runs, written as SVG by `plotters`: a [`Figure`] of named line series with a
+//! legend and axis labels whose ticks tell neighbouring values apart, and the usual pictures of a
+//! [`Solution`](noether_core::Solution) in one call ([`time_series`], [`phase_portrait`],
+//! [`observed`], [`relative_drift`]).
 //!
 //! ```no_run
-//! use noether::gallery::plot::Figure;
+//! use noether_plot::Figure;
 //!
 //! let circle: Vec<(f64, f64)> = (0..=100)
 //!     .map(|i| (i as f64 * 0.0628).cos())
@@ -17,14 +21,41 @@
 //!     .unwrap();
 //! ```
 
-use super::{Options, Report};
+mod solution;
+
+pub use solution::{observed, phase_portrait, relative_drift, time_series};
+
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
-use std::error::Error;
 use std::path::{Path, PathBuf};
 
-/// Boxed error of the gallery.
-pub type BoxError = Box<dyn Error + Send + Sync>;
+/// What can go wrong when drawing.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The figure has no finite point to draw.
+    #[error("figure '{title}' has no point to draw")]
+    Empty {
+        /// Title of the figure.
+        title: String,
+    },
+    /// A series asked of a solution does not exist (a component index or an observer name).
+    #[error("no {what} in the solution")]
+    NoSuchSeries {
+        /// What was asked for.
+        what: String,
+    },
+    /// The drawing backend failed (file system, font).
+    #[error("drawing failed: {0}")]
+    Draw(String),
+}
+
+/// Result alias of this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+fn draw_error<E: std::fmt::Display>(e: E) -> Error {
+    Error::Draw(e.to_string())
+}
 
 /// Series longer than this are thinned (every k-th point kept) before drawing, so the SVG stays small.
 pub const MAX_POINTS: usize = 4000;
@@ -109,7 +140,7 @@ impl Figure {
     }
 
     /// Writes the figure as SVG to `path`.
-    pub fn save(&self, path: &Path) -> Result<PathBuf, BoxError> {
+    pub fn save(&self, path: &Path) -> Result<PathBuf> {
         let (mut x0, mut x1, mut y0, mut y1) = self.bounds()?;
         let named = self.series.iter().any(|s| !s.name.is_empty());
         let (mut legend, covered) = self.legend_corner((x0, x1, y0, y1));
@@ -131,23 +162,15 @@ impl Figure {
             (y0, y1) = (cy - 0.5 * scale * h, cy + 0.5 * scale * h);
         }
         let root = SVGBackend::new(path, self.size).into_drawing_area();
-        root.fill(&WHITE)?;
+        root.fill(&WHITE).map_err(draw_error)?;
+        let ticks = (Ticks::new(x0, x1, false), Ticks::new(y0, y1, self.log_y));
         if self.log_y {
-            self.draw(&root, x0..x1, (y0..y1).log_scale(), legend)?;
+            self.draw(&root, x0..x1, (y0..y1).log_scale(), legend, ticks)?;
         } else {
-            self.draw(&root, x0..x1, y0..y1, legend)?;
+            self.draw(&root, x0..x1, y0..y1, legend, ticks)?;
         }
-        root.present()?;
+        root.present().map_err(draw_error)?;
         Ok(path.to_path_buf())
-    }
-
-    /// Saves into the options' output folder (if any) as `file` and records the path in `report`.
-    pub fn save_in(&self, opts: &Options, file: &str, report: &mut Report) -> Result<(), BoxError> {
-        if let Some(dir) = &opts.out_dir {
-            std::fs::create_dir_all(dir)?;
-            report.figures.push(self.save(&dir.join(file))?);
-        }
-        Ok(())
     }
 
     fn visible(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -158,13 +181,15 @@ impl Figure {
             .filter(move |&(_, y)| !log || y > 0.0)
     }
 
-    fn bounds(&self) -> Result<(f64, f64, f64, f64), BoxError> {
+    fn bounds(&self) -> Result<(f64, f64, f64, f64)> {
         let mut b = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
         for (x, y) in self.visible() {
             b = (b.0.min(x), b.1.max(x), b.2.min(y), b.3.max(y));
         }
         if !b.0.is_finite() {
-            return Err(format!("figure '{}' has no point to draw", self.title).into());
+            return Err(Error::Empty {
+                title: self.title.clone(),
+            });
         }
         let pad = |lo: f64, hi: f64, log: bool| {
             if log {
@@ -229,7 +254,8 @@ impl Figure {
         xr: std::ops::Range<f64>,
         yr: Y,
         legend: SeriesLabelPosition,
-    ) -> Result<(), BoxError>
+        (xt, yt): (Ticks, Ticks),
+    ) -> Result<()>
     where
         Y: AsRangedCoord<Value = f64>,
         Y::CoordDescType: ValueFormatter<f64>,
@@ -239,22 +265,26 @@ impl Figure {
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(75)
-            .build_cartesian_2d(xr, yr)?;
+            .build_cartesian_2d(xr, yr)
+            .map_err(draw_error)?;
         chart
             .configure_mesh()
             .x_desc(self.x_label.as_str())
             .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))
-            .x_label_formatter(&|v| short(*v))
-            .y_label_formatter(&|v| short(*v))
+            .x_label_formatter(&|v| xt.label(*v))
+            .y_label_formatter(&|v| yt.label(*v))
             .light_line_style(WHITE.mix(0.0))
-            .draw()?;
+            .draw()
+            .map_err(draw_error)?;
         for (i, s) in self.series.iter().enumerate() {
             let color = color(i);
             let log = self.log_y;
             let pts = s.points.iter().copied().filter(move |&(_, y)| !log || y > 0.0);
-            let drawn = chart.draw_series(LineSeries::new(pts, color.stroke_width(2)))?;
+            let drawn = chart
+                .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                .map_err(draw_error)?;
             if !s.name.is_empty() {
                 drawn
                     .label(s.name.as_str())
@@ -268,7 +298,8 @@ impl Figure {
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.4))
                 .label_font(("sans-serif", 14))
-                .draw()?;
+                .draw()
+                .map_err(draw_error)?;
         }
         Ok(())
     }
@@ -288,18 +319,60 @@ fn color(i: usize) -> RGBColor {
     P[i % P.len()]
 }
 
-/// Tick labels: plain for moderate magnitudes, scientific otherwise.
-fn short(v: f64) -> String {
-    let a = v.abs();
-    if v == 0.0 {
-        "0".into()
-    } else if !(1e-3..1e4).contains(&a) {
-        format!("{v:.0e}")
-    } else {
-        let s = format!("{v:.3}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        s.to_string()
+/// Tick labels for an axis over [lo, hi]: as many digits as the tick spacing needs, so that
+/// neighbouring ticks read differently (an axis from 0.0220 to 0.0224 is labelled 0.02200, 0.02205, …,
+/// not 0.022 five times), plain for magnitudes in [10⁻³, 10⁴) and scientific otherwise; a tick within
+/// 10⁻⁶ spacings of zero reads 0 (not −1e-16).
+#[derive(Debug, Clone, Copy)]
+struct Ticks {
+    /// Spacing of about ten ticks across the axis.
+    step: f64,
+    /// Largest magnitude on the axis.
+    magnitude: f64,
+    log: bool,
+}
+
+impl Ticks {
+    fn new(lo: f64, hi: f64, log: bool) -> Self {
+        Ticks {
+            step: ((hi - lo).abs() / 10.0).max(f64::MIN_POSITIVE),
+            magnitude: lo.abs().max(hi.abs()),
+            log,
+        }
     }
+
+    fn label(&self, v: f64) -> String {
+        if self.log {
+            // Decades: one significant digit is what tells them apart.
+            return format!("{v:.0e}");
+        }
+        if v.abs() < 1e-6 * self.step {
+            return "0".into();
+        }
+        let label = if !(1e-3..1e4).contains(&self.magnitude) {
+            // Mantissa digits to resolve the spacing relative to the largest value on the axis.
+            let digits = (self.magnitude / self.step).log10().ceil().clamp(0.0, 15.0) as usize;
+            format!("{v:.digits$e}")
+        } else {
+            let decimals = (-self.step.log10().floor()).clamp(0.0, 15.0) as usize;
+            format!("{v:.decimals$}")
+        };
+        trim_zeros(&label)
+    }
+}
+
+/// Drops trailing zeros of the fractional part ("0.02500" → "0.025", "1.50e-3" → "1.5e-3").
+fn trim_zeros(s: &str) -> String {
+    let (mantissa, exponent) = match s.find('e') {
+        Some(i) => s.split_at(i),
+        None => (s, ""),
+    };
+    let mantissa = if mantissa.contains('.') {
+        mantissa.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        mantissa
+    };
+    format!("{mantissa}{exponent}")
 }
 
 /// Keeps every k-th point (and the last) so that at most about `max` remain.
@@ -327,6 +400,22 @@ mod tests {
         assert!(t.len() <= 1001);
         assert_eq!(t[0].0, 0.0);
         assert_eq!(t.last().unwrap().0, 10_000.0);
+    }
+
+    #[test]
+    fn ticks_tell_neighbours_apart() {
+        // The coupled-chains heat plot: an axis from 0.0220 to 0.0224 (ticks every 4e-5).
+        let t = Ticks::new(0.0220, 0.0224, false);
+        let labels: Vec<String> = (0..=10).map(|i| t.label(0.0220 + 4e-5 * i as f64)).collect();
+        let mut unique = labels.clone();
+        unique.dedup();
+        assert_eq!(unique.len(), labels.len(), "{labels:?}");
+        // The heavy-top apex plot: zero computed as -1e-16 reads 0.
+        assert_eq!(Ticks::new(-1.0, 1.0, false).label(-1e-16), "0");
+        // Large and small magnitudes in scientific form, still distinct.
+        let big = Ticks::new(1.0e6, 1.001e6, false);
+        assert_ne!(big.label(1.0e6), big.label(1.0001e6));
+        assert_eq!(Ticks::new(0.0, 1.0, false).label(0.5), "0.5");
     }
 
     #[test]

@@ -1,0 +1,194 @@
+//! Continuous extensions of a step: y(t) for t inside [t₀, t₀ + h], on which output times are sampled
+//! and events located.
+//!
+//! One type, [`DenseOutput`], holds every interpolant noether uses, as a polynomial in θ = (t − t₀)/h
+//! given by coefficient vectors over y = (q, v):
+//! - the method's own continuous extension where it has one: order 4 for DOPRI5 and 7 for DOP853
+//!   (Hairer-Nørsett-Wanner I, II.6), built by the adaptive steppers;
+//! - the cubic Hermite interpolant [`DenseOutput::hermite`] through the values and the vector field at
+//!   both ends of the step, for methods without one that can evaluate their vector field (the explicit,
+//!   symplectic, Gauss and particle methods): y(t₀ + θh) = y₀ + θ(r₁ + (1 − θ)(r₂ + θ r₃)) with
+//!   r₁ = y₁ − y₀, r₂ = h f₀ − r₁, r₃ = r₁ − h f₁ − r₂; its error is h⁴ max‖y⁗‖/384 (order 3);
+//! - the straight line [`DenseOutput::linear`] between the ends, error h² max‖y″‖/8 (order 1), for the
+//!   methods that have no vector field to evaluate (a variational integrator of a discrete Lagrangian
+//!   given by the user).
+//!
+//! The [`Driver`](crate::Driver) chooses the first that the stepper offers, and says which in
+//! [`Solution::interpolation_order`](crate::Solution::interpolation_order).
+
+use crate::roots::bracketed_root;
+use crate::{Partner, State, Velocities};
+use std::marker::PhantomData;
+
+/// y(t₀ + θh) from θ, y₀ and the coefficient vectors of an interpolant.
+pub type DenseEval = fn(f64, &[f64], &[Vec<f64>], &mut [f64]);
+
+/// The continuous extension of one step, valid for t in [t₀, t₀ + h] (see the [module](self) docs),
+/// on states of kind `K` (velocities or momenta, like the stepper's).
+#[derive(Debug, Clone)]
+pub struct DenseOutput<K = Velocities> {
+    t0: f64,
+    h: f64,
+    n: usize,
+    order: u32,
+    y0: Vec<f64>,
+    coeffs: Vec<Vec<f64>>,
+    eval: DenseEval,
+    partner: PhantomData<K>,
+}
+
+impl<K: Partner> DenseOutput<K> {
+    /// An interpolant over [t0, t0 + h] on y = (q, v) of length 2n, given y₀, its coefficient vectors and
+    /// the formula `eval` that combines them; `order` is its order of accuracy.
+    pub fn from_coefficients(
+        t0: f64,
+        h: f64,
+        order: u32,
+        y0: Vec<f64>,
+        coeffs: Vec<Vec<f64>>,
+        eval: DenseEval,
+    ) -> Self {
+        DenseOutput {
+            t0,
+            h,
+            n: y0.len() / 2,
+            order,
+            y0,
+            coeffs,
+            eval,
+            partner: PhantomData,
+        }
+    }
+
+    /// The cubic Hermite interpolant over [t0, t0 + h] through y₀ = (q₀, v₀) with rate f₀ and y₁ with rate
+    /// f₁ (each of length 2n, q-part first); order 3.
+    pub fn hermite(t0: f64, h: f64, y0: &[f64], f0: &[f64], y1: &[f64], f1: &[f64]) -> Self {
+        let mut c = vec![vec![0.0; y0.len()]; 3];
+        for i in 0..y0.len() {
+            let dy = y1[i] - y0[i];
+            let r2 = h * f0[i] - dy;
+            c[0][i] = dy;
+            c[1][i] = r2;
+            c[2][i] = dy - h * f1[i] - r2;
+        }
+        Self::from_coefficients(t0, h, 3, y0.to_vec(), c, hermite_eval)
+    }
+
+    /// The straight line over [t0, t0 + h] from y₀ to y₁; order 1.
+    pub fn linear(t0: f64, h: f64, y0: &[f64], y1: &[f64]) -> Self {
+        let dy = y1.iter().zip(y0).map(|(b, a)| b - a).collect();
+        Self::from_coefficients(t0, h, 1, y0.to_vec(), vec![dy], linear_eval)
+    }
+
+    /// The coefficient vectors, to be refilled for the next step without allocating.
+    pub(crate) fn into_coefficients(self) -> Vec<Vec<f64>> {
+        self.coeffs
+    }
+
+    /// Start of the step.
+    pub fn t_start(&self) -> f64 {
+        self.t0
+    }
+
+    /// End of the step.
+    pub fn t_end(&self) -> f64 {
+        self.t0 + self.h
+    }
+
+    /// Order of accuracy of the interpolant (its error is O(h^(order+1)) inside the step).
+    pub fn order(&self) -> u32 {
+        self.order
+    }
+
+    /// Number of coordinates.
+    pub fn dof(&self) -> usize {
+        self.n
+    }
+
+    /// Writes y(t) into `q` and `v` (t should lie in the step; outside, the polynomial extrapolates).
+    pub fn eval(&self, t: f64, q: &mut [f64], v: &mut [f64]) {
+        let mut y = vec![0.0; 2 * self.n];
+        (self.eval)((t - self.t0) / self.h, &self.y0, &self.coeffs, &mut y);
+        q.copy_from_slice(&y[..self.n]);
+        v.copy_from_slice(&y[self.n..]);
+    }
+
+    /// Overwrites `state` with the interpolated state at time `t` (same dimensions).
+    pub fn eval_state(&self, t: f64, state: &mut State<K>) {
+        self.eval(t, state.q.as_mut_slice(), state.v.as_mut_slice());
+        state.t = t;
+    }
+
+    /// The interpolated state at time `t` (see [`eval`](Self::eval)).
+    pub fn state_at(&self, t: f64) -> State<K> {
+        let mut s = State::zeros(t, self.n);
+        self.eval_state(t, &mut s);
+        s
+    }
+
+    /// A time in the step where `g(state)` vanishes, when g changes sign between the ends of the step,
+    /// located to rounding by the one root finder ([`bracketed_root`]); `None` when g has the same sign
+    /// at both ends (or is not finite there).
+    pub fn locate(&self, mut g: impl FnMut(&State<K>) -> f64) -> Option<f64> {
+        let mut s = State::zeros(self.t0, self.n);
+        let mut g_at = |t: f64| {
+            self.eval_state(t, &mut s);
+            g(&s)
+        };
+        let (a, b) = (self.t0, self.t_end());
+        let (ga, gb) = (g_at(a), g_at(b));
+        if !(ga.is_finite() && gb.is_finite()) || ga * gb > 0.0 {
+            return None;
+        }
+        Some(bracketed_root(g_at, (a, ga), (b, gb)))
+    }
+}
+
+/// y₀ + θ(r₁ + (1 − θ)(r₂ + θ r₃)).
+fn hermite_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
+    let s = 1.0 - theta;
+    for i in 0..y0.len() {
+        out[i] = y0[i] + theta * (c[0][i] + s * (c[1][i] + theta * c[2][i]));
+    }
+}
+
+/// y₀ + θ r₁.
+fn linear_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
+    for i in 0..y0.len() {
+        out[i] = y0[i] + theta * c[0][i];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn closed_form_hermite_reproduces_cubics() {
+        // y = (t³ − 2t, 3t² − 2) with its exact rates (3t² − 2, 6t) is a cubic: reproduced exactly.
+        let y = |t: f64| [t * t * t - 2.0 * t, 3.0 * t * t - 2.0];
+        let f = |t: f64| [3.0 * t * t - 2.0, 6.0 * t];
+        let (t0, h) = (0.5, 0.75);
+        let d: DenseOutput = DenseOutput::hermite(t0, h, &y(t0), &f(t0), &y(t0 + h), &f(t0 + h));
+        for t in [0.5, 0.6, 0.9, 1.25] {
+            let s = d.state_at(t);
+            let e = y(t);
+            // Rounding of a few operations on O(1) values.
+            assert!((s.q[0] - e[0]).abs() < 1e-15 && (s.v[0] - e[1]).abs() < 1e-14, "t = {t}");
+        }
+        assert_eq!(d.order(), 3);
+    }
+
+    #[test]
+    fn closed_form_locate_on_hermite() {
+        // q = sin t over one step [2.6, 3.6] by Hermite: its root π is found within the interpolant's
+        // error bound h⁴/384 ≈ 2.6e-3 (|sin⁗| ≤ 1, |q̇| ≈ 1 at the root).
+        let (t0, h) = (2.6f64, 1.0);
+        let y = |t: f64| [t.sin(), t.cos()];
+        let f = |t: f64| [t.cos(), -t.sin()];
+        let d: DenseOutput = DenseOutput::hermite(t0, h, &y(t0), &f(t0), &y(t0 + h), &f(t0 + h));
+        let r = d.locate(|s| s.q[0]).unwrap();
+        assert!((r - std::f64::consts::PI).abs() < 2.6e-3, "{r}");
+        assert!(d.locate(|s| s.q[0] + 2.0).is_none());
+    }
+}

@@ -1,0 +1,605 @@
+//! The driver: one loop that runs any [`Stepper`] — fixed-step or adaptive, explicit, implicit or
+//! variational — to an end time or a terminal event, saves states at the times asked for, locates
+//! events inside steps, records observed quantities, and counts what the run cost.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//!
+//! /// Pendulum, L = ½ θ̇² + g cos θ.
+//! struct Pendulum;
+//! impl Lagrangian for Pendulum {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D { v[0] * v[0] * 0.5 + q[0].cos() * 9.81 }
+//! }
+//! let el = EulerLagrange::new(Pendulum);
+//! let sol = Driver::new(Dop853::new(&el).tolerances(1e-12, 1e-12)?, State::new(0.0, [0.1], [0.0]))?
+//!     .save(Save::Times((0..=100).map(|i| 0.05 * i as f64).collect()))?
+//!     .event(Event::new("θ = 0 upwards", |s: &State| s.q[0]).rising())
+//!     .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
+//!     .run_until(5.0)?;
+//! assert_eq!(sol.len(), 101);
+//! let up = sol.event_times("θ = 0 upwards");
+//! let period = up[1] - up[0]; // ≈ 2π sqrt(l/g) (1 + θ₀²/16)
+//! assert!((period - 2.0 * std::f64::consts::PI / 9.81f64.sqrt() * (1.0 + 0.01 / 16.0)).abs() < 1e-5);
+//! # Ok::<(), noether_core::Error>(())
+//! ```
+//!
+//! # How each output is obtained
+//! - **Steps** ([`Save::Steps`], [`Save::Every`]): the states the method computed, exactly.
+//! - **Output times** ([`Save::Times`]) and **events**: from the continuous extension of the step that
+//!   contains them ([`DenseOutput`]): the method's own where it has one (DOPRI5: order 4, DOP853: order
+//!   7), else the cubic Hermite interpolant through the two ends and the vector field there (order 3,
+//!   error h⁴‖y⁗‖/384; it costs one evaluation of the vector field per step), else (a method with no
+//!   vector field, such as the variational integrator of a user's discrete Lagrangian) the straight line
+//!   (order 1, error h²‖y″‖/8). [`Solution::interpolation_order`] says which one a run used. A time that
+//!   falls on the end of a step takes the computed state itself.
+//! - **The end time** is reached exactly: a fixed-step method takes steps t₀ + kh (so times do not drift
+//!   by accumulated rounding) and a last step shortened to land on t_end; an adaptive method stretches
+//!   its step by up to 1% to avoid a sliver of a last step. At a time so large that t + h cannot be told
+//!   apart from t to 1% of h, the run fails with [`Error::StepBelowTimeResolution`] instead of stalling.
+//!
+//! The driver validates its input once (state, step, output times, end time) and never changes the
+//! state on error: after a failed step [`Driver::state`] is the last good state.
+
+mod event;
+mod solution;
+
+pub use event::{Direction, Event, Observation, Reset};
+pub use solution::{EventRecord, Solution, Stats, Stop};
+
+use crate::error::{check_finite, check_step};
+use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
+use event::{Action, Observer};
+use std::time::Instant;
+
+/// Which states a run saves.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Save {
+    /// The start and every accepted step (the default).
+    Steps,
+    /// The start, every k-th step and the end.
+    Every(usize),
+    /// Only the given times, sorted, within [start, end], from the continuous extension.
+    Times(Vec<f64>),
+    /// Only the end (the solution's rows hold one state).
+    End,
+}
+
+/// Runs a [`Stepper`] (see the [module](self) docs). Also an iterator of states, one per step.
+pub struct Driver<'a, S: Stepper> {
+    stepper: S,
+    state: State<S::Partner>,
+    h: Option<f64>,
+    h_proposal: Option<f64>,
+    save: Save,
+    keep_dense: bool,
+    max_steps: Option<usize>,
+    events: Vec<Event<'a, S::Partner>>,
+    observers: Vec<Observer<'a, S::Partner>>,
+    steps_taken: usize,
+    failed: bool,
+}
+
+/// What bounds a run.
+#[derive(Debug, Clone, Copy)]
+enum Target {
+    Time(f64),
+    Steps(usize),
+}
+
+/// The interpolation data of the step in progress: y = (q, v) at its start, the vector field there
+/// when known, and whether the stepper has a vector field at all.
+struct StepStart {
+    y: Vec<f64>,
+    f: Option<Vec<f64>>,
+    has_rates: bool,
+}
+
+impl<'a, S: Stepper> Driver<'a, S> {
+    /// A driver for `stepper` from `state` (checked against the stepper's dimension and for finite
+    /// values). Fixed-step methods need a step size ([`step`](Self::step)); adaptive ones choose their
+    /// own (Hairer's initial-step rule) unless given one.
+    pub fn new(stepper: S, state: State<S::Partner>) -> Result<Self> {
+        state.validate(stepper.dof())?;
+        Ok(Driver {
+            stepper,
+            state,
+            h: None,
+            h_proposal: None,
+            save: Save::Steps,
+            keep_dense: false,
+            max_steps: None,
+            events: Vec::new(),
+            observers: Vec::new(),
+            steps_taken: 0,
+            failed: false,
+        })
+    }
+
+    /// `Driver::new(stepper, state)?.step(h)`: the common start of a fixed-step run.
+    pub fn with_step(stepper: S, state: State<S::Partner>, h: f64) -> Result<Self> {
+        Self::new(stepper, state)?.step(h)
+    }
+
+    /// The step size (fixed-step methods), or the first step tried (adaptive methods): finite, > 0.
+    pub fn step(mut self, h: f64) -> Result<Self> {
+        check_step(h)?;
+        self.h = Some(h);
+        self.h_proposal = None;
+        Ok(self)
+    }
+
+    /// Which states to save (default [`Save::Steps`]); output times must be finite and sorted.
+    pub fn save(mut self, save: Save) -> Result<Self> {
+        match &save {
+            Save::Every(0) => {
+                return Err(Error::InvalidParameter {
+                    name: "Save::Every",
+                    value: 0.0,
+                    reason: "save every k-th step needs k ≥ 1",
+                })
+            }
+            Save::Times(times) => {
+                check_finite("output times", times)?;
+                if let Some(w) = times.windows(2).find(|w| w[1] < w[0]) {
+                    return Err(Error::InvalidParameter {
+                        name: "output time",
+                        value: w[1],
+                        reason: "output times must be sorted",
+                    });
+                }
+            }
+            _ => {}
+        }
+        self.save = save;
+        Ok(self)
+    }
+
+    /// Keeps the continuous extension of every step in the solution, for [`Solution::at`] (memory:
+    /// a few state vectors per step).
+    pub fn keep_dense_output(mut self, keep: bool) -> Self {
+        self.keep_dense = keep;
+        self
+    }
+
+    /// Fails with [`Error::StepLimit`] after `n` steps of one run (default: no limit).
+    pub fn max_steps(mut self, n: usize) -> Self {
+        self.max_steps = Some(n);
+        self
+    }
+
+    /// Adds an event (see [`Event`]).
+    pub fn event(mut self, event: Event<'a, S::Partner>) -> Self {
+        self.events.push(event);
+        self
+    }
+
+    /// Records the quantity `name` = f(state) at every saved state; `f` returns an `f64` or a
+    /// `Result<f64>` (an error or a non-finite value stops the run with an error).
+    pub fn observe<O: Observation>(
+        mut self,
+        name: impl Into<String>,
+        f: impl FnMut(&State<S::Partner>) -> O + 'a,
+    ) -> Self {
+        self.observers.push(Observer::scalar(name.into(), f));
+        self
+    }
+
+    /// Records several quantities at once (momenta, a vector): `f` writes one value per name.
+    pub fn observe_each(
+        mut self,
+        names: impl IntoIterator<Item = impl Into<String>>,
+        f: impl FnMut(&State<S::Partner>, &mut [f64]) -> Result<()> + 'a,
+    ) -> Self {
+        self.observers.push(Observer {
+            names: names.into_iter().map(Into::into).collect(),
+            f: Box::new(f),
+        });
+        self
+    }
+
+    /// The current state (the last good one after an error).
+    pub fn state(&self) -> &State<S::Partner> {
+        &self.state
+    }
+
+    /// The current state, to change it between runs (a stop, a kick, a restart).
+    pub fn state_mut(&mut self) -> &mut State<S::Partner> {
+        &mut self.state
+    }
+
+    /// The stepper.
+    pub fn stepper(&self) -> &S {
+        &self.stepper
+    }
+
+    /// The stepper, to change its settings between runs.
+    pub fn stepper_mut(&mut self) -> &mut S {
+        &mut self.stepper
+    }
+
+    /// The stepper and the current state.
+    pub fn into_parts(self) -> (S, State<S::Partner>) {
+        (self.stepper, self.state)
+    }
+
+    /// Runs until `t_end` (reached exactly) or a terminal event.
+    pub fn run_until(&mut self, t_end: f64) -> Result<Solution<S::Partner>> {
+        check_finite("t_end", &[t_end])?;
+        if t_end < self.state.t {
+            return Err(Error::InvalidParameter {
+                name: "t_end",
+                value: t_end,
+                reason: "precedes the state's time: runs go forward",
+            });
+        }
+        if let Save::Times(times) = &self.save {
+            if let Some(&t) = times.iter().find(|&&t| t < self.state.t || t > t_end) {
+                return Err(Error::InvalidParameter {
+                    name: "output time",
+                    value: t,
+                    reason: "output times must lie within [start, t_end]",
+                });
+            }
+        }
+        self.run(Target::Time(t_end))
+    }
+
+    /// Takes `n` steps (or stops earlier at a terminal event). Output times are not available here
+    /// (the end time is not known in advance): save steps.
+    pub fn run_steps(&mut self, n: usize) -> Result<Solution<S::Partner>> {
+        if matches!(self.save, Save::Times(_)) {
+            return Err(Error::Unsupported(
+                "output times need an end time: use run_until, or save steps",
+            ));
+        }
+        self.run(Target::Steps(n))
+    }
+
+    /// The fixed step size, or an error naming what is missing.
+    fn fixed_h(&self) -> Result<f64> {
+        self.h.ok_or(Error::InvalidParameter {
+            name: "h",
+            value: f64::NAN,
+            reason: "a fixed-step method needs a step size: call Driver::step(h)",
+        })
+    }
+
+    /// The next proposal of an adaptive method.
+    fn adaptive_h(&mut self) -> Result<f64> {
+        if let Some(h) = self.h_proposal.or(self.h) {
+            return Ok(h);
+        }
+        let h = self.stepper.initial_step(&self.state)?;
+        h.ok_or(Error::Unsupported("the adaptive method proposed no initial step"))
+    }
+
+    /// One step of size `h` (a proposal for adaptive methods) with the state unchanged on error; the
+    /// step index goes into a non-finite-state error.
+    fn advance(&mut self, h: f64) -> Result<StepInfo> {
+        let t = self.state.t;
+        if !(t + h > t) || (t + h - t - h).abs() > 0.01 * h {
+            return Err(Error::StepBelowTimeResolution { t, h });
+        }
+        let res = self.stepper.step(&mut self.state, h).and_then(|info| {
+            if self.state.is_finite() {
+                Ok(info)
+            } else {
+                Err(Error::NonFiniteState { step: self.steps_taken, t })
+            }
+        });
+        match res {
+            Ok(info) => {
+                self.steps_taken += 1;
+                if self.stepper.is_adaptive() && info.h_next.is_finite() && info.h_next > 0.0 {
+                    self.h_proposal = Some(info.h_next);
+                }
+                Ok(info)
+            }
+            Err(Error::NonFiniteState { .. }) => Err(Error::NonFiniteState {
+                step: self.steps_taken,
+                t,
+            }),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The continuous extension of the step just taken from `start` (at time `t0`): the stepper's own,
+    /// else cubic Hermite from the vector field at both ends, else linear (see the module docs).
+    fn extension(&self, t0: f64, start: &mut StepStart, stats: &mut Stats) -> Result<DenseOutput<S::Partner>> {
+        let n = self.state.dof();
+        if let Some(d) = self.stepper.dense_output().filter(|d| d.t_start() == t0 && d.dof() == n) {
+            start.f = None;
+            return Ok(d.clone());
+        }
+        let (t1, y1) = (self.state.t, concat(&self.state));
+        if start.has_rates && start.f.is_none() {
+            let s0 = State::new(t0, &start.y[..n], &start.y[n..]);
+            start.f = self.rates_at(&s0, stats)?;
+            start.has_rates = start.f.is_some();
+        }
+        if let (true, Some(f0)) = (start.has_rates, start.f.take()) {
+            if let Some(f1) = self.rates_at(&self.state, stats)? {
+                let d = DenseOutput::hermite(t0, t1 - t0, &start.y, &f0, &y1, &f1);
+                start.f = Some(f1);
+                return Ok(d);
+            }
+            start.has_rates = false;
+        }
+        Ok(DenseOutput::linear(t0, t1 - t0, &start.y, &y1))
+    }
+
+    /// The vector field (q̇, v̇) at `state`, `None` when the stepper has none.
+    fn rates_at(&self, state: &State<S::Partner>, stats: &mut Stats) -> Result<Option<Vec<f64>>> {
+        let n = state.dof();
+        let mut f = vec![0.0; 2 * n];
+        let (dq, dv) = f.split_at_mut(n);
+        match self.stepper.rates(state, dq, dv) {
+            None => Ok(None),
+            Some(r) => {
+                r?;
+                stats.evaluations += 1;
+                Ok(Some(f))
+            }
+        }
+    }
+
+    fn run(&mut self, target: Target) -> Result<Solution<S::Partner>> {
+        let clock = Instant::now();
+        let n = self.state.dof();
+        let interpolate = matches!(self.save, Save::Times(_)) || !self.events.is_empty();
+        self.stepper.request_dense_output(interpolate || self.keep_dense);
+        let adaptive = self.stepper.is_adaptive();
+        let h_fixed = if adaptive { 0.0 } else { self.fixed_h()? };
+        let observer_names = self.observers.iter().flat_map(|o| o.names.clone()).collect();
+        let event_names = self.events.iter().map(|e| e.name.clone()).collect();
+        let mut sol = Solution::new(n, self.stepper.name(), observer_names, event_names, self.state.clone());
+        let mut obs_row = vec![0.0; sol.observer_names.len()];
+        let mut next_time = 0; // index of the next output time
+        let mut stepped = 0usize; // steps of this run
+        if !matches!(self.save, Save::End | Save::Times(_)) {
+            self.observe_into(&mut obs_row)?;
+            sol.push(&self.state, &obs_row);
+        }
+        if let Save::Times(times) = &self.save {
+            while next_time < times.len() && times[next_time] == self.state.t {
+                next_time += 1;
+            }
+            if next_time > 0 {
+                self.observe_into(&mut obs_row)?;
+                for _ in 0..next_time {
+                    sol.push(&self.state, &obs_row);
+                }
+            }
+        }
+        let mut g_prev = self.event_values()?;
+        let mut start = StepStart {
+            y: vec![0.0; 2 * n],
+            f: None,
+            has_rates: true,
+        };
+        // The fixed-step grid t_k = origin + k h (restarted after a reset).
+        let (mut origin, mut k) = (self.state.t, 0usize);
+        let mut scratch = self.state.clone();
+        loop {
+            let t0 = self.state.t;
+            let (h_try, last) = match target {
+                Target::Time(t_end) if t0 >= t_end => break,
+                Target::Steps(m) if stepped >= m => {
+                    sol.stop = Stop::Steps;
+                    break;
+                }
+                Target::Time(t_end) if adaptive => {
+                    let h = self.adaptive_h()?;
+                    if t0 + 1.01 * h >= t_end {
+                        (t_end - t0, true)
+                    } else {
+                        (h, false)
+                    }
+                }
+                Target::Time(t_end) => {
+                    let next = origin + (k + 1) as f64 * h_fixed;
+                    if next >= t_end || t_end - next <= 4.0 * f64::EPSILON * t_end.abs() {
+                        (t_end - t0, true)
+                    } else {
+                        (next - t0, false)
+                    }
+                }
+                Target::Steps(_) if adaptive => (self.adaptive_h()?, false),
+                Target::Steps(_) => ((origin + (k + 1) as f64 * h_fixed) - t0, false),
+            };
+            if self.max_steps.is_some_and(|m| stepped >= m) {
+                return Err(Error::StepLimit { steps: stepped, t: t0 });
+            }
+            if interpolate || self.keep_dense {
+                start.y[..n].copy_from_slice(self.state.q.as_slice());
+                start.y[n..].copy_from_slice(self.state.v.as_slice());
+            }
+            let info = self.advance(h_try)?;
+            stepped += 1;
+            k += 1;
+            if last && info.h == h_try {
+                if let Target::Time(t_end) = target {
+                    self.state.t = t_end;
+                }
+            } else if !adaptive {
+                self.state.t = origin + k as f64 * h_fixed;
+            }
+            add_step(&mut sol.stats, &info);
+            let t1 = self.state.t;
+
+            // The continuous extension of this step, when something needs it.
+            let dense = if interpolate || self.keep_dense {
+                let d = self.extension(t0, &mut start, &mut sol.stats)?;
+                let order = sol.interpolation_order.map_or(d.order(), |o| o.min(d.order()));
+                sol.interpolation_order = Some(order);
+                Some(d)
+            } else {
+                None
+            };
+
+            // Events inside (t0, t1], in time order.
+            let mut hits = Vec::new();
+            let mut g_end = Vec::with_capacity(self.events.len());
+            for (i, ev) in self.events.iter_mut().enumerate() {
+                let g1 = ev.value(&self.state)?;
+                g_end.push(g1);
+                if ev.direction.fires(g_prev[i], g1) {
+                    let d = dense.as_ref().expect("events interpolate");
+                    let tc = crate::roots::bracketed_root(
+                        |t| {
+                            d.eval_state(t, &mut scratch);
+                            (ev.g)(&scratch)
+                        },
+                        (t0, g_prev[i]),
+                        (t1, g1),
+                    );
+                    hits.push((tc, i));
+                }
+            }
+            hits.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut cut = None; // (time, event index) of a stop or reset inside this step
+            for &(tc, i) in &hits {
+                let d = dense.as_ref().expect("events interpolate");
+                let at = if tc == t1 { self.state.clone() } else { d.state_at(tc) };
+                sol.events.push(EventRecord { event: i, t: tc, state: at });
+                sol.stats.events += 1;
+                if !matches!(self.events[i].action, Action::Record) {
+                    cut = Some((tc, i));
+                    break;
+                }
+            }
+            let t_out = cut.map_or(t1, |c| c.0);
+
+            // Output times inside (t0, t_out].
+            if let Save::Times(times) = &self.save {
+                let times = times.clone();
+                while next_time < times.len() && times[next_time] <= t_out {
+                    let t = times[next_time];
+                    if t == t1 {
+                        scratch.copy_from(&self.state);
+                    } else {
+                        dense.as_ref().expect("output times interpolate").eval_state(t, &mut scratch);
+                    }
+                    self.observe_state(&scratch, &mut obs_row)?;
+                    sol.push(&scratch, &obs_row);
+                    next_time += 1;
+                }
+            }
+            if let Some(d) = dense.filter(|_| self.keep_dense) {
+                sol.segments.push(d);
+            }
+
+            match cut {
+                None => {
+                    let save_step = match self.save {
+                        Save::Steps => true,
+                        Save::Every(every) => stepped % every == 0 || self.is_done(target, stepped),
+                        _ => false,
+                    };
+                    if save_step {
+                        self.observe_into(&mut obs_row)?;
+                        sol.push(&self.state, &obs_row);
+                    }
+                    g_prev = g_end;
+                }
+                Some((_, i)) => {
+                    let at = sol.events.last().expect("the cut event").state.clone();
+                    if matches!(self.save, Save::Steps | Save::Every(_)) {
+                        self.observe_state(&at, &mut obs_row)?;
+                        sol.push(&at, &obs_row);
+                    }
+                    self.state = at;
+                    match &mut self.events[i].action {
+                        Action::Stop => {
+                            sol.stop = Stop::Event(i);
+                            break;
+                        }
+                        Action::Reset(reset) => {
+                            reset(&mut self.state);
+                            self.state.validate(n)?;
+                            if matches!(self.save, Save::Steps | Save::Every(_)) {
+                                self.observe_into(&mut obs_row)?;
+                                sol.push(&self.state, &obs_row);
+                            }
+                            (origin, k) = (self.state.t, 0);
+                            start.f = None;
+                            g_prev = self.event_values()?;
+                            g_prev[i] = 0.0; // the event just handled does not fire again at once
+                        }
+                        Action::Record => unreachable!("a cut is a stop or a reset"),
+                    }
+                }
+            }
+        }
+        if matches!(self.save, Save::End) {
+            self.observe_into(&mut obs_row)?;
+            sol.push(&self.state, &obs_row);
+        }
+        sol.last = self.state.clone();
+        sol.stats.wall_time = clock.elapsed();
+        Ok(sol)
+    }
+
+    /// `true` when the run will stop after this step (for [`Save::Every`] to save the end).
+    fn is_done(&self, target: Target, stepped: usize) -> bool {
+        match target {
+            Target::Time(t_end) => self.state.t >= t_end,
+            Target::Steps(m) => stepped >= m,
+        }
+    }
+
+    fn event_values(&mut self) -> Result<Vec<f64>> {
+        let state = &self.state;
+        self.events.iter_mut().map(|e| e.value(state)).collect()
+    }
+
+    fn observe_into(&mut self, row: &mut [f64]) -> Result<()> {
+        let s = self.state.clone();
+        self.observe_state(&s, row)
+    }
+
+    fn observe_state(&mut self, state: &State<S::Partner>, row: &mut [f64]) -> Result<()> {
+        let mut j = 0;
+        for o in &mut self.observers {
+            let m = o.names.len();
+            o.eval(state, &mut row[j..j + m])?;
+            j += m;
+        }
+        Ok(())
+    }
+}
+
+/// y = (q, v) of a state as one vector.
+fn concat<K: crate::Partner>(state: &State<K>) -> Vec<f64> {
+    state.q.iter().chain(state.v.iter()).copied().collect()
+}
+
+fn add_step(stats: &mut Stats, info: &StepInfo) {
+    stats.steps += 1;
+    stats.rejected += info.rejected;
+    stats.evaluations += info.evaluations;
+    stats.newton_iterations += info.newton_iterations;
+    stats.newton_failures += info.newton_failures;
+}
+
+impl<S: Stepper> Iterator for Driver<'_, S> {
+    type Item = Result<State<S::Partner>>;
+
+    /// One step of the nominal size (the controller's proposal for adaptive methods); after the first
+    /// error, that error and then `None`.
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        let h = if self.stepper.is_adaptive() {
+            self.adaptive_h()
+        } else {
+            self.fixed_h()
+        };
+        let r = h.and_then(|h| self.advance(h)).map(|_| self.state.clone());
+        self.failed = r.is_err();
+        Some(r)
+    }
+}

@@ -1,0 +1,298 @@
+//! What a run returns: the saved states as contiguous arrays, the observed quantities beside them, the
+//! events that fired, why the run stopped, and the statistics shared by every method.
+
+use crate::{DenseOutput, Error, Partner, Result, State, Velocities};
+use nalgebra::DMatrixView;
+use std::time::Duration;
+
+/// Counters of a run, the same for every method.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected trial steps (adaptive methods).
+    pub rejected: usize,
+    /// Evaluations of the vector field, or of the discrete Euler-Lagrange residual (including those the
+    /// driver spends on interpolation).
+    pub evaluations: usize,
+    /// Newton iterations (implicit and variational methods).
+    pub newton_iterations: usize,
+    /// Newton solves that failed and were retried.
+    pub newton_failures: usize,
+    /// Events that fired.
+    pub events: usize,
+    /// Wall-clock time of the run.
+    pub wall_time: Duration,
+}
+
+/// Why a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stop {
+    /// It reached the requested end time.
+    EndTime,
+    /// It took the requested number of steps.
+    Steps,
+    /// A terminal event fired (its index among the driver's events).
+    Event(usize),
+}
+
+/// One firing of an event: which event, when, and the state there (interpolated inside the step).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EventRecord<K = Velocities> {
+    /// Index of the event among the driver's events (in the order they were added).
+    pub event: usize,
+    /// Time at which g crossed zero.
+    pub t: f64,
+    /// State at that time (before any reset the event applies).
+    pub state: State<K>,
+}
+
+/// The result of a run: times and states in contiguous row-major arrays (row i holds q or the partner
+/// at `t[i]`), observed quantities beside them, events, and statistics.
+///
+/// ```
+/// use noether_core::prelude::*;
+/// struct Oscillator;
+/// impl Lagrangian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D { (v[0] * v[0] - q[0] * q[0]) * 0.5 }
+/// }
+/// let el = EulerLagrange::new(Oscillator);
+/// let sol = Driver::new(Rk4::new(&el), State::new(0.0, [1.0], [0.0]))?
+///     .step(1e-3)?
+///     .save(Save::Times(vec![0.0, 0.5, 1.0]))?
+///     .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
+///     .run_until(1.0)?;
+/// assert_eq!(sol.len(), 3);
+/// assert!((sol.q(1)[0] - 0.5f64.cos()).abs() < 1e-12); // q = cos t
+/// assert!((sol.observed("energy").unwrap()[2] - 0.5).abs() < 1e-12);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Solution<K = Velocities> {
+    pub(crate) dof: usize,
+    pub(crate) method: &'static str,
+    pub(crate) t: Vec<f64>,
+    pub(crate) q: Vec<f64>,
+    pub(crate) v: Vec<f64>,
+    pub(crate) observer_names: Vec<String>,
+    pub(crate) observed: Vec<f64>,
+    pub(crate) event_names: Vec<String>,
+    pub(crate) events: Vec<EventRecord<K>>,
+    pub(crate) stop: Stop,
+    pub(crate) stats: Stats,
+    pub(crate) interpolation_order: Option<u32>,
+    pub(crate) segments: Vec<DenseOutput<K>>,
+    pub(crate) last: State<K>,
+}
+
+impl<K: Partner> Solution<K> {
+    pub(crate) fn new(
+        dof: usize,
+        method: &'static str,
+        observer_names: Vec<String>,
+        event_names: Vec<String>,
+        start: State<K>,
+    ) -> Self {
+        Solution {
+            dof,
+            method,
+            t: Vec::new(),
+            q: Vec::new(),
+            v: Vec::new(),
+            observer_names,
+            observed: Vec::new(),
+            event_names,
+            events: Vec::new(),
+            stop: Stop::EndTime,
+            stats: Stats::default(),
+            interpolation_order: None,
+            segments: Vec::new(),
+            last: start,
+        }
+    }
+
+    /// Appends a row (observed values given, one per observer column).
+    pub(crate) fn push(&mut self, state: &State<K>, observed: &[f64]) {
+        self.t.push(state.t);
+        self.q.extend_from_slice(state.q.as_slice());
+        self.v.extend_from_slice(state.v.as_slice());
+        self.observed.extend_from_slice(observed);
+    }
+
+    /// Number of saved states (rows).
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// `true` when no state was saved.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// Number of coordinates.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Name of the method that produced the run.
+    pub fn method(&self) -> &'static str {
+        self.method
+    }
+
+    /// The saved times.
+    pub fn times(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// The coordinates q at row `i` (panics if `i >= len()`, like slice indexing).
+    pub fn q(&self, i: usize) -> &[f64] {
+        &self.q[i * self.dof..(i + 1) * self.dof]
+    }
+
+    /// The partner (q̇ or p, as `K` says) at row `i` (panics if `i >= len()`).
+    pub fn v(&self, i: usize) -> &[f64] {
+        &self.v[i * self.dof..(i + 1) * self.dof]
+    }
+
+    /// The saved state at row `i` (panics if `i >= len()`).
+    pub fn state(&self, i: usize) -> State<K> {
+        State::new(self.t[i], self.q(i), self.v(i))
+    }
+
+    /// All saved coordinates as a matrix view, one column per saved time (dof × len).
+    pub fn q_matrix(&self) -> DMatrixView<'_, f64> {
+        DMatrixView::from_slice(&self.q, self.dof, self.len())
+    }
+
+    /// All saved partners (q̇ or p) as a matrix view, one column per saved time (dof × len).
+    pub fn v_matrix(&self) -> DMatrixView<'_, f64> {
+        DMatrixView::from_slice(&self.v, self.dof, self.len())
+    }
+
+    /// Component `j` of q over all saved times (panics if `j >= dof()`).
+    pub fn q_series(&self, j: usize) -> Vec<f64> {
+        assert!(j < self.dof, "coordinate {j} of {}", self.dof);
+        self.q.iter().skip(j).step_by(self.dof.max(1)).copied().collect()
+    }
+
+    /// Component `j` of the partner (q̇ or p) over all saved times (panics if `j >= dof()`).
+    pub fn v_series(&self, j: usize) -> Vec<f64> {
+        assert!(j < self.dof, "coordinate {j} of {}", self.dof);
+        self.v.iter().skip(j).step_by(self.dof.max(1)).copied().collect()
+    }
+
+    /// The state where the run ended (also when it was not saved).
+    pub fn last(&self) -> &State<K> {
+        &self.last
+    }
+
+    /// The names of the observed quantities, in column order.
+    pub fn observer_names(&self) -> &[String] {
+        &self.observer_names
+    }
+
+    /// The observed quantity `name` at every saved time; `None` if no observer has that name.
+    pub fn observed(&self, name: &str) -> Option<Vec<f64>> {
+        let j = self.observer_names.iter().position(|n| n == name)?;
+        let m = self.observer_names.len();
+        Some(self.observed.iter().skip(j).step_by(m).copied().collect())
+    }
+
+    /// The observed values at row `i`, in column order.
+    pub fn observed_row(&self, i: usize) -> &[f64] {
+        let m = self.observer_names.len();
+        &self.observed[i * m..(i + 1) * m]
+    }
+
+    /// Every event that fired, in time order.
+    pub fn events(&self) -> &[EventRecord<K>] {
+        &self.events
+    }
+
+    /// The firings of the event called `name`, in time order.
+    pub fn events_named<'s>(&'s self, name: &'s str) -> impl Iterator<Item = &'s EventRecord<K>> + 's {
+        let idx = self.event_names.iter().position(|n| n == name);
+        self.events.iter().filter(move |e| Some(e.event) == idx)
+    }
+
+    /// The times at which the event called `name` fired.
+    pub fn event_times(&self, name: &str) -> Vec<f64> {
+        self.events_named(name).map(|e| e.t).collect()
+    }
+
+    /// Why the run ended.
+    pub fn stop(&self) -> Stop {
+        self.stop
+    }
+
+    /// The run's statistics.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Order of the interpolant used for output times and events (`None` when the run needed none):
+    /// the method's dense output (4 for DOPRI5, 7 for DOP853), 3 for the cubic Hermite interpolant, 1
+    /// for the linear one (see [`DenseOutput`]).
+    pub fn interpolation_order(&self) -> Option<u32> {
+        self.interpolation_order
+    }
+
+    /// The state at any time of the run from the kept continuous extensions (the driver must have been
+    /// asked to keep them: [`Driver::keep_dense_output`](crate::Driver::keep_dense_output)).
+    pub fn at(&self, t: f64) -> Result<State<K>> {
+        let (Some(first), Some(last)) = (self.segments.first(), self.segments.last()) else {
+            return Err(Error::Unsupported(
+                "Solution::at needs the continuous extensions: run with Driver::keep_dense_output(true)",
+            ));
+        };
+        if !(t >= first.t_start() && t <= last.t_end()) {
+            return Err(Error::InvalidParameter {
+                name: "t",
+                value: t,
+                reason: "outside the time span of the run",
+            });
+        }
+        let i = self.segments.partition_point(|s| s.t_end() < t);
+        Ok(self.segments[i.min(self.segments.len() - 1)].state_at(t))
+    }
+
+    /// Appends `other`, a later run of the same model (for runs continued after a stop).
+    pub fn extend(&mut self, other: Solution<K>) -> Result<()> {
+        if other.dof != self.dof || other.observer_names != self.observer_names {
+            return Err(Error::Unsupported(
+                "Solution::extend needs runs with the same dimension and observers",
+            ));
+        }
+        let shift = if other.event_names == self.event_names {
+            0
+        } else {
+            let offset = self.event_names.len();
+            self.event_names.extend(other.event_names.iter().cloned());
+            offset
+        };
+        self.t.extend(other.t);
+        self.q.extend(other.q);
+        self.v.extend(other.v);
+        self.observed.extend(other.observed);
+        self.events.extend(other.events.into_iter().map(|mut e| {
+            e.event += shift;
+            e
+        }));
+        self.segments.extend(other.segments);
+        let s = &mut self.stats;
+        let o = other.stats;
+        s.steps += o.steps;
+        s.rejected += o.rejected;
+        s.evaluations += o.evaluations;
+        s.newton_iterations += o.newton_iterations;
+        s.newton_failures += o.newton_failures;
+        s.events += o.events;
+        s.wall_time += o.wall_time;
+        self.stop = other.stop;
+        self.last = other.last;
+        self.interpolation_order = self.interpolation_order.or(other.interpolation_order);
+        Ok(())
+    }
+}

@@ -1,8 +1,0 @@
-//! Runs the `double_pendulum` example of the gallery and prints its checks against closed forms.
-//!
-//! The model and the checks are in `src/gallery/double_pendulum.rs` (open it to read or copy the model).
-//! Run: `cargo run --release --example double_pendulum` (pictures go to `gallery-out/`).
-
-fn main() {
-    noether::gallery::main_for("double_pendulum");
-}

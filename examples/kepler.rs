@@ -1,8 +1,0 @@
-//! Runs the `kepler` example of the gallery and prints its checks against closed forms.
-//!
-//! The model and the checks are in `src/gallery/kepler.rs` (open it to read or copy the model).
-//! Run: `cargo run --release --example kepler` (pictures go to `gallery-out/`).
-
-fn main() {
-    noether::gallery::main_for("kepler");
-}
