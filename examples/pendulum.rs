@@ -8,7 +8,7 @@
 
 use noether::plot::Figure;
 use noether::prelude::*;
-use noether_gallery::closed_form::elliptic_k;
+use noether_gallery::closed_form::elliptic_k_complementary;
 use noether_gallery::measure::mean_period;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
@@ -38,9 +38,10 @@ impl Lagrangian for Pendulum {
 }
 
 impl Pendulum {
-    /// Closed-form period for amplitude θ₀: T = 4 sqrt(l/g) K(k), k = sin(θ₀/2).
+    /// Closed-form period for amplitude θ₀: T = 4 sqrt(l/g) K(k), k = sin(θ₀/2), K taken from the
+    /// complementary modulus k′ = cos(θ₀/2) so that it stays accurate near the separatrix.
     pub fn period(&self, theta0: f64) -> f64 {
-        4.0 * (self.l / self.g).sqrt() * elliptic_k((0.5 * theta0).sin())
+        4.0 * (self.l / self.g).sqrt() * elliptic_k_complementary((0.5 * theta0).cos())
     }
 
     /// Small-angle period 2π sqrt(l/g).

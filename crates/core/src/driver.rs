@@ -41,6 +41,7 @@
 //! The driver validates its input once (state, step, output times, end time) and never changes the
 //! state on error: after a failed step [`Driver::state`] is the last good state.
 
+mod csv_io;
 mod event;
 mod solution;
 
@@ -279,7 +280,8 @@ impl<'a, S: Stepper> Driver<'a, S> {
     /// step index goes into a non-finite-state error.
     fn advance(&mut self, h: f64) -> Result<StepInfo> {
         let t = self.state.t;
-        if !(t + h > t) || (t + h - t - h).abs() > 0.01 * h {
+        // `t + h <= t` also catches a NaN; the second test, a step that moves t by not ~h.
+        if t + h <= t || (t + h).is_nan() || (t + h - t - h).abs() > 0.01 * h {
             return Err(Error::StepBelowTimeResolution { t, h });
         }
         let res = self.stepper.step(&mut self.state, h).and_then(|info| {
@@ -495,7 +497,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 None => {
                     let save_step = match self.save {
                         Save::Steps => true,
-                        Save::Every(every) => stepped % every == 0 || self.is_done(target, stepped),
+                        Save::Every(every) => stepped.is_multiple_of(every) || self.is_done(target, stepped),
                         _ => false,
                     };
                     if save_step {

@@ -101,6 +101,15 @@ pub enum Error {
         /// Time reached.
         t: f64,
     },
+    /// A saved run could not be written or read: the file system failed, or the CSV is not a saved
+    /// solution (header, column count, a value that is not a number).
+    #[error("saved run{}: {reason}", line.map(|l| format!(", line {l}")).unwrap_or_default())]
+    SavedRun {
+        /// Line of the CSV file where it went wrong, when known (1 = the header).
+        line: Option<u64>,
+        /// What went wrong.
+        reason: String,
+    },
     /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),

@@ -108,7 +108,9 @@ mod tests {
     #[test]
     fn closed_form_roots_to_rounding() {
         // cos t = 0 at π/2; t³ = 1e-3 at 0.1 (a flat root of a steep function); e^t = 1e6 at ln 1e6.
-        let cases: [(fn(f64) -> f64, f64, f64, f64); 3] = [
+        /// g, the bracket [a, b], the root.
+        type Case = (fn(f64) -> f64, f64, f64, f64);
+        let cases: [Case; 3] = [
             (f64::cos, 0.0, 3.0, std::f64::consts::FRAC_PI_2),
             (|t| t * t * t - 1e-3, 0.0, 1.0, 0.1),
             (|t| t.exp() - 1e6, 0.0, 20.0, 1e6f64.ln()),

@@ -54,6 +54,8 @@ impl Partner for Momenta {
 /// A point of the (extended) phase space: time, coordinates q and their partner `v`, which is q̇ in a
 /// `State<Velocities>` (the default) and p in a `State<Momenta>` ([`State::p`] reads it by that name).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(bound = ""))]
 pub struct State<K = Velocities> {
     /// Time.
     pub t: f64,
@@ -61,6 +63,7 @@ pub struct State<K = Velocities> {
     pub q: DVector<f64>,
     /// The partner of q: velocities q̇ or momenta p, as `K` says.
     pub v: DVector<f64>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     partner: PhantomData<K>,
 }
 

@@ -3,6 +3,9 @@
 
 use crate::{Error, Partner, Result, State};
 
+/// An event function g(state), boxed.
+type EventFunction<'a, K> = Box<dyn FnMut(&State<K>) -> f64 + 'a>;
+
 /// Which zero crossings of g fire an event.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Direction {
@@ -64,7 +67,7 @@ pub(crate) enum Action<'a, K> {
 /// ```
 pub struct Event<'a, K> {
     pub(crate) name: String,
-    pub(crate) g: Box<dyn FnMut(&State<K>) -> f64 + 'a>,
+    pub(crate) g: EventFunction<'a, K>,
     pub(crate) direction: Direction,
     pub(crate) action: Action<'a, K>,
 }

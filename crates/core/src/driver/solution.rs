@@ -3,10 +3,12 @@
 
 use crate::{DenseOutput, Error, Partner, Result, State, Velocities};
 use nalgebra::DMatrixView;
+use std::borrow::Cow;
 use std::time::Duration;
 
 /// Counters of a run, the same for every method.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct Stats {
     /// Accepted steps.
@@ -28,6 +30,7 @@ pub struct Stats {
 
 /// Why a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Stop {
     /// It reached the requested end time.
     EndTime,
@@ -39,6 +42,8 @@ pub enum Stop {
 
 /// One firing of an event: which event, when, and the state there (interpolated inside the step).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(bound = ""))]
 pub struct EventRecord<K = Velocities> {
     /// Index of the event among the driver's events (in the order they were added).
     pub event: usize,
@@ -70,9 +75,11 @@ pub struct EventRecord<K = Velocities> {
 /// # Ok::<(), noether_core::Error>(())
 /// ```
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(bound = ""))]
 pub struct Solution<K = Velocities> {
     pub(crate) dof: usize,
-    pub(crate) method: &'static str,
+    pub(crate) method: Cow<'static, str>,
     pub(crate) t: Vec<f64>,
     pub(crate) q: Vec<f64>,
     pub(crate) v: Vec<f64>,
@@ -83,6 +90,8 @@ pub struct Solution<K = Velocities> {
     pub(crate) stop: Stop,
     pub(crate) stats: Stats,
     pub(crate) interpolation_order: Option<u32>,
+    /// The dense output of each step, when kept (not serialized: a deserialized solution has none).
+    #[cfg_attr(feature = "serde", serde(skip))]
     pub(crate) segments: Vec<DenseOutput<K>>,
     pub(crate) last: State<K>,
 }
@@ -97,7 +106,7 @@ impl<K: Partner> Solution<K> {
     ) -> Self {
         Solution {
             dof,
-            method,
+            method: method.into(),
             t: Vec::new(),
             q: Vec::new(),
             v: Vec::new(),
@@ -137,8 +146,8 @@ impl<K: Partner> Solution<K> {
     }
 
     /// Name of the method that produced the run.
-    pub fn method(&self) -> &'static str {
-        self.method
+    pub fn method(&self) -> &str {
+        &self.method
     }
 
     /// The saved times.

@@ -6,9 +6,11 @@
 //! | explicit | [`explicit`] | Euler, Euler-Cromer, RK4 | any [`Dynamics`](crate::Dynamics) |
 //! | adaptive | [`adaptive`], [`dopri5`], [`dop853`] | Dormand-Prince 5(4) and 8(5,3), error control, dense output | any [`Dynamics`](crate::Dynamics) |
 //! | implicit symplectic | [`gauss`] | implicit midpoint, Gauss-Legendre 4 and 6 (Newton) | [`LinearizedDynamics`]: any H, natural L |
+//! | default | [`default_method`] | the method chosen from what the system declares | every system type |
 //! | symplectic | [`symplectic`] | symplectic Euler, Störmer-Verlet, compositions of order 4, 6, 8 | [`SplitDynamics`]: separable H or natural L |
 
 pub mod adaptive;
+pub mod default_method;
 pub mod dop853;
 pub mod dopri5;
 pub mod explicit;
@@ -16,6 +18,7 @@ pub mod gauss;
 pub mod symplectic;
 
 pub use adaptive::{Adaptive, Controller, EmbeddedPair};
+pub use default_method::DefaultMethod;
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
 pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
