@@ -44,3 +44,8 @@ fn closed_form_pendulum() {
 fn closed_form_two_springs() {
     assert_example_passes("two_springs");
 }
+
+#[test]
+fn closed_form_binary_star() {
+    assert_example_passes("binary_star");
+}
