@@ -116,4 +116,5 @@ examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
     two_springs: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
     binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
+    billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
 }

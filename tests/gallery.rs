@@ -49,3 +49,8 @@ fn closed_form_two_springs() {
 fn closed_form_binary_star() {
     assert_example_passes("binary_star");
 }
+
+#[test]
+fn closed_form_billiard() {
+    assert_example_passes("billiard");
+}
