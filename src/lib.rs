@@ -117,4 +117,5 @@ examples! {
     two_springs: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
     binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
     billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
+    third_law: "random internal interactions (particles): momentum and angular momentum to 1e-13",
 }

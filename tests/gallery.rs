@@ -54,3 +54,8 @@ fn closed_form_binary_star() {
 fn closed_form_billiard() {
     assert_example_passes("billiard");
 }
+
+#[test]
+fn closed_form_third_law() {
+    assert_example_passes("third_law");
+}
