@@ -118,4 +118,5 @@ examples! {
     binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
     billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
     third_law: "random internal interactions (particles): momentum and angular momentum to 1e-13",
+    lj_cluster: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
 }

@@ -59,3 +59,11 @@ fn closed_form_billiard() {
 fn closed_form_third_law() {
     assert_example_passes("third_law");
 }
+
+/// The gallery example runs the full 10⁵ steps (`cargo run --release --example lj_cluster`, ~4 s on
+/// an idle core); the test runs the same cluster for 2·10⁴ steps to keep the suite fast. Same checks.
+#[test]
+fn conserves_energy_lj_cluster() {
+    let report = gallery::examples::lj_cluster::run_steps(20_000).expect("lj_cluster runs");
+    assert_report_passes("lj_cluster", &report);
+}
