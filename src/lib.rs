@@ -119,4 +119,5 @@ examples! {
     billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
     third_law: "random internal interactions (particles): momentum and angular momentum to 1e-13",
     lj_cluster: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
+    coupled_chains: "coupled mass-spring chains (midpoint variational): momentum to rounding, transfer, heat",
 }

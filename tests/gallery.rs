@@ -67,3 +67,8 @@ fn conserves_energy_lj_cluster() {
     let report = gallery::examples::lj_cluster::run_steps(20_000).expect("lj_cluster runs");
     assert_report_passes("lj_cluster", &report);
 }
+
+#[test]
+fn closed_form_coupled_chains() {
+    assert_example_passes("coupled_chains");
+}
