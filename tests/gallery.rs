@@ -72,3 +72,8 @@ fn conserves_energy_lj_cluster() {
 fn closed_form_coupled_chains() {
     assert_example_passes("coupled_chains");
 }
+
+#[test]
+fn closed_form_heavy_top() {
+    assert_example_passes("heavy_top");
+}
