@@ -114,6 +114,13 @@ macro_rules! examples {
 
 examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
+    heavy_top: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
+    two_springs: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
+    binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
+    billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
+    third_law: "random internal interactions (particles): momentum and angular momentum to 1e-13",
+    lj_cluster: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
+    coupled_chains: "coupled mass-spring chains (midpoint variational): momentum to rounding, transfer, heat",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -39,3 +39,41 @@ fn gallery_names_are_unique() {
 fn closed_form_pendulum() {
     assert_example_passes("pendulum");
 }
+
+#[test]
+fn closed_form_two_springs() {
+    assert_example_passes("two_springs");
+}
+
+#[test]
+fn closed_form_binary_star() {
+    assert_example_passes("binary_star");
+}
+
+#[test]
+fn closed_form_billiard() {
+    assert_example_passes("billiard");
+}
+
+#[test]
+fn closed_form_third_law() {
+    assert_example_passes("third_law");
+}
+
+/// The gallery example runs the full 10⁵ steps (`cargo run --release --example lj_cluster`, ~4 s on
+/// an idle core); the test runs the same cluster for 2·10⁴ steps to keep the suite fast. Same checks.
+#[test]
+fn conserves_energy_lj_cluster() {
+    let report = gallery::examples::lj_cluster::run_steps(20_000).expect("lj_cluster runs");
+    assert_report_passes("lj_cluster", &report);
+}
+
+#[test]
+fn closed_form_coupled_chains() {
+    assert_example_passes("coupled_chains");
+}
+
+#[test]
+fn closed_form_heavy_top() {
+    assert_example_passes("heavy_top");
+}
