@@ -114,6 +114,8 @@ macro_rules! examples {
 
 examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
+    bouncing_ball: "bouncing ball: impacts as events with a reset, impact times and apex heights vs free fall",
+    export_trajectory: "your own model, sampled at chosen times, energy recorded, saved to CSV, read back, drawn",
     heavy_top: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
     two_springs: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
     binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",

@@ -41,6 +41,16 @@ fn closed_form_pendulum() {
 }
 
 #[test]
+fn closed_form_bouncing_ball() {
+    assert_example_passes("bouncing_ball");
+}
+
+#[test]
+fn closed_form_export_trajectory() {
+    assert_example_passes("export_trajectory");
+}
+
+#[test]
 fn closed_form_two_springs() {
     assert_example_passes("two_springs");
 }
