@@ -39,3 +39,13 @@ fn gallery_names_are_unique() {
 fn closed_form_pendulum() {
     assert_example_passes("pendulum");
 }
+
+#[test]
+fn closed_form_harmonic_oscillator() {
+    assert_example_passes("harmonic_oscillator");
+}
+
+#[test]
+fn closed_form_kepler() {
+    assert_example_passes("kepler");
+}
