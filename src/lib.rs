@@ -116,4 +116,5 @@ examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
     harmonic_oscillator: "harmonic oscillator: exact solution over 1000 periods",
     kepler: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
+    double_pendulum: "double pendulum: energy conservation over a chaotic run",
 }

@@ -49,3 +49,8 @@ fn closed_form_harmonic_oscillator() {
 fn closed_form_kepler() {
     assert_example_passes("kepler");
 }
+
+#[test]
+fn conserves_energy_double_pendulum() {
+    assert_example_passes("double_pendulum");
+}
