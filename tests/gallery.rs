@@ -54,3 +54,8 @@ fn closed_form_kepler() {
 fn conserves_energy_double_pendulum() {
     assert_example_passes("double_pendulum");
 }
+
+#[test]
+fn closed_form_charged_particle() {
+    assert_example_passes("charged_particle");
+}
