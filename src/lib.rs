@@ -118,4 +118,5 @@ examples! {
     kepler: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
     double_pendulum: "double pendulum: energy conservation over a chaotic run",
     charged_particle: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
+    rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
 }

@@ -59,3 +59,8 @@ fn conserves_energy_double_pendulum() {
 fn closed_form_charged_particle() {
     assert_example_passes("charged_particle");
 }
+
+#[test]
+fn closed_form_rutherford() {
+    assert_example_passes("rutherford");
+}
