@@ -119,4 +119,5 @@ examples! {
     double_pendulum: "double pendulum: energy conservation over a chaotic run",
     charged_particle: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
     rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
+    bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
 }

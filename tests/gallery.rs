@@ -64,3 +64,8 @@ fn closed_form_charged_particle() {
 fn closed_form_rutherford() {
     assert_example_passes("rutherford");
 }
+
+#[test]
+fn closed_form_bertrand() {
+    assert_example_passes("bertrand");
+}
