@@ -120,4 +120,5 @@ examples! {
     charged_particle: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
     rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
     bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
+    cyclotron: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
 }

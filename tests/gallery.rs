@@ -69,3 +69,8 @@ fn closed_form_rutherford() {
 fn closed_form_bertrand() {
     assert_example_passes("bertrand");
 }
+
+#[test]
+fn closed_form_cyclotron() {
+    assert_example_passes("cyclotron");
+}
