@@ -118,6 +118,7 @@ examples! {
     kepler: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
     double_pendulum: "double pendulum: energy conservation over a chaotic run",
     charged_particle: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
+    three_body: "restricted three-body problem: Jacobi integral, Lagrange points, Routh's stability limit",
     rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
     bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
     cyclotron: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",

@@ -61,6 +61,11 @@ fn closed_form_charged_particle() {
 }
 
 #[test]
+fn closed_form_three_body() {
+    assert_example_passes("three_body");
+}
+
+#[test]
 fn closed_form_rutherford() {
     assert_example_passes("rutherford");
 }
