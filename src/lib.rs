@@ -114,14 +114,22 @@ macro_rules! examples {
 
 examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
-    bouncing_ball: "bouncing ball: impacts as events with a reset, impact times and apex heights vs free fall",
     export_trajectory: "your own model, sampled at chosen times, energy recorded, saved to CSV, read back, drawn",
+    bouncing_ball: "bouncing ball: impacts as events with a reset, impact times and apex heights vs free fall",
+    harmonic_oscillator: "harmonic oscillator: exact solution over 1000 periods",
+    kepler: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
+    double_pendulum: "double pendulum: energy conservation over a chaotic run",
+    charged_particle: "charge in uniform B (and E): cyclotron frequency and radius, E×B drift",
     heavy_top: "heavy symmetric top in Euler angles: constants, nutation cubic, precession, sleeping top",
+    three_body: "restricted three-body problem: Jacobi integral, Lagrange points, Routh's stability limit",
     two_springs: "wall - m1 - m2 with two springs (particles): normal modes and the modal solution",
     binary_star: "binary star under gravity (particles): two-body Kepler orbit, centre of mass at rest",
     billiard: "billiard collision of equal balls (particles): momentum, energy, velocity exchange",
     third_law: "random internal interactions (particles): momentum and angular momentum to 1e-13",
     lj_cluster: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
+    rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
+    bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
+    cyclotron: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
     coupled_chains: "coupled mass-spring chains (midpoint variational): momentum to rounding, transfer, heat",
 }
 

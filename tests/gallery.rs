@@ -86,4 +86,42 @@ fn closed_form_coupled_chains() {
 #[test]
 fn closed_form_heavy_top() {
     assert_example_passes("heavy_top");
+
+fn closed_form_harmonic_oscillator() {
+    assert_example_passes("harmonic_oscillator");
+}
+
+#[test]
+fn closed_form_kepler() {
+    assert_example_passes("kepler");
+}
+
+#[test]
+fn conserves_energy_double_pendulum() {
+    assert_example_passes("double_pendulum");
+}
+
+#[test]
+fn closed_form_charged_particle() {
+    assert_example_passes("charged_particle");
+}
+
+#[test]
+fn closed_form_three_body() {
+    assert_example_passes("three_body");
+}
+
+#[test]
+fn closed_form_rutherford() {
+    assert_example_passes("rutherford");
+}
+
+#[test]
+fn closed_form_bertrand() {
+    assert_example_passes("bertrand");
+}
+
+#[test]
+fn closed_form_cyclotron() {
+    assert_example_passes("cyclotron");
 }
