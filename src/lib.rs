@@ -114,4 +114,5 @@ macro_rules! examples {
 
 examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
+    pendulum_cartesian: "pendulum in Cartesian coordinates with a rod constraint: angle motion and rod tension",
 }

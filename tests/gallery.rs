@@ -39,3 +39,8 @@ fn gallery_names_are_unique() {
 fn closed_form_pendulum() {
     assert_example_passes("pendulum");
 }
+
+#[test]
+fn closed_form_pendulum_cartesian() {
+    assert_example_passes("pendulum_cartesian");
+}
