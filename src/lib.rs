@@ -115,4 +115,6 @@ macro_rules! examples {
 examples! {
     pendulum: "simple pendulum: period at large amplitude vs 4 sqrt(l/g) K(sin(θ0/2))",
     pendulum_cartesian: "pendulum in Cartesian coordinates with a rod constraint: angle motion and rod tension",
+    spherical_pendulum: "spherical pendulum, Cartesian vs angles: same motion, E and L_z, turning points",
+    bead_rotating_hoop: "bead on a rotating hoop (time-dependent constraint): equilibria, frequencies, hoop force",
 }

@@ -44,3 +44,13 @@ fn closed_form_pendulum() {
 fn closed_form_pendulum_cartesian() {
     assert_example_passes("pendulum_cartesian");
 }
+
+#[test]
+fn closed_form_bead_rotating_hoop() {
+    assert_example_passes("bead_rotating_hoop");
+}
+
+#[test]
+fn closed_form_spherical_pendulum() {
+    assert_example_passes("spherical_pendulum");
+}
