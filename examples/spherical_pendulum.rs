@@ -15,6 +15,7 @@
 //! Run: `cargo run --release --example spherical_pendulum`.
 
 use noether::prelude::*;
+/// A point mass in 3D, z up: L = ½ m |ṙ|² − m g z.
 pub use noether_gallery::examples::bead_rotating_hoop::Bead;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

@@ -117,4 +117,8 @@ examples! {
     pendulum_cartesian: "pendulum in Cartesian coordinates with a rod constraint: angle motion and rod tension",
     spherical_pendulum: "spherical pendulum, Cartesian vs angles: same motion, E and L_z, turning points",
     bead_rotating_hoop: "bead on a rotating hoop (time-dependent constraint): equilibria, frequencies, hoop force",
+    bead_helix: "bead on a helix under gravity: constant z̈ = −g a²/(a²+b²), wire force",
+    bead_cycloid: "the tautochrone: period 4π sqrt(a/g) from every release height (singular mass matrix)",
+    rolling_disk: "disk rolling without slipping (nonholonomic): constant rates, circular path, energy",
+    normal_modes: "equilibria (argmin) and normal modes: coupled pendula, chain, rotating hoop, triangle",
 }

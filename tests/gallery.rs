@@ -54,3 +54,23 @@ fn closed_form_bead_rotating_hoop() {
 fn closed_form_spherical_pendulum() {
     assert_example_passes("spherical_pendulum");
 }
+
+#[test]
+fn closed_form_bead_helix() {
+    assert_example_passes("bead_helix");
+}
+
+#[test]
+fn closed_form_bead_cycloid() {
+    assert_example_passes("bead_cycloid");
+}
+
+#[test]
+fn closed_form_rolling_disk() {
+    assert_example_passes("rolling_disk");
+}
+
+#[test]
+fn closed_form_normal_modes() {
+    assert_example_passes("normal_modes");
+}
