@@ -124,4 +124,37 @@ fn closed_form_bertrand() {
 #[test]
 fn closed_form_cyclotron() {
     assert_example_passes("cyclotron");
+
+fn closed_form_pendulum_cartesian() {
+    assert_example_passes("pendulum_cartesian");
+}
+
+#[test]
+fn closed_form_bead_rotating_hoop() {
+    assert_example_passes("bead_rotating_hoop");
+}
+
+#[test]
+fn closed_form_spherical_pendulum() {
+    assert_example_passes("spherical_pendulum");
+}
+
+#[test]
+fn closed_form_bead_helix() {
+    assert_example_passes("bead_helix");
+}
+
+#[test]
+fn closed_form_bead_cycloid() {
+    assert_example_passes("bead_cycloid");
+}
+
+#[test]
+fn closed_form_rolling_disk() {
+    assert_example_passes("rolling_disk");
+}
+
+#[test]
+fn closed_form_normal_modes() {
+    assert_example_passes("normal_modes");
 }
