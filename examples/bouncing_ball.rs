@@ -62,13 +62,20 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let fall = Fall { m: 0.3, g: 9.81 };
     let el = EulerLagrange::new(fall);
     let mut report = Report::default();
-    let t_end = impact_time(&fall, IMPACTS) + 0.5 * (impact_time(&fall, IMPACTS + 1) - impact_time(&fall, IMPACTS));
+    let t_end =
+        impact_time(&fall, IMPACTS) + 0.5 * (impact_time(&fall, IMPACTS + 1) - impact_time(&fall, IMPACTS));
 
     // 1. Bounce as an event with a reset: stop, change the state, continue — inside one run.
     let sol = Driver::with_step(Rk4::new(&el), State::new(0.0, [H0], [0.0]), 1e-3)?
-        .event(Event::new("impact", |s: &State| s.q[0]).falling().reset(|s| s.v[0] *= -E))
+        .event(
+            Event::new("impact", |s: &State| s.q[0])
+                .falling()
+                .reset(|s| s.v[0] *= -E),
+        )
         .event(Event::new("apex", |s: &State| s.v[0]).falling())
-        .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
+        .observe("energy", |s: &State| {
+            el.energy(s.t, s.q.as_slice(), s.v.as_slice())
+        })
         .run_until(t_end)?;
     let impacts = sol.event_times("impact");
     report.checks.push(Check::abs(

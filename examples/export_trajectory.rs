@@ -29,7 +29,8 @@ impl Lagrangian for Lissajous {
     }
     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
         let kinetic = (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m);
-        let potential = (q[0] * q[0] * (self.w1 * self.w1) + q[1] * q[1] * (self.w2 * self.w2)) * (0.5 * self.m);
+        let potential =
+            (q[0] * q[0] * (self.w1 * self.w1) + q[1] * q[1] * (self.w2 * self.w2)) * (0.5 * self.m);
         kinetic - potential
     }
     fn constant_mass_matrix(&self) -> bool {
@@ -45,16 +46,25 @@ impl Lagrangian for Lissajous {
 /// deviation from the closed form, 1e-11 relative on the energy (measured 1.2e-13), and the CSV must
 /// read back bit for bit (it writes the shortest round-trip form of every number).
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
-    let model = Lissajous { m: 1.5, w1: 1.0, w2: 1.5 };
+    let model = Lissajous {
+        m: 1.5,
+        w1: 1.0,
+        w2: 1.5,
+    };
     let el = EulerLagrange::new(model);
     let (x0, vy0) = (1.0, 0.9);
     let times: Vec<f64> = (0..=400).map(|i| 0.05 * i as f64).collect();
 
     // 1. Run: sample at chosen times, record the energy.
-    let sol = Driver::new(Dop853::new(&el).tolerances(1e-12, 1e-12)?, State::new(0.0, [x0, 0.0], [0.0, vy0]))?
-        .save(Save::Times(times.clone()))?
-        .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
-        .run_until(20.0)?;
+    let sol = Driver::new(
+        Dop853::new(&el).tolerances(1e-12, 1e-12)?,
+        State::new(0.0, [x0, 0.0], [0.0, vy0]),
+    )?
+    .save(Save::Times(times.clone()))?
+    .observe("energy", |s: &State| {
+        el.energy(s.t, s.q.as_slice(), s.v.as_slice())
+    })
+    .run_until(20.0)?;
 
     // 2. Keep it: write the CSV (t,q0,q1,v0,v1,energy), then read it back.
     let dir = (opts.out_dir.clone())
@@ -113,10 +123,21 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .x_label("x")
         .y_label("y")
         .equal_aspect()
-        .series("orbit", back.q_series(0).into_iter().zip(back.q_series(1)).collect());
+        .series(
+            "orbit",
+            back.q_series(0).into_iter().zip(back.q_series(1)).collect(),
+        );
     report.save(opts, &orbit, "export_trajectory_orbit.svg")?;
-    report.save(opts, &phase_portrait(&back, "Phase portrait of x", 0)?, "export_trajectory_phase.svg")?;
-    report.save(opts, &relative_drift(&back, "Energy drift", "energy")?, "export_trajectory_energy.svg")?;
+    report.save(
+        opts,
+        &phase_portrait(&back, "Phase portrait of x", 0)?,
+        "export_trajectory_phase.svg",
+    )?;
+    report.save(
+        opts,
+        &relative_drift(&back, "Energy drift", "energy")?,
+        "export_trajectory_energy.svg",
+    )?;
     Ok(report)
 }
 

@@ -43,14 +43,21 @@ fn check(quantity: &str, computed: f64, expected: f64, tol: f64) -> bool {
 }
 
 fn run() -> noether::core::Result<bool> {
-    let sys = SpringPendulum { m: 1.0, k: 40.0, l0: 1.0, g: 9.81 };
+    let sys = SpringPendulum {
+        m: 1.0,
+        k: 40.0,
+        l0: 1.0,
+        g: 9.81,
+    };
     let r_eq = sys.l0 + sys.m * sys.g / sys.k; // the spring's stretch at rest
     let el = EulerLagrange::new(&sys);
 
     // 1. Energy: a large swing, DOP853 at 1e-12, the energy function recorded along the run.
     let start = State::new(0.0, [r_eq + 0.2, 1.0], [0.0, 0.0]);
     let big = Driver::new(Dop853::new(&el).tolerances(1e-12, 1e-12)?, start)?
-        .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
+        .observe("energy", |s: &State| {
+            el.energy(s.t, s.q.as_slice(), s.v.as_slice())
+        })
         .run_until(20.0)?;
     let e = big.observed("energy").unwrap_or_default();
     // h is conserved (L has no t); DOP853 at 1e-12 keeps it to ~1e-12 over this run (measured 2e-13).
@@ -65,7 +72,12 @@ fn run() -> noether::core::Result<bool> {
     let period = (up[up.len() - 1] - up[0]) / (up.len() - 1) as f64;
     // Pendulum of length r_eq: T = 2π sqrt(r_eq/g) (1 + θ₀²/16 + …); θ₀ = 0.01 shifts it by 6e-6 and
     // the spring is not excited at first order, so 1e-5 relative.
-    ok &= check("small-swing period", period, 2.0 * PI * (r_eq / sys.g).sqrt(), 1e-5);
+    ok &= check(
+        "small-swing period",
+        period,
+        2.0 * PI * (r_eq / sys.g).sqrt(),
+        1e-5,
+    );
 
     // 3. Pure bounce: θ = 0 stays 0 and r oscillates at sqrt(k/m) exactly (a linear spring).
     let bounce = State::new(0.0, [r_eq + 0.1, 0.0], [0.0, 0.0]);

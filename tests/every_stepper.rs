@@ -56,10 +56,21 @@ fn measure<S: Stepper>(stepper: S, start: State<S::Partner>, h: Option<f64>) -> 
 
 /// Asserts the measured errors of `name` are within its tolerances and that both events fired.
 fn assert_within(name: &str, m: Measured, output_tol: f64, event_tol: f64) {
-    eprintln!("{name}: output {:.1e}, event {:.1e}", m.output_error, m.event_error);
+    eprintln!(
+        "{name}: output {:.1e}, event {:.1e}",
+        m.output_error, m.event_error
+    );
     assert_eq!(m.events, 2, "{name}: events");
-    assert!(m.output_error <= output_tol, "{name}: output error {:e} > {output_tol:e}", m.output_error);
-    assert!(m.event_error <= event_tol, "{name}: event error {:e} > {event_tol:e}", m.event_error);
+    assert!(
+        m.output_error <= output_tol,
+        "{name}: output error {:e} > {output_tol:e}",
+        m.output_error
+    );
+    assert!(
+        m.event_error <= event_tol,
+        "{name}: event error {:e} > {event_tol:e}",
+        m.event_error
+    );
 }
 
 /// L = ½ ẋ² − ½ x².
@@ -104,14 +115,24 @@ fn rest_p() -> State<Momenta> {
 fn closed_form_explicit_and_adaptive_methods_through_the_driver() {
     let el = EulerLagrange::new(oscillator());
     assert_within("Euler", measure(Euler::new(&el), rest(), Some(1e-5)), 1e-3, 1e-3);
-    assert_within("Euler-Cromer", measure(EulerCromer::new(&el), rest(), Some(1e-4)), 1e-3, 1e-3);
+    assert_within(
+        "Euler-Cromer",
+        measure(EulerCromer::new(&el), rest(), Some(1e-4)),
+        1e-3,
+        1e-3,
+    );
     assert_within("RK4", measure(Rk4::new(&el), rest(), Some(1e-2)), 1e-3, 1e-3);
     let dopri5 = Dopri5::new(&el).tolerances(1e-10, 1e-10).unwrap();
     assert_within("DOPRI5", measure(dopri5, rest(), None), 1e-3, 1e-3);
     let dop853 = Dop853::new(&el).tolerances(1e-12, 1e-12).unwrap();
     assert_within("DOP853", measure(dop853, rest(), None), 1e-3, 1e-3);
     let h = HamiltonEquations::new(hamiltonian!(dof = 1, |_t, q, p| (p[0] * p[0] + q[0] * q[0]) * 0.5));
-    assert_within("RK4 on Hamilton", measure(Rk4::new(&h), rest_p(), Some(1e-2)), 1e-3, 1e-3);
+    assert_within(
+        "RK4 on Hamilton",
+        measure(Rk4::new(&h), rest_p(), Some(1e-2)),
+        1e-3,
+        1e-3,
+    );
 }
 
 #[test]
@@ -119,27 +140,77 @@ fn closed_form_symplectic_and_gauss_methods_through_the_driver() {
     let natural = Natural::diagonal(Spring, &[1.0]).unwrap();
     let sep = SeparableHamiltonian(SeparableSpring);
     let h = 1e-2;
-    assert_within("symplectic Euler", measure(SymplecticEuler::new(&natural), rest(), Some(1e-4)), 1e-3, 1e-3);
-    assert_within("Störmer-Verlet", measure(Composition::stormer_verlet(&natural), rest(), Some(h)), 1e-3, 1e-3);
-    assert_within("Yoshida 4", measure(Composition::yoshida4(&natural), rest(), Some(h)), 1e-3, 1e-3);
-    assert_within("Kahan-Li 8", measure(Composition::kahan_li8(&sep), rest_p(), Some(0.1)), 1e-3, 1e-3);
-    assert_within("implicit midpoint", measure(Gauss::implicit_midpoint(&natural), rest(), Some(h)), 1e-3, 1e-3);
-    assert_within("Gauss 4", measure(Gauss::gauss4(&sep), rest_p(), Some(0.1)), 1e-3, 1e-3);
+    assert_within(
+        "symplectic Euler",
+        measure(SymplecticEuler::new(&natural), rest(), Some(1e-4)),
+        1e-3,
+        1e-3,
+    );
+    assert_within(
+        "Störmer-Verlet",
+        measure(Composition::stormer_verlet(&natural), rest(), Some(h)),
+        1e-3,
+        1e-3,
+    );
+    assert_within(
+        "Yoshida 4",
+        measure(Composition::yoshida4(&natural), rest(), Some(h)),
+        1e-3,
+        1e-3,
+    );
+    assert_within(
+        "Kahan-Li 8",
+        measure(Composition::kahan_li8(&sep), rest_p(), Some(0.1)),
+        1e-3,
+        1e-3,
+    );
+    assert_within(
+        "implicit midpoint",
+        measure(Gauss::implicit_midpoint(&natural), rest(), Some(h)),
+        1e-3,
+        1e-3,
+    );
+    assert_within(
+        "Gauss 4",
+        measure(Gauss::gauss4(&sep), rest_p(), Some(0.1)),
+        1e-3,
+        1e-3,
+    );
     let eqs = HamiltonEquations::new(hamiltonian!(dof = 1, |_t, q, p| (p[0] * p[0] + q[0] * q[0]) * 0.5));
-    assert_within("Gauss 6", measure(Gauss::gauss6(&eqs), rest_p(), Some(0.1)), 1e-3, 1e-3);
+    assert_within(
+        "Gauss 6",
+        measure(Gauss::gauss6(&eqs), rest_p(), Some(0.1)),
+        1e-3,
+        1e-3,
+    );
 }
 
 #[test]
 fn closed_form_variational_methods_through_the_driver() {
     let h = 1e-2;
     let midpoint = VariationalIntegrator::new(Midpoint::new(oscillator()));
-    assert_within("variational midpoint", measure(midpoint, rest_p(), Some(h)), 1e-3, 1e-3);
+    assert_within(
+        "variational midpoint",
+        measure(midpoint, rest_p(), Some(h)),
+        1e-3,
+        1e-3,
+    );
     let trapezoidal = VariationalIntegrator::new(Trapezoidal::new(oscillator()));
-    assert_within("variational trapezoidal", measure(trapezoidal, rest_p(), Some(h)), 1e-3, 1e-3);
+    assert_within(
+        "variational trapezoidal",
+        measure(trapezoidal, rest_p(), Some(h)),
+        1e-3,
+        1e-3,
+    );
     let galerkin = Galerkin::order4(oscillator()).unwrap();
     assert_within("Galerkin 4", measure(galerkin, rest_p(), Some(0.05)), 1e-3, 1e-3);
     let composed = DiscreteComposition::order4(VariationalIntegrator::new(Midpoint::new(oscillator())));
-    assert_within("composed midpoint 4", measure(composed, rest_p(), Some(0.05)), 1e-3, 1e-3);
+    assert_within(
+        "composed midpoint 4",
+        measure(composed, rest_p(), Some(0.05)),
+        1e-3,
+        1e-3,
+    );
 }
 
 /// A free unit mass in the plane on the unit circle, φ = (|r|² − 1)/2.
@@ -164,8 +235,15 @@ fn free_particle() -> impl Lagrangian {
 fn closed_form_constrained_methods_through_the_driver() {
     // Uniform motion on the unit circle at unit speed: x = cos t.
     let mut rattle = Rattle::new(Midpoint::new(free_particle()), Circle).unwrap();
-    let start = rattle.state_from_velocities(0.0, &[1.0, 0.0], &[0.0, 1.0]).unwrap();
-    assert_within("RATTLE (midpoint)", measure(rattle, start, Some(1e-2)), 1e-3, 1e-3);
+    let start = rattle
+        .state_from_velocities(0.0, &[1.0, 0.0], &[0.0, 1.0])
+        .unwrap();
+    assert_within(
+        "RATTLE (midpoint)",
+        measure(rattle, start, Some(1e-2)),
+        1e-3,
+        1e-3,
+    );
     let sys = Constrained::new(free_particle(), HolonomicSet(Circle)).unwrap();
     let projected = Projected::new(Rk4::new(&sys), sys.constraints());
     let start = State::new(0.0, [1.0, 0.0], [0.0, 1.0]);
@@ -175,8 +253,15 @@ fn closed_form_constrained_methods_through_the_driver() {
 #[test]
 fn closed_form_particle_methods_through_the_driver() {
     // One unit mass in the isotropic trap U = ½ |r|², on the circle of radius 1 at unit speed.
-    let trap = Trap { k2: 1.0, k4: 0.0, center: [0.0; 3] };
-    let sys = System::new(vec![Particle::new(1.0)]).unwrap().with(External::new(trap, [0])).unwrap();
+    let trap = Trap {
+        k2: 1.0,
+        k4: 0.0,
+        center: [0.0; 3],
+    };
+    let sys = System::new(vec![Particle::new(1.0)])
+        .unwrap()
+        .with(External::new(trap, [0]))
+        .unwrap();
     let start = || sys.state(0.0, &[[1.0, 0.0, 0.0]], &[[0.0, 1.0, 0.0]]).unwrap();
     for (method, h) in [
         (Method::Rk4, 1e-2),
@@ -185,6 +270,11 @@ fn closed_form_particle_methods_through_the_driver() {
         (Method::EulerCromer, 1e-4),
     ] {
         let name = format!("particles {method:?}");
-        assert_within(&name, measure(ParticleStepper::new(&sys, method), start(), Some(h)), 1e-3, 1e-3);
+        assert_within(
+            &name,
+            measure(ParticleStepper::new(&sys, method), start(), Some(h)),
+            1e-3,
+            1e-3,
+        );
     }
 }

@@ -123,7 +123,10 @@ mod tests {
         // Released from θ = 0.5 toward the bottom with no azimuthal momentum: it swings through θ = 0,
         // the pole of the chart, after t ≈ quarter period ≈ 1.6.
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
-        let mut traj = Driver::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0])).unwrap().step(1e-3).unwrap();
+        let mut traj = Driver::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0]))
+            .unwrap()
+            .step(1e-3)
+            .unwrap();
         let err = traj.run_until(10.0).unwrap_err();
         match &err {
             Error::CoordinateSingularity { what, t } => {
@@ -136,7 +139,10 @@ mod tests {
         assert!(s.is_finite() && s.q[0].sin().abs() >= 1e-2);
         // A run started at the pole is refused before any step.
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
-        let mut traj = Driver::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0])).unwrap().step(1e-3).unwrap();
+        let mut traj = Driver::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0]))
+            .unwrap()
+            .step(1e-3)
+            .unwrap();
         assert!(matches!(
             traj.run_steps(1),
             Err(Error::CoordinateSingularity { t, .. }) if t == 0.0

@@ -174,7 +174,10 @@ mod tests {
             let s = d.state_at(t);
             let e = y(t);
             // Rounding of a few operations on O(1) values.
-            assert!((s.q[0] - e[0]).abs() < 1e-15 && (s.v[0] - e[1]).abs() < 1e-14, "t = {t}");
+            assert!(
+                (s.q[0] - e[0]).abs() < 1e-15 && (s.v[0] - e[1]).abs() < 1e-14,
+                "t = {t}"
+            );
         }
         assert_eq!(d.order(), 3);
     }

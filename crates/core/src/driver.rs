@@ -288,7 +288,10 @@ impl<'a, S: Stepper> Driver<'a, S> {
             if self.state.is_finite() {
                 Ok(info)
             } else {
-                Err(Error::NonFiniteState { step: self.steps_taken, t })
+                Err(Error::NonFiniteState {
+                    step: self.steps_taken,
+                    t,
+                })
             }
         });
         match res {
@@ -309,9 +312,18 @@ impl<'a, S: Stepper> Driver<'a, S> {
 
     /// The continuous extension of the step just taken from `start` (at time `t0`): the stepper's own,
     /// else cubic Hermite from the vector field at both ends, else linear (see the module docs).
-    fn extension(&self, t0: f64, start: &mut StepStart, stats: &mut Stats) -> Result<DenseOutput<S::Partner>> {
+    fn extension(
+        &self,
+        t0: f64,
+        start: &mut StepStart,
+        stats: &mut Stats,
+    ) -> Result<DenseOutput<S::Partner>> {
         let n = self.state.dof();
-        if let Some(d) = self.stepper.dense_output().filter(|d| d.t_start() == t0 && d.dof() == n) {
+        if let Some(d) = self
+            .stepper
+            .dense_output()
+            .filter(|d| d.t_start() == t0 && d.dof() == n)
+        {
             start.f = None;
             return Ok(d.clone());
         }
@@ -356,7 +368,13 @@ impl<'a, S: Stepper> Driver<'a, S> {
         let h_fixed = if adaptive { 0.0 } else { self.fixed_h()? };
         let observer_names = self.observers.iter().flat_map(|o| o.names.clone()).collect();
         let event_names = self.events.iter().map(|e| e.name.clone()).collect();
-        let mut sol = Solution::new(n, self.stepper.name(), observer_names, event_names, self.state.clone());
+        let mut sol = Solution::new(
+            n,
+            self.stepper.name(),
+            observer_names,
+            event_names,
+            self.state.clone(),
+        );
         let mut obs_row = vec![0.0; sol.observer_names.len()];
         let mut next_time = 0; // index of the next output time
         let mut stepped = 0usize; // steps of this run
@@ -412,7 +430,10 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 Target::Steps(_) => ((origin + (k + 1) as f64 * h_fixed) - t0, false),
             };
             if self.max_steps.is_some_and(|m| stepped >= m) {
-                return Err(Error::StepLimit { steps: stepped, t: t0 });
+                return Err(Error::StepLimit {
+                    steps: stepped,
+                    t: t0,
+                });
             }
             if interpolate || self.keep_dense {
                 start.y[..n].copy_from_slice(self.state.q.as_slice());
@@ -464,8 +485,16 @@ impl<'a, S: Stepper> Driver<'a, S> {
             let mut cut = None; // (time, event index) of a stop or reset inside this step
             for &(tc, i) in &hits {
                 let d = dense.as_ref().expect("events interpolate");
-                let at = if tc == t1 { self.state.clone() } else { d.state_at(tc) };
-                sol.events.push(EventRecord { event: i, t: tc, state: at });
+                let at = if tc == t1 {
+                    self.state.clone()
+                } else {
+                    d.state_at(tc)
+                };
+                sol.events.push(EventRecord {
+                    event: i,
+                    t: tc,
+                    state: at,
+                });
                 sol.stats.events += 1;
                 if !matches!(self.events[i].action, Action::Record) {
                     cut = Some((tc, i));
@@ -482,7 +511,10 @@ impl<'a, S: Stepper> Driver<'a, S> {
                     if t == t1 {
                         scratch.copy_from(&self.state);
                     } else {
-                        dense.as_ref().expect("output times interpolate").eval_state(t, &mut scratch);
+                        dense
+                            .as_ref()
+                            .expect("output times interpolate")
+                            .eval_state(t, &mut scratch);
                     }
                     self.observe_state(&scratch, &mut obs_row)?;
                     sol.push(&scratch, &obs_row);

@@ -4,7 +4,9 @@
 //! ([`EulerLagrange`]) and p for Hamiltonian dynamics ([`HamiltonEquations`]); the associated type
 //! [`Dynamics::Partner`] says which, so the states a system is stepped with carry it in their type.
 
-use crate::{EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Momenta, Partner, Result, Velocities};
+use crate::{
+    EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Momenta, Partner, Result, Velocities,
+};
 
 /// A vector field (q̇, v̇) = F(t, q, v) on phase space.
 pub trait Dynamics {

@@ -86,7 +86,9 @@ pub enum Error {
     },
     /// A step too small for the time axis: at this t, t + h differs from t by less than h (or not at
     /// all); the run cannot advance with this step.
-    #[error("step h = {h:e} is below the resolution of the time axis at t = {t:e} (t + h is not t + h to 1%)")]
+    #[error(
+        "step h = {h:e} is below the resolution of the time axis at t = {t:e} (t + h is not t + h to 1%)"
+    )]
     StepBelowTimeResolution {
         /// Time of the state.
         t: f64,

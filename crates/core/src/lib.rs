@@ -65,7 +65,7 @@ pub mod prelude {
     pub use crate::{hamiltonian, lagrangian};
     pub use crate::{
         Direction, Driver, Dynamics, Error, EulerLagrange, Event, HamiltonEquations, Hamiltonian, Lagrangian,
-        Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable, SeparableHamiltonian, Solution,
-        State, StepInfo, Stepper, Stop, Velocities,
+        Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable, SeparableHamiltonian,
+        Solution, State, StepInfo, Stepper, Stop, Velocities,
     };
 }

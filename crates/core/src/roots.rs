@@ -126,7 +126,10 @@ mod tests {
                 (b, g(b)),
             );
             // Rounding: within 4 ulps of the root (g's own rounding near it is of the same order).
-            assert!((r - root).abs() <= 4.0 * f64::EPSILON * root, "root {r} vs {root}");
+            assert!(
+                (r - root).abs() <= 4.0 * f64::EPSILON * root,
+                "root {r} vs {root}"
+            );
             assert!(calls < 100, "{calls} evaluations");
         }
     }
@@ -143,7 +146,13 @@ mod tests {
     #[test]
     fn nan_inside_the_bracket_still_terminates() {
         // g = t³ − 0.343 on [0, 1]: the first secant point is 0.343, where g is made NaN.
-        let g = |t: f64| if (0.3..0.36).contains(&t) { f64::NAN } else { t * t * t - 0.343 };
+        let g = |t: f64| {
+            if (0.3..0.36).contains(&t) {
+                f64::NAN
+            } else {
+                t * t * t - 0.343
+            }
+        };
         let r = bracketed_root(g, (0.0, g(0.0)), (1.0, g(1.0)));
         assert!((r - 0.7).abs() < 1e-12, "{r}");
     }

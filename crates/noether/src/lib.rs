@@ -63,7 +63,7 @@ pub mod prelude {
     pub use noether_discrete::prelude::{
         noether_momentum, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Galerkin,
         LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, PlanarRotation, Symmetry,
-        Trapezoidal, Translation, VariationalIntegrator, Verlet,
+        Translation, Trapezoidal, VariationalIntegrator, Verlet,
     };
     pub use noether_discrete::Composition as DiscreteComposition;
     pub use noether_particles::prelude::{

@@ -58,7 +58,10 @@ fn check_coordinate<K: Partner>(sol: &Solution<K>, title: &str, j: usize) -> Res
         Ok(())
     } else {
         Err(Error::NoSuchSeries {
-            what: format!("coordinate {j} for '{title}' (the system has {} degrees of freedom)", sol.dof()),
+            what: format!(
+                "coordinate {j} for '{title}' (the system has {} degrees of freedom)",
+                sol.dof()
+            ),
         })
     }
 }

@@ -107,7 +107,12 @@ fn order_every_explicit_integrator_with_projection() {
         let mut tr = Driver::with_step(Rk4::new(el), State::new(0.0, [1.0], [0.0]), 1e-4).unwrap();
         tr.run_until(1.0).unwrap().last().q[0]
     };
-    fn error<S: Stepper<Partner = Velocities>>(stepper: S, h: f64, reference: f64, sys_set: impl ConstraintSet) -> (f64, f64) {
+    fn error<S: Stepper<Partner = Velocities>>(
+        stepper: S,
+        h: f64,
+        reference: f64,
+        sys_set: impl ConstraintSet,
+    ) -> (f64, f64) {
         let mut tr =
             Driver::with_step(Projected::new(stepper, sys_set), pendulum_state(1.0, 1.0, 0.0), h).unwrap();
         let end = tr.run_until(1.0).unwrap().last().clone();

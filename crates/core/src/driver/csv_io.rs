@@ -63,7 +63,12 @@ impl<K: Partner> Solution<K> {
     /// wrong length, a value that is not a number, or a file with no row is an [`Error::SavedRun`].
     pub fn read_csv<R: Read>(r: R) -> Result<Self> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
-        let header: Vec<String> = input.headers().map_err(csv_error)?.iter().map(str::to_string).collect();
+        let header: Vec<String> = input
+            .headers()
+            .map_err(csv_error)?
+            .iter()
+            .map(str::to_string)
+            .collect();
         let dof = header.iter().skip(1).take_while(|h| h.starts_with('q')).count();
         let expected: Vec<String> = std::iter::once("t".to_string())
             .chain((0..dof).map(|i| format!("q{i}")))
@@ -89,7 +94,11 @@ impl<K: Partner> Solution<K> {
             let line = record.position().map(|p| p.line());
             let values = record
                 .iter()
-                .map(|x| x.trim().parse::<f64>().map_err(|e| saved_run(line, format!("'{x}': {e}"))))
+                .map(|x| {
+                    x.trim()
+                        .parse::<f64>()
+                        .map_err(|e| saved_run(line, format!("'{x}': {e}")))
+                })
                 .collect::<Result<Vec<f64>>>()?;
             state.t = values[0];
             state.q.copy_from_slice(&values[1..=dof]);
@@ -134,7 +143,9 @@ mod tests {
         let mut driver = Driver::with_step(Rk4::new(&el), start, 0.01)
             .and_then(|d| d.save(Save::Every(7)))
             .unwrap()
-            .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()));
+            .observe("energy", |s: &State| {
+                el.energy(s.t, s.q.as_slice(), s.v.as_slice())
+            });
         driver.run_until(1.0).unwrap()
     }
 

@@ -436,6 +436,9 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         self.dense.as_ref()
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
 }

@@ -129,7 +129,10 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
         Ok(y.commit(state, h)?.with_evaluations(1))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -192,7 +195,10 @@ impl<S: Dynamics> Stepper for Rk4<S> {
         Ok(y.commit(state, h)?.with_evaluations(4))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
     fn dof(&self) -> usize {
         self.system.dof()

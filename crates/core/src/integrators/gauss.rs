@@ -399,7 +399,10 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             .with_newton(info.iterations, 0))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
     fn dof(&self) -> usize {
         self.system.dof()

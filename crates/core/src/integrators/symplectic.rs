@@ -33,7 +33,9 @@
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len, check_step};
 use crate::natural::{Natural, Potential};
-use crate::{Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper};
+use crate::{
+    Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper,
+};
 
 /// A vector field split as q̇ = D(v), v̇ = K(q): what explicit symplectic methods need.
 pub trait SplitDynamics: Dynamics {
@@ -226,7 +228,10 @@ impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
         Ok(StepInfo::fixed(h).with_evaluations(1))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
     fn dof(&self) -> usize {
         self.system.dof()
@@ -431,7 +436,10 @@ impl<S: SplitDynamics> Stepper for Composition<S> {
         Ok(StepInfo::fixed(h).with_evaluations(kicks))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(self.system.rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv))
+        Some(
+            self.system
+                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
+        )
     }
     fn dof(&self) -> usize {
         self.system.dof()

@@ -137,7 +137,9 @@ fn closed_form_driver_samples_requested_times() {
     // The driver returns exactly the requested times (from the dense output), lands on t_end, and
     // agrees with the exact orbit as well as the step ends do (see above: < 1e-6 at tol 1e-10).
     let times: Vec<f64> = (0..=100).map(|i| i as f64 * 0.1).collect();
-    let s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-10, 1e-10).unwrap();
+    let s = Dopri5::new(EulerLagrange::new(KeplerL))
+        .tolerances(1e-10, 1e-10)
+        .unwrap();
     let sol = Driver::new(s, kepler_start(ECC))
         .unwrap()
         .save(Save::Times(times.clone()))
@@ -147,7 +149,10 @@ fn closed_form_driver_samples_requested_times() {
     assert_eq!(sol.times(), &times[..]);
     assert_eq!(sol.last().t, 12.0);
     assert_eq!(sol.interpolation_order(), Some(4));
-    for st in (0..sol.len()).map(|i| sol.state(i)).chain(std::iter::once(sol.last().clone())) {
+    for st in (0..sol.len())
+        .map(|i| sol.state(i))
+        .chain(std::iter::once(sol.last().clone()))
+    {
         let (q, p) = kepler_exact(ECC, st.t);
         assert!(distance(&st, &q, &p) < 1e-6, "t = {}", st.t);
     }
@@ -159,7 +164,9 @@ fn closed_form_error_control_tracks_tolerance() {
     // Tightening the tolerance 1000× must shrink the global error by between 100× and 10⁵× (the
     // error is proportional to the tolerance up to the step-count factor) and take more steps.
     let run = |tol: f64| {
-        let s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(tol, tol).unwrap();
+        let s = Dopri5::new(EulerLagrange::new(KeplerL))
+            .tolerances(tol, tol)
+            .unwrap();
         let sol = Driver::new(s, kepler_start(ECC))
             .unwrap()
             .save(Save::End)
@@ -184,7 +191,9 @@ fn closed_form_error_control_tracks_tolerance() {
 fn closed_form_rejections_counted() {
     // A first step of 1.0 on Kepler e = 0.9 near pericentre is far too large: it is rejected (and
     // counted) until the error estimate passes, and the step actually taken is smaller.
-    let mut s = Dopri5::new(EulerLagrange::new(KeplerL)).tolerances(1e-8, 1e-8).unwrap();
+    let mut s = Dopri5::new(EulerLagrange::new(KeplerL))
+        .tolerances(1e-8, 1e-8)
+        .unwrap();
     let mut state = kepler_start(0.9);
     let info = s.step(&mut state, 1.0).unwrap();
     assert!(info.rejected > 0 && info.h < 1.0 && state.t == info.h);
@@ -224,21 +233,29 @@ fn closed_form_event_quarter_period() {
 fn closed_form_event_quarter_period_by_the_driver() {
     // The same event through the driver: θ = 0 falling, terminal; the run stops there.
     let expected = elliptic_k((THETA0 / 2.0).sin().powi(2));
-    let s = Dop853::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12).unwrap();
+    let s = Dop853::new(Natural::unit(PendulumV))
+        .tolerances(1e-12, 1e-12)
+        .unwrap();
     let sol = Driver::new(s, pendulum_start())
         .unwrap()
         .event(Event::new("θ = 0", |s: &State| s.q[0]).falling().terminal())
         .run_until(10.0)
         .unwrap();
     assert_eq!(sol.stop(), Stop::Event(0));
-    assert!((sol.last().t - expected).abs() < 1e-9, "{} vs {expected}", sol.last().t);
+    assert!(
+        (sol.last().t - expected).abs() < 1e-9,
+        "{} vs {expected}",
+        sol.last().t
+    );
     assert!(sol.last().q[0].abs() < 1e-12 && sol.event_times("θ = 0") == vec![sol.last().t]);
 }
 
 #[test]
 fn closed_form_driver_uses_adaptive_steps() {
     // The driver follows h_next: harmonic-like pendulum at small amplitude, q ≈ 0.01 cos t.
-    let s = Dopri5::new(Natural::unit(PendulumV)).tolerances(1e-12, 1e-12).unwrap();
+    let s = Dopri5::new(Natural::unit(PendulumV))
+        .tolerances(1e-12, 1e-12)
+        .unwrap();
     let sol = Driver::new(s, State::new(0.0, [0.01], [0.0]))
         .unwrap()
         .step(1e-3)

@@ -76,9 +76,12 @@ fn bad_input_step_zero_negative_nan() {
             assert_eq!(state, before);
         }
     });
-    let err = Driver::new(Rk4::new(EulerLagrange::new(PendulumL)), State::new(0.0, [1.0], [0.0]))
-        .unwrap()
-        .step(0.0);
+    let err = Driver::new(
+        Rk4::new(EulerLagrange::new(PendulumL)),
+        State::new(0.0, [1.0], [0.0]),
+    )
+    .unwrap()
+    .step(0.0);
     assert!(matches!(err, Err(Error::InvalidStep { .. })));
 }
 
@@ -291,6 +294,9 @@ fn bad_input_adaptive_parameters() {
     ));
     let nan_end = driver().run_until(f64::NAN);
     assert!(matches!(nan_end, Err(Error::NonFinite { .. })));
-    assert!(matches!(driver().save(Save::Every(0)), Err(Error::InvalidParameter { .. })));
+    assert!(matches!(
+        driver().save(Save::Every(0)),
+        Err(Error::InvalidParameter { .. })
+    ));
     assert_eq!(d.state(), &state);
 }

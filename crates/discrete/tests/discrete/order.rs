@@ -14,7 +14,12 @@ use noether_discrete::{
 };
 
 /// Max-norm error of the state after `n` steps of size `period/n` from `start`.
-fn period_error<S: Stepper<Partner = noether_core::Momenta>>(stepper: &mut S, start: &State, period: f64, n: usize) -> f64 {
+fn period_error<S: Stepper<Partner = noether_core::Momenta>>(
+    stepper: &mut S,
+    start: &State,
+    period: f64,
+    n: usize,
+) -> f64 {
     let h = period / n as f64;
     let mut s = start.clone();
     for _ in 0..n {
