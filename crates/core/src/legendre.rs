@@ -37,9 +37,10 @@
 //! [`constant_mass_matrix`](Lagrangian::constant_mass_matrix) (so L = ½ q̇ᵀ M q̇ + a(t, q)·q̇ + L₀(t, q)),
 //! M is factored and inverted once, q̇₀ = M⁻¹ (p − a) comes from one gradient and no Newton iteration,
 //! and the one step in D is exact Newton on a linear equation: q̇ is exact to every order. (The closed
-//! form ½ (p − a)ᵀ M(q)⁻¹ (p − a) − L₀ for a q-dependent M was not taken: it needs M(q) in D, a
-//! second derivative nested in the scalar of the caller, which costs more than the real solve and one
-//! nested gradient it would replace; docs/benchmarks.md.)
+//! form ½ (p − a)ᵀ M(q)⁻¹ (p − a) − L₀ for a q-dependent M is not implemented: it needs M(q) in D, a
+//! second derivative in q̇ nested in the caller's scalar, and a linear solve in D; whether that beats
+//! the real solve plus one nested gradient has not been measured. The cost of the general path
+//! against a hand-written H is in docs/benchmarks.md.)
 //!
 //! **Errors.** [`Hamiltonian::hamiltonian`] returns a scalar, so a failure (a singular or indefinite
 //! mass matrix, Newton not converging, non-finite input) makes it NaN, and
