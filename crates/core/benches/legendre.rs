@@ -46,14 +46,17 @@ fn bench(c: &mut Criterion) {
     g.bench_function("hand", |b| {
         let (mut dq, mut dp) = ([0.0; 2], [0.0; 2]);
         b.iter(|| {
-            hand.rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp).unwrap();
+            hand.rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp)
+                .unwrap();
             dq[0] + dp[0]
         })
     });
     g.bench_function("legendre", |b| {
         let (mut dq, mut dp) = ([0.0; 2], [0.0; 2]);
         b.iter(|| {
-            from_l.rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp).unwrap();
+            from_l
+                .rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp)
+                .unwrap();
             dq[0] + dp[0]
         })
     });
