@@ -213,6 +213,31 @@ fn closed_form_variational_methods_through_the_driver() {
     );
 }
 
+/// V = ½ x² as a sum of local terms (one), for the mechanical variational integrators.
+struct LocalSpring;
+impl LocalPotential for LocalSpring {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn terms(&self) -> usize {
+        1
+    }
+    fn support(&self, _k: usize, idx: &mut Vec<usize>) {
+        idx.push(0);
+    }
+    fn term<D: Scalar>(&self, _k: usize, x: &[D]) -> D {
+        x[0] * x[0] * 0.5
+    }
+}
+
+#[test]
+fn closed_form_mechanical_variational_methods_through_the_driver() {
+    let mechanical = || Mechanical::new(Mass::Diagonal(vec![1.0]), LocalSpring).unwrap();
+    assert_within("Verlet (mechanical)", measure(Verlet::new(mechanical()), rest_p(), Some(1e-2)), 1e-3, 1e-3);
+    let midpoint = MechanicalMidpoint::new(mechanical());
+    assert_within("midpoint (mechanical)", measure(midpoint, rest_p(), Some(1e-2)), 1e-3, 1e-3);
+}
+
 /// A free unit mass in the plane on the unit circle, φ = (|r|² − 1)/2.
 struct Circle;
 impl Holonomic for Circle {

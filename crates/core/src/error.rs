@@ -50,6 +50,16 @@ pub enum Error {
         /// Smallest relative pivot.
         pivot: f64,
     },
+    /// The mass matrix ∂²L/∂q̇² is regular but not positive definite where a Lagrangian convex in q̇
+    /// is required (the Legendre transform to a Hamiltonian: p = ∂L/∂q̇ then need not have one
+    /// solution q̇).
+    #[error("mass matrix ∂²L/∂q̇² is not positive definite at t = {t} (smallest eigenvalue {eigenvalue:e} relative to the largest in magnitude): the Legendre transform needs L convex in q̇")]
+    IndefiniteMassMatrix {
+        /// Time at which it was found.
+        t: f64,
+        /// Smallest eigenvalue relative to the largest in magnitude (negative).
+        eigenvalue: f64,
+    },
     /// A linear system (Newton Jacobian, constraint matrix) is singular.
     #[error("singular matrix in {what}")]
     SingularMatrix {

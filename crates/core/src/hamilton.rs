@@ -41,10 +41,22 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
         check_phase_point(self.dof(), t, q, p, "p")
     }
 
+    /// The error for a non-finite result at (t, q, p): the model's own
+    /// ([`Hamiltonian::failure`]) or [`Error::NonFiniteState`].
+    fn failure(&self, t: f64, q: &[f64], p: &[f64]) -> Error {
+        self.hamiltonian
+            .failure(t, q, p)
+            .unwrap_or(Error::NonFiniteState { step: 0, t })
+    }
+
     /// The value H(t, q, p) (the energy when H has no explicit time dependence).
     pub fn energy(&self, t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
         self.check(t, q, p)?;
-        Ok(self.hamiltonian.hamiltonian(t, q, p))
+        let h = self.hamiltonian.hamiltonian(t, q, p);
+        if !h.is_finite() {
+            return Err(self.failure(t, q, p));
+        }
+        Ok(h)
     }
 
     /// q̇ = ∂H/∂p and ṗ = −∂H/∂q.
@@ -57,7 +69,7 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
         ad::gradient(&f, t, q, p, Block::X, dp);
         dp.iter_mut().for_each(|x| *x = -*x);
         if dq.iter().chain(dp.iter()).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(self.failure(t, q, p));
         }
         Ok(())
     }
@@ -68,7 +80,7 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
         check_len("q̇ (output)", dq, self.dof())?;
         ad::gradient(&HamiltonianField(&self.hamiltonian), t, q, p, Block::Y, dq);
         if dq.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(self.failure(t, q, p));
         }
         Ok(())
     }
@@ -89,6 +101,9 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
         h.view_mut((0, n), (n, n)).copy_from(&hqp);
         h.view_mut((n, 0), (n, n)).copy_from(&hqp.transpose());
         h.view_mut((n, n), (n, n)).copy_from(&hpp);
+        if h.iter().any(|x| !x.is_finite()) {
+            return Err(self.failure(t, q, p));
+        }
         Ok(h)
     }
 }

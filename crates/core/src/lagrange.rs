@@ -393,6 +393,13 @@ impl<L: Lagrangian> EulerLagrange<L> {
     /// mass matrix as Jacobian, started from q̇ = M(t, q, 0)⁻¹ p (exact when L is quadratic in q̇),
     /// halved toward 0 while the momenta there are not finite (a start outside the model's domain).
     pub fn velocities(&self, t: f64, q: &[f64], p: &[f64]) -> Result<DVector<f64>> {
+        let v0 = self.velocity_start(t, q, p)?;
+        self.velocities_from(t, q, p, &v0)
+    }
+
+    /// The start of [`velocities`](Self::velocities): q̇ = M(t, q, 0)⁻¹ p, halved toward 0 while the
+    /// momenta there are not finite.
+    pub(crate) fn velocity_start(&self, t: f64, q: &[f64], p: &[f64]) -> Result<Vec<f64>> {
         let n = self.dof();
         check_len("p", p, n)?;
         check_finite("p", p)?;
@@ -408,6 +415,14 @@ impl<L: Lagrangian> EulerLagrange<L> {
             }
             v0.iter_mut().for_each(|x| *x *= 0.5);
         }
+        Ok(v0)
+    }
+
+    /// Newton's method for ∂L/∂q̇(t, q, q̇) = p from the start `v0` (residual tolerance
+    /// 1e-13·(1 + ‖p‖∞)).
+    pub(crate) fn velocities_from(&self, t: f64, q: &[f64], p: &[f64], v0: &[f64]) -> Result<DVector<f64>> {
+        check_len("p", p, self.dof())?;
+        check_finite("p", p)?;
         struct InverseLegendre<'a, L> {
             el: &'a EulerLagrange<L>,
             t: f64,
@@ -430,7 +445,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
         let scale = 1.0 + crate::newton::max_norm(p);
         let newton = Newton::default().tol_residual(1e-13 * scale);
-        let (v, _) = crate::newton::solve_dense(&newton, InverseLegendre { el: self, t, q, p }, &v0)?;
+        let (v, _) = crate::newton::solve_dense(&newton, InverseLegendre { el: self, t, q, p }, v0)?;
         Ok(v)
     }
 }

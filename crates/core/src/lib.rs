@@ -36,6 +36,7 @@ pub mod error;
 pub mod hamilton;
 pub mod integrators;
 pub mod lagrange;
+pub mod legendre;
 pub mod model;
 pub mod natural;
 pub mod newton;
@@ -52,6 +53,7 @@ pub use dynamics::Dynamics;
 pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;
 pub use lagrange::{EulerLagrange, MassFactor};
+pub use legendre::LegendreTransform;
 pub use model::{Hamiltonian, Lagrangian, Separable, SeparableHamiltonian};
 pub use natural::{Natural, Potential};
 pub use newton::{Newton, NewtonInfo, NewtonSystem};
@@ -65,7 +67,7 @@ pub mod prelude {
     pub use crate::{hamiltonian, lagrangian};
     pub use crate::{
         Direction, Driver, Dynamics, Error, EulerLagrange, Event, HamiltonEquations, Hamiltonian, Lagrangian,
-        Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable, SeparableHamiltonian,
-        Solution, State, StepInfo, Stepper, Stop, Velocities,
+        LegendreTransform, Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable,
+        SeparableHamiltonian, Solution, State, StepInfo, Stepper, Stop, Velocities,
     };
 }

@@ -14,7 +14,7 @@
 //! }
 //! ```
 
-use crate::Scalar;
+use crate::{Error, Scalar};
 
 /// A Lagrangian L(t, q, q̇) with `dof()` generalized coordinates.
 ///
@@ -55,6 +55,15 @@ pub trait Hamiltonian {
 
     /// The value of H at time `t`, coordinates `q` and momenta `p`.
     fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D;
+
+    /// Why H is not finite at (t, q, p), for a model that can fail there (a Hamiltonian computed by
+    /// a solve, e.g. [`LegendreTransform`](crate::LegendreTransform)): a model signals failure by a
+    /// non-finite value of [`hamiltonian`](Self::hamiltonian), and [`HamiltonEquations`](crate::HamiltonEquations)
+    /// (so every Hamiltonian integrator) then reports the error returned here, or
+    /// [`Error::NonFiniteState`] when it is `None` (the default).
+    fn failure(&self, _t: f64, _q: &[f64], _p: &[f64]) -> Option<Error> {
+        None
+    }
 }
 
 /// A separable Hamiltonian H = T(p) + V(q): the split that explicit symplectic methods need.
@@ -106,6 +115,9 @@ impl<H: Hamiltonian + ?Sized> Hamiltonian for &H {
     }
     fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
         (**self).hamiltonian(t, q, p)
+    }
+    fn failure(&self, t: f64, q: &[f64], p: &[f64]) -> Option<Error> {
+        (**self).failure(t, q, p)
     }
 }
 

@@ -113,6 +113,9 @@ impl<F: DiscreteFlow> DiscreteFlow for Composition<F> {
     fn order(&self) -> u32 {
         self.order
     }
+    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        self.inner().rates(t, q, p, dq, dp)
+    }
     fn name(&self) -> &'static str {
         "symmetric composition"
     }

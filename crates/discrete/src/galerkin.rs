@@ -250,6 +250,9 @@ impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
     fn order(&self) -> u32 {
         2 * self.s as u32
     }
+    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        Some(self.hamilton_rates(t, q, p, dq, dp))
+    }
     fn name(&self) -> &'static str {
         "Galerkin variational (Gauss quadrature)"
     }

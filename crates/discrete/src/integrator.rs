@@ -238,6 +238,9 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
     fn order(&self) -> u32 {
         self.ld.order()
     }
+    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        self.ld.continuous_rates(t, q, p, dq, dp)
+    }
     fn name(&self) -> &'static str {
         "variational (position-momentum)"
     }

@@ -29,7 +29,7 @@
 
 use nalgebra::DMatrix;
 use noether_core::ad::{self, Block, Field};
-use noether_core::Scalar;
+use noether_core::{Result, Scalar};
 
 /// A discrete Lagrangian L_d(t₀; q₀, q₁, h): an approximation of the action ∫ L dt from (t₀, q₀) to
 /// (t₀ + h, q₁).
@@ -51,6 +51,22 @@ pub trait DiscreteLagrangian {
     /// Nominal order of the discrete Lagrangian (the order of the integrator it defines).
     fn order(&self) -> u32 {
         2
+    }
+
+    /// Hamilton's vector field (q̇, ṗ) at (t, q, p) of the continuous system this discrete Lagrangian
+    /// approximates, when it has one: the driver's cubic Hermite interpolant between steps uses it
+    /// (without it, output times and events between steps come from the straight line). `None` by
+    /// default; the quadratures of a continuous Lagrangian ([`Midpoint`](crate::Midpoint),
+    /// [`Trapezoidal`](crate::Trapezoidal)) provide it.
+    fn continuous_rates(
+        &self,
+        _t: f64,
+        _q: &[f64],
+        _p: &[f64],
+        _dq: &mut [f64],
+        _dp: &mut [f64],
+    ) -> Option<Result<()>> {
+        None
     }
 
     /// `true` when [`discrete_force`](Self::discrete_force) is not identically zero.
@@ -89,6 +105,9 @@ impl<Ld: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &Ld {
     }
     fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
         (**self).discrete_force(t0, h, q0, q1, minus, plus)
+    }
+    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        (**self).continuous_rates(t, q, p, dq, dp)
     }
 }
 

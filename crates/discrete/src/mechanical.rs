@@ -380,6 +380,17 @@ impl<P: LocalPotential> Mechanical<P> {
         }
     }
 
+    /// Hamilton's vector field with the damping force: q̇ = M⁻¹p, ṗ = −∇V(q) − diag(c) q̇.
+    pub fn hamilton_rates(&self, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) {
+        dq.copy_from_slice(p);
+        self.mass_solve(dq);
+        self.gradient(q, dp);
+        dp.iter_mut().for_each(|g| *g = -*g);
+        if let Some(c) = self.damping() {
+            dp.iter_mut().zip(c).zip(dq.iter()).for_each(|((f, ci), v)| *f -= ci * v);
+        }
+    }
+
     /// The energy H(q, p) = ½ pᵀM⁻¹p + V(q) of a position-momentum state.
     pub fn energy(&self, q: &[f64], p: &[f64]) -> f64 {
         self.kinetic_energy(p) + self.potential_energy(q)

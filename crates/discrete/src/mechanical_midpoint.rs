@@ -206,6 +206,10 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
     fn order(&self) -> u32 {
         2
     }
+    fn rates(&self, _t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        self.sys.hamilton_rates(q, p, dq, dp);
+        Some(Ok(()))
+    }
     fn name(&self) -> &'static str {
         "variational midpoint (mechanical)"
     }

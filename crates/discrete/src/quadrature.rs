@@ -47,6 +47,14 @@ pub trait FromLagrangian {
         self.continuous()
             .energy(state.t, state.q.as_slice(), v.as_slice())
     }
+
+    /// Hamilton's vector field of the continuous system at (t, q, p): q̇ from the inverse Legendre map
+    /// and ṗ = ∂L/∂q(t, q, q̇) (the Euler-Lagrange equation d/dt ∂L/∂q̇ = ∂L/∂q).
+    fn hamilton_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Result<()> {
+        let v = self.continuous().velocities(t, q, p)?;
+        dq.copy_from_slice(v.as_slice());
+        self.continuous().gradient_q(t, q, v.as_slice(), dp)
+    }
 }
 
 /// The midpoint discrete Lagrangian `L_d = h L(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h)`.
@@ -71,6 +79,9 @@ impl<L: Lagrangian> FromLagrangian for Midpoint<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
+    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        Some(self.hamilton_rates(t, q, p, dq, dp))
+    }
     fn dof(&self) -> usize {
         self.el.dof()
     }
@@ -122,6 +133,9 @@ impl<L: Lagrangian> FromLagrangian for Trapezoidal<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
+    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        Some(self.hamilton_rates(t, q, p, dq, dp))
+    }
     fn dof(&self) -> usize {
         self.el.dof()
     }

@@ -11,6 +11,7 @@ mod accelerations;
 mod bad_input;
 mod hamilton;
 mod legendre;
+mod legendre_transform;
 mod momenta;
 #[allow(dead_code)]
 mod systems;

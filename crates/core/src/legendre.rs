@@ -1,0 +1,366 @@
+//! The Hamiltonian of any Lagrangian, by the Legendre transform: [`LegendreTransform`].
+//!
+//! For a Lagrangian L(t, q, q̇) convex in q̇ (mass matrix M = ∂²L/∂q̇² positive definite),
+//!
+//! ```text
+//! H(t, q, p) = p·q̇ − L(t, q, q̇),   q̇ = q̇(t, q, p) the solution of ∂L/∂q̇(t, q, q̇) = p.
+//! ```
+//!
+//! No formula for q̇(p) is needed: [`LegendreTransform`] solves for it and differentiates the
+//! solution exactly, so that Gauss-Legendre, the symplectic methods and every other tool built on
+//! [`HamiltonEquations`](crate::HamiltonEquations) apply to a Lagrangian written once.
+//!
+//! **The real solve.** The real part q̇₀ is found by the crate's [`Newton`](crate::Newton) with the
+//! AD mass matrix as Jacobian (the inverse Legendre map of [`EulerLagrange`]), warm-started from the
+//! last solve, then polished by one more Newton step with M(t, q, q̇₀) factored by Cholesky (so q̇₀ is
+//! the root to rounding and M is known positive definite at it).
+//!
+//! **The derivatives, by the implicit-function theorem.** The model is evaluated with a dual scalar
+//! D (first derivatives for Hamilton's equations, second for the Jacobians of Gauss-Legendre). The
+//! velocities in D are obtained by k chord-Newton steps *evaluated in D*, from q̇₀ and with the real
+//! M(t, q, q̇₀)⁻¹:
+//!
+//! ```text
+//! q̇ ← q̇ − M(t₀, q₀, q̇₀)⁻¹ (∂L/∂q̇(t, q, q̇) − p)      (∂L/∂q̇ in D by nested duals)
+//! ```
+//!
+//! If the error of q̇ has no term below derivative order m + 1, a step leaves none below order m + 2
+//! (the step's matrix differs from the exact Jacobian only in its derivative parts): after k steps q̇
+//! is exact through order k. H is stationary in q̇ (∂H/∂q̇ = p − ∂L/∂q̇ = 0 at the solution), so its
+//! error is quadratic in that of q̇: H is exact through order 2k + 1. The number of steps is chosen
+//! from the scalar, k = ⌊D::NDERIV / 2⌋: none for f64 and for gradients (∂H/∂p = q̇₀ and
+//! ∂H/∂q = −∂L/∂q, the envelope theorem), one for Hessians and third derivatives (H exact through
+//! order 3). Every integrator of the workspace asks for at most second derivatives of H. There is
+//! no finite difference anywhere: the results are exact to rounding.
+//!
+//! **Quadratic Lagrangians.** When the Lagrangian declares
+//! [`constant_mass_matrix`](Lagrangian::constant_mass_matrix) (so L = ½ q̇ᵀ M q̇ + a(t, q)·q̇ + L₀(t, q)),
+//! M is factored and inverted once, q̇₀ = M⁻¹ (p − a) comes from one gradient and no Newton iteration,
+//! and the one step in D is exact Newton on a linear equation: q̇ is exact to every order. (The closed
+//! form ½ (p − a)ᵀ M(q)⁻¹ (p − a) − L₀ for a q-dependent M is not implemented: it needs M(q) in D, a
+//! second derivative in q̇ nested in the caller's scalar, and a linear solve in D; whether that beats
+//! the real solve plus one nested gradient has not been measured. The cost of the general path
+//! against a hand-written H is in docs/benchmarks.md.)
+//!
+//! **Errors.** [`Hamiltonian::hamiltonian`] returns a scalar, so a failure (a singular or indefinite
+//! mass matrix, Newton not converging, non-finite input) makes it NaN, and
+//! [`Hamiltonian::failure`] gives the typed error, which
+//! [`HamiltonEquations`](crate::HamiltonEquations) and so every Hamiltonian integrator report:
+//! [`Error::SingularMassMatrix`], [`Error::IndefiniteMassMatrix`], [`Error::NewtonDiverged`],
+//! [`Error::NonFinite`]. [`LegendreTransform::value`] and [`LegendreTransform::velocities`] are the
+//! fallible real paths.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//!
+//! /// Plane pendulum, L = ½ m l² θ̇² + m g l cos θ; by hand H = p²/(2 m l²) − m g l cos θ.
+//! struct Pendulum;
+//! impl Lagrangian for Pendulum {
+//!     fn dof(&self) -> usize { 1 }
+//!     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+//!         v[0] * v[0] * (0.5 * 2.0) + q[0].cos() * (2.0 * 9.81)
+//!     }
+//! }
+//! let h = HamiltonEquations::new(LegendreTransform::new(Pendulum));
+//! let (q, p) = ([0.3], [1.7]);
+//! assert!((h.energy(0.0, &q, &p).unwrap() - (1.7 * 1.7 / 4.0 - 2.0 * 9.81 * 0.3f64.cos())).abs() < 1e-14);
+//! let (mut dq, mut dp) = ([0.0], [0.0]);
+//! h.rates(0.0, &q, &p, &mut dq, &mut dp).unwrap();
+//! assert!((dq[0] - 1.7 / 2.0).abs() < 1e-15 && (dp[0] + 2.0 * 9.81 * 0.3f64.sin()).abs() < 1e-14);
+//!
+//! // Gauss-Legendre on the Hamiltonian of a Lagrangian: one period of small oscillations.
+//! let small = State::new(0.0, [1e-3], [0.0]);
+//! let period = 2.0 * std::f64::consts::PI / 9.81f64.sqrt();
+//! let mut run = Driver::new(Gauss::gauss4(h), small).unwrap().step(period / 200.0).unwrap();
+//! assert!((run.run_until(period).unwrap().last().q[0] - 1e-3).abs() < 1e-9);
+//! ```
+
+use crate::ad::{self, Block, Buf, MAX_FIXED};
+use crate::error::check_phase_point;
+use crate::lagrange::{LagrangianField, MassFactor, SINGULAR_PIVOT};
+use crate::newton::max_norm;
+use crate::{Error, EulerLagrange, Hamiltonian, Lagrangian, Result, Scalar};
+use nalgebra::{Const, DMatrix, DVector, U1};
+use num_dual::{Dual, Dual2Vec};
+use std::sync::{Mutex, OnceLock};
+
+/// The Hamiltonian H(t, q, p) = p·q̇ − L(t, q, q̇), ∂L/∂q̇(t, q, q̇) = p, of any [`Lagrangian`] convex
+/// in q̇: see the [module documentation](self) for the solve, the exactness of its derivatives
+/// (one Newton step in the dual scalar per two derivative orders beyond the first) and its errors.
+///
+/// `Sync`: the warm start (the last real solution q̇₀) is behind a [`Mutex`], taken with `try_lock`;
+/// a thread that finds it held starts cold, from q̇ = M(t, q, 0)⁻¹ p. The value of H does not depend
+/// on the start (L convex in q̇: the solution is unique).
+pub struct LegendreTransform<L> {
+    equations: EulerLagrange<L>,
+    warm: Mutex<Vec<f64>>,
+    constant_inverse: OnceLock<Result<DMatrix<f64>>>,
+}
+
+/// A real solve: the velocities q̇₀ and, when asked for, M(t, q, q̇₀)⁻¹.
+struct Solved {
+    v: Vec<f64>,
+    inverse: Option<DMatrix<f64>>,
+}
+
+impl<L: Lagrangian + Clone> Clone for LegendreTransform<L> {
+    /// A transform of a copy of the Lagrangian, with an empty warm start.
+    fn clone(&self) -> Self {
+        LegendreTransform::new(self.equations.lagrangian().clone())
+    }
+}
+
+impl<L: Lagrangian + std::fmt::Debug> std::fmt::Debug for LegendreTransform<L> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LegendreTransform")
+            .field("lagrangian", self.equations.lagrangian())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<L: Lagrangian> LegendreTransform<L> {
+    /// The Hamiltonian of `lagrangian`.
+    pub fn new(lagrangian: L) -> Self {
+        LegendreTransform {
+            equations: EulerLagrange::new(lagrangian),
+            warm: Mutex::new(Vec::new()),
+            constant_inverse: OnceLock::new(),
+        }
+    }
+
+    /// The wrapped Lagrangian.
+    pub fn lagrangian(&self) -> &L {
+        self.equations.lagrangian()
+    }
+
+    /// The Lagrangian's equations (momenta, energy, the Legendre maps between states in velocities
+    /// and in momenta).
+    pub fn equations(&self) -> &EulerLagrange<L> {
+        &self.equations
+    }
+
+    /// The velocities q̇(t, q, p) solving ∂L/∂q̇ = p, to rounding, or the error that makes H undefined
+    /// there.
+    pub fn velocities(&self, t: f64, q: &[f64], p: &[f64]) -> Result<DVector<f64>> {
+        Ok(DVector::from_vec(self.solve(t, q, p, false)?.v))
+    }
+
+    /// H(t, q, p), or the error that makes it undefined there.
+    pub fn value(&self, t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
+        let v = self.solve(t, q, p, false)?.v;
+        let h = p.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>() - self.lagrangian().lagrangian(t, q, &v);
+        if !h.is_finite() {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        Ok(h)
+    }
+
+    /// The real solve at (t, q, p); `inverse` asks for M(t, q, q̇₀)⁻¹ as well.
+    fn solve(&self, t: f64, q: &[f64], p: &[f64], inverse: bool) -> Result<Solved> {
+        let n = self.lagrangian().dof();
+        check_phase_point(n, t, q, p, "p")?;
+        if self.lagrangian().constant_mass_matrix() {
+            return self.solve_quadratic(t, q, p, inverse);
+        }
+        // Warm start from the last solution when there is one (and the lock is free).
+        let warm = self
+            .warm
+            .try_lock()
+            .ok()
+            .and_then(|w| (w.len() == n).then(|| w.clone()));
+        let (start, was_warm) = match warm {
+            Some(v) => (v, true),
+            None => (self.equations.velocity_start(t, q, p)?, false),
+        };
+        let scale = 1.0 + max_norm(p);
+        let (mut g, mut m) = self.momenta_and_mass(t, q, &start);
+        let mut v = start;
+        // The residual ∂L/∂q̇ − p; Newton unless the start already solves to the inverse map's tolerance.
+        if residual(&mut g, p) > 1e-13 * scale {
+            let solved = match self.equations.velocities_from(t, q, p, &v) {
+                Err(_) if was_warm => {
+                    let cold = self.equations.velocity_start(t, q, p)?;
+                    self.equations.velocities_from(t, q, p, &cold)
+                }
+                other => other,
+            }?;
+            v = solved.data.into();
+            (g, m) = self.momenta_and_mass(t, q, &v);
+            residual(&mut g, p);
+        }
+        // Polish: one Newton step with M at q̇₀ itself (positive definite, or the error).
+        let chol = positive_definite(m, t)?;
+        let mut dv = DVector::from_vec(g);
+        chol.solve_mut(&mut dv);
+        v.iter_mut().zip(dv.iter()).for_each(|(vi, di)| *vi -= di);
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        if let Ok(mut w) = self.warm.try_lock() {
+            w.clone_from(&v);
+        }
+        Ok(Solved {
+            v,
+            inverse: inverse.then(|| chol.inverse()),
+        })
+    }
+
+    /// L quadratic in q̇ with a constant M: q̇₀ = M⁻¹ (p − ∂L/∂q̇(t, q, 0)), M inverted once.
+    fn solve_quadratic(&self, t: f64, q: &[f64], p: &[f64], inverse: bool) -> Result<Solved> {
+        let n = p.len();
+        let minv = self
+            .constant_inverse
+            .get_or_init(|| {
+                let zero = vec![0.0; n];
+                let m = self.equations.mass_matrix(t, q, &zero)?;
+                Ok(positive_definite(m, t)?.inverse())
+            })
+            .as_ref()
+            .map_err(Clone::clone)?;
+        let zero = vec![0.0; n];
+        let mut a = vec![0.0; n];
+        ad::gradient(&LagrangianField(self.lagrangian()), t, q, &zero, Block::Y, &mut a);
+        let r = DVector::from_iterator(n, p.iter().zip(&a).map(|(pi, ai)| pi - ai));
+        let v: Vec<f64> = (minv * r).data.into();
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteState { step: 0, t });
+        }
+        Ok(Solved {
+            v,
+            inverse: inverse.then(|| minv.clone()),
+        })
+    }
+
+    /// ∂L/∂q̇ and M = ∂²L/∂q̇² at (t, q, q̇): one `Dual2Vec` evaluation up to [`MAX_FIXED`] degrees of
+    /// freedom, the gradient and Hessian kernels of [`ad`] beyond.
+    fn momenta_and_mass(&self, t: f64, q: &[f64], v: &[f64]) -> (Vec<f64>, DMatrix<f64>) {
+        let n = v.len();
+        let f = LagrangianField(self.lagrangian());
+        if n == 0 {
+            return (Vec::new(), DMatrix::zeros(0, 0));
+        }
+        if n > MAX_FIXED {
+            let mut g = vec![0.0; n];
+            ad::gradient(&f, t, q, v, Block::Y, &mut g);
+            let mut m = DMatrix::zeros(n, n);
+            ad::hessian(&f, t, q, v, Block::Y, Block::Y, &mut m);
+            return (g, m);
+        }
+        crate::with_width!(n, momenta_and_mass_w::<L>(self.lagrangian(), t, q, v))
+    }
+}
+
+/// [`LegendreTransform::momenta_and_mass`] for n ≤ W: one evaluation with `Dual2Vec<W>` seeded on q̇.
+fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
+    l: &L,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> (Vec<f64>, DMatrix<f64>) {
+    type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
+    let n = v.len();
+    let qs = Buf::<D2<W>, W>::new(q.len(), |i| D2::<W>::from_re(q[i]));
+    let vs = Buf::<D2<W>, W>::new(n, |i| D2::<W>::from_re(v[i]).derivative(i));
+    let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
+    let g = r.v1.unwrap_generic(U1, Const::<W>);
+    let h = r.v2.unwrap_generic(Const::<W>, Const::<W>);
+    (
+        g.as_slice()[..n].to_vec(),
+        DMatrix::from_fn(n, n, |i, j| h[(i, j)]),
+    )
+}
+
+/// g ← g − p; returns ‖g − p‖∞.
+fn residual(g: &mut [f64], p: &[f64]) -> f64 {
+    g.iter_mut().zip(p).for_each(|(gi, pi)| *gi -= pi);
+    max_norm(g)
+}
+
+/// The Cholesky factor of a positive definite mass matrix, or why there is none:
+/// [`Error::SingularMassMatrix`] (the crate's relative-pivot test, [`MassFactor`]) or
+/// [`Error::IndefiniteMassMatrix`] (regular with a negative eigenvalue).
+fn positive_definite(m: DMatrix<f64>, t: f64) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
+    match MassFactor::new(m.clone(), t)? {
+        MassFactor::Cholesky(c) => Ok(c),
+        MassFactor::Lu(_) => {
+            let eig = m.symmetric_eigenvalues();
+            let (lo, hi) = eig.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), e| {
+                (lo.min(*e), hi.max(e.abs()))
+            });
+            if lo.abs() < SINGULAR_PIVOT * hi {
+                return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
+            }
+            Err(Error::IndefiniteMassMatrix {
+                t,
+                eigenvalue: lo / hi,
+            })
+        }
+    }
+}
+
+/// ∂L/∂q̇(t, q, v) in the scalar D, by nested duals `Dual<D>`: one evaluation per component (one
+/// instantiation per scalar; a `DualVec<D, W>` per chunk width would multiply the code generated for
+/// every scalar the integrators use by the number of widths, for about the same arithmetic).
+fn momenta_in<L: Lagrangian, D: Scalar>(l: &L, t: D, q: &[D], v: &[D], out: &mut [D]) {
+    // Nested duals are twice the size of D: on the stack for up to 12 degrees of freedom.
+    let lift = |x: &[D]| Buf::<Dual<D, f64>, 12>::new(x.len(), |i| Dual::from_re(x[i]));
+    let (ts, qs, mut vs) = (Dual::from_re(t), lift(q), lift(v));
+    for (k, o) in out.iter_mut().enumerate() {
+        vs[k] = Dual::from_re(v[k]).derivative();
+        *o = l.lagrangian(ts, &qs, &vs).eps;
+        vs[k] = Dual::from_re(v[k]);
+    }
+}
+
+impl<L: Lagrangian> Hamiltonian for LegendreTransform<L> {
+    fn dof(&self) -> usize {
+        self.lagrangian().dof()
+    }
+
+    /// p·q̇ − L(t, q, q̇) with q̇ from the real solve and ⌊D::NDERIV / 2⌋ chord-Newton steps in D (the
+    /// [module documentation](self)); NaN (value and derivative parts) where the transform fails
+    /// ([`failure`](Hamiltonian::failure) says why).
+    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
+        let n = self.dof();
+        let (q0, p0) = (
+            Buf::<f64, 12>::new(q.len(), |i| q[i].re()),
+            Buf::<f64, 12>::new(p.len(), |i| p[i].re()),
+        );
+        let steps = if self.lagrangian().constant_mass_matrix() {
+            // One step is exact Newton on an equation linear in q̇.
+            usize::from(D::NDERIV >= 2)
+        } else {
+            D::NDERIV / 2
+        };
+        let Ok(solved) = self.solve(t.re(), &q0, &p0, steps > 0) else {
+            // NaN in the value and in every derivative part that the caller seeded.
+            return q.iter().chain(p).fold(t, |s, x| s + *x) * f64::NAN;
+        };
+        let mut v = Buf::<D, 12>::new(n, |i| D::from(solved.v[i]));
+        if let Some(minv) = &solved.inverse {
+            let mut r = Buf::<D, 12>::new(n, |_| D::zero());
+            for _ in 0..steps {
+                momenta_in(self.lagrangian(), t, q, &v, &mut r);
+                r.iter_mut().zip(p).for_each(|(ri, pi)| *ri -= *pi);
+                for i in 0..n {
+                    let mut dv = D::zero();
+                    for j in 0..n {
+                        dv += r[j] * minv[(i, j)];
+                    }
+                    v[i] -= dv;
+                }
+            }
+        }
+        let mut pv = D::zero();
+        for i in 0..n {
+            pv += p[i] * v[i];
+        }
+        pv - self.lagrangian().lagrangian(t, q, &v)
+    }
+
+    /// The error of the real solve at (t, q, p) (non-finite input, a singular or indefinite mass
+    /// matrix, Newton not converging), or `None` when it succeeds.
+    fn failure(&self, t: f64, q: &[f64], p: &[f64]) -> Option<Error> {
+        self.solve(t, q, p, false).err()
+    }
+}
