@@ -8,9 +8,10 @@
 //!
 //! The mass matrix M(θ₁ − θ₂) depends on the configuration, so the system is not separable and the
 //! explicit symplectic compositions do not apply; Gauss-Legendre collocation does (symplectic for any
-//! Hamiltonian). It integrates Hamilton's equations, so the model is also written as the Legendre
-//! transform of L, H = ½ pᵀ M(q)⁻¹ p − V(q), and the example checks that H(q, ∂L/∂q̇) equals the energy
-//! function h of the Lagrangian before trusting it.
+//! Hamiltonian). It integrates Hamilton's equations of the H that noether builds from L by the Legendre
+//! transform (`LegendreTransform`: q̇ from p by Newton on the AD mass matrix, H = p·q̇ − L, its
+//! derivatives exact by the implicit-function theorem), so no Hamiltonian is written by hand; the
+//! example checks that H(q, ∂L/∂q̇) equals the energy function h of the Lagrangian.
 //!
 //! The driver records the energy with an observer every 0.01 time units and counts the lower rod's
 //! flips over the top with an event (θ₂ passing an odd multiple of π, where cos(θ₂/2) changes sign).
@@ -52,23 +53,6 @@ impl Lagrangian for DoublePendulum {
     }
 }
 
-/// H = ½ pᵀ M⁻¹ p − V with M = [[a, b c], [b c, d]], a = (m₁ + m₂) l₁², d = m₂ l₂², b = m₂ l₁ l₂,
-/// c = cos(θ₁ − θ₂): M⁻¹ = [[d, −b c], [−b c, a]] / (a d − b² c²).
-impl Hamiltonian for DoublePendulum {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let Self { m1, m2, l1, l2, g } = *self;
-        let (a, b, d) = ((m1 + m2) * l1 * l1, m2 * l1 * l2, m2 * l2 * l2);
-        let c = (q[0] - q[1]).cos();
-        let det = -(c * c * (b * b)) + a * d;
-        (p[0] * p[0] * d - p[0] * p[1] * c * (2.0 * b) + p[1] * p[1] * a) / (det * 2.0)
-            - q[0].cos() * ((m1 + m2) * g * l1)
-            - q[1].cos() * (m2 * g * l2)
-    }
-}
-
 impl DoublePendulum {
     /// Position of the lower bob (x to the right, y up, pivot at the origin).
     pub fn lower_bob(&self, q: &[f64]) -> (f64, f64) {
@@ -105,7 +89,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let e0 = el.energy(0.0, &q0, &v0)?;
     // The Hamiltonian is the Legendre transform of L: H(q, p) with p = ∂L/∂q̇ equals h(q, q̇). Checked at
     // a generic moving state (the start is at rest, where the kinetic part vanishes).
-    let ham = HamiltonEquations::new(dp);
+    let ham = HamiltonEquations::new(LegendreTransform::new(dp));
     let (qt, vt) = ([0.7, -1.9], [1.3, -2.1]);
     let mut pt = [0.0; 2];
     el.momenta(0.0, &qt, &vt, &mut pt)?;

@@ -14,6 +14,7 @@
 //!
 //! Run: `cargo run --release --example spherical_pendulum`.
 
+use noether::core::roots::bracketed_root;
 use noether::prelude::*;
 /// A point mass in 3D, z up: L = ½ m |ṙ|² − m g z.
 pub use noether_gallery::examples::bead_rotating_hoop::Bead;
@@ -118,18 +119,10 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let dl = max_abs(&cart.observed("L_z drift").ok_or_else(|| missing("L_z drift"))?);
 
     // Turning points of θ: the roots of E = L_z²/(2 m l² sin²θ) − m g l cos θ. One is θ₀ = 1 (released
-    // with θ̇ = 0); the other is found by bisection on (0, θ₀).
-    let veff = |th: f64| lz0 * lz0 / (2.0 * m * l * l * th.sin().powi(2)) - m * g * l * th.cos();
-    let (mut lo, mut hi) = (1e-6, 1.0 - 1e-6);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if veff(mid) > e0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let theta_min_expected = 0.5 * (lo + hi);
+    // with θ̇ = 0); the other is the root of V_eff(θ) − E on (0, θ₀), by core's bracketed root finder.
+    let veff = |th: f64| lz0 * lz0 / (2.0 * m * l * l * th.sin().powi(2)) - m * g * l * th.cos() - e0;
+    let (lo, hi) = (1e-6, 1.0 - 1e-6);
+    let theta_min_expected = bracketed_root(veff, (lo, veff(lo)), (hi, veff(hi)));
     let tmax = cart
         .events_named("θ largest")
         .map(|e| theta_of(&e.state))
