@@ -163,7 +163,7 @@ fn free_particle() -> impl Lagrangian {
 #[test]
 fn closed_form_constrained_methods_through_the_driver() {
     // Uniform motion on the unit circle at unit speed: x = cos t.
-    let mut rattle = Rattle::new(Midpoint::new(free_particle()), Circle).unwrap();
+    let rattle = Rattle::new(Midpoint::new(free_particle()), Circle).unwrap();
     let start = rattle.state_from_velocities(0.0, &[1.0, 0.0], &[0.0, 1.0]).unwrap();
     assert_within("RATTLE (midpoint)", measure(rattle, start, Some(1e-2)), 1e-3, 1e-3);
     let sys = Constrained::new(free_particle(), HolonomicSet(Circle)).unwrap();
