@@ -112,12 +112,16 @@ struct Run {
 fn simulate(p: ChargedParticle, v0: [f64; 3], t_end: f64, h: f64) -> Result<Run, BoxError> {
     let start = State::<Momenta>::new(0.0, [0.0; 3], v0.map(|v| p.m * v));
     let n = (t_end / h).round() as usize;
-    let sol = Driver::with_step(Gauss::gauss6(HamiltonEquations::new(LegendreTransform::new(p))), start, h)?
-        .observe_each(["vx", "vy", "vz"], |s: &State<Momenta>, out: &mut [f64]| {
-            out.copy_from_slice(&p.velocity(s.q.as_slice(), s.p().as_slice()));
-            Ok(())
-        })
-        .run_steps(n)?;
+    let sol = Driver::with_step(
+        Gauss::gauss6(HamiltonEquations::new(LegendreTransform::new(p))),
+        start,
+        h,
+    )?
+    .observe_each(["vx", "vy", "vz"], |s: &State<Momenta>, out: &mut [f64]| {
+        out.copy_from_slice(&p.velocity(s.q.as_slice(), s.p().as_slice()));
+        Ok(())
+    })
+    .run_steps(n)?;
     let (vx, vy, vz) = match ["vx", "vy", "vz"].map(|name| sol.observed(name)) {
         [Some(vx), Some(vy), Some(vz)] => (vx, vy, vz),
         _ => return Err("no velocity recorded".into()),

@@ -26,9 +26,9 @@
 //!
 //! Run: `cargo run --release --example three_body` (the orbits near L4 go to `gallery-out/`).
 
+use noether::core::roots::bracketed_root;
 use noether::nalgebra::Complex;
 use noether::plot::Figure;
-use noether::core::roots::bracketed_root;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
@@ -254,16 +254,20 @@ fn l4_orbit(
     let c0 = jacobi(&sys, &start);
     let h = 1e-2;
     let distance = |s: &State<Momenta>| ((s.q[0] - l4[0]).powi(2) + (s.q[1] - l4[1]).powi(2)).sqrt();
-    let sol = Driver::with_step(Gauss::gauss6(HamiltonEquations::new(LegendreTransform::new(sys))), start, h)?
-        .observe("Jacobi drift", |s: &State<Momenta>| (jacobi(&sys, s) - c0).abs())
-        .observe("distance from L4", distance)
-        // Once it has left, the check below has its answer, and the run need not go near a primary.
-        .event(
-            Event::new("left L4", |s: &State<Momenta>| distance(s) - 0.5)
-                .rising()
-                .terminal(),
-        )
-        .run_steps((60.0 / h) as usize)?;
+    let sol = Driver::with_step(
+        Gauss::gauss6(HamiltonEquations::new(LegendreTransform::new(sys))),
+        start,
+        h,
+    )?
+    .observe("Jacobi drift", |s: &State<Momenta>| (jacobi(&sys, s) - c0).abs())
+    .observe("distance from L4", distance)
+    // Once it has left, the check below has its answer, and the run need not go near a primary.
+    .event(
+        Event::new("left L4", |s: &State<Momenta>| distance(s) - 0.5)
+            .rising()
+            .terminal(),
+    )
+    .run_steps((60.0 / h) as usize)?;
     let left = !sol.event_times("left L4").is_empty();
     // The rows are the computed steps, plus, when the orbit left, the state at the event: read off the
     // cubic Hermite interpolant of its step, whose O(h⁴) error (measured 3.2e-13 of C at μ = 0.05,

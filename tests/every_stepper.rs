@@ -233,9 +233,19 @@ impl LocalPotential for LocalSpring {
 #[test]
 fn closed_form_mechanical_variational_methods_through_the_driver() {
     let mechanical = || Mechanical::new(Mass::Diagonal(vec![1.0]), LocalSpring).unwrap();
-    assert_within("Verlet (mechanical)", measure(Verlet::new(mechanical()), rest_p(), Some(1e-2)), 1e-3, 1e-3);
+    assert_within(
+        "Verlet (mechanical)",
+        measure(Verlet::new(mechanical()), rest_p(), Some(1e-2)),
+        1e-3,
+        1e-3,
+    );
     let midpoint = MechanicalMidpoint::new(mechanical());
-    assert_within("midpoint (mechanical)", measure(midpoint, rest_p(), Some(1e-2)), 1e-3, 1e-3);
+    assert_within(
+        "midpoint (mechanical)",
+        measure(midpoint, rest_p(), Some(1e-2)),
+        1e-3,
+        1e-3,
+    );
 }
 
 /// A free unit mass in the plane on the unit circle, φ = (|r|² − 1)/2.
@@ -259,7 +269,7 @@ fn free_particle() -> impl Lagrangian {
 #[test]
 fn closed_form_constrained_methods_through_the_driver() {
     // Uniform motion on the unit circle at unit speed: x = cos t.
-    let mut rattle = Rattle::new(Midpoint::new(free_particle()), Circle).unwrap();
+    let rattle = Rattle::new(Midpoint::new(free_particle()), Circle).unwrap();
     let start = rattle
         .state_from_velocities(0.0, &[1.0, 0.0], &[0.0, 1.0])
         .unwrap();

@@ -84,9 +84,21 @@ fn closed_form_coupled_chains() {
 }
 
 #[test]
+fn closed_form_coupled_chains_transfer() {
+    assert_example_passes("coupled_chains_transfer");
+}
+
+#[test]
+fn closed_form_coupled_chains_heat() {
+    assert_example_passes("coupled_chains_heat");
+}
+
+#[test]
 fn closed_form_heavy_top() {
     assert_example_passes("heavy_top");
+}
 
+#[test]
 fn closed_form_harmonic_oscillator() {
     assert_example_passes("harmonic_oscillator");
 }
@@ -124,7 +136,9 @@ fn closed_form_bertrand() {
 #[test]
 fn closed_form_cyclotron() {
     assert_example_passes("cyclotron");
+}
 
+#[test]
 fn closed_form_pendulum_cartesian() {
     assert_example_passes("pendulum_cartesian");
 }

@@ -106,7 +106,14 @@ impl<Ld: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &Ld {
     fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
         (**self).discrete_force(t0, h, q0, q1, minus, plus)
     }
-    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn continuous_rates(
+        &self,
+        t: f64,
+        q: &[f64],
+        p: &[f64],
+        dq: &mut [f64],
+        dp: &mut [f64],
+    ) -> Option<Result<()>> {
         (**self).continuous_rates(t, q, p, dq, dp)
     }
 }

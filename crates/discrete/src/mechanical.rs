@@ -387,7 +387,10 @@ impl<P: LocalPotential> Mechanical<P> {
         self.gradient(q, dp);
         dp.iter_mut().for_each(|g| *g = -*g);
         if let Some(c) = self.damping() {
-            dp.iter_mut().zip(c).zip(dq.iter()).for_each(|((f, ci), v)| *f -= ci * v);
+            dp.iter_mut()
+                .zip(c)
+                .zip(dq.iter())
+                .for_each(|((f, ci), v)| *f -= ci * v);
         }
     }
 

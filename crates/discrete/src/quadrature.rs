@@ -79,7 +79,14 @@ impl<L: Lagrangian> FromLagrangian for Midpoint<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
-    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn continuous_rates(
+        &self,
+        t: f64,
+        q: &[f64],
+        p: &[f64],
+        dq: &mut [f64],
+        dp: &mut [f64],
+    ) -> Option<Result<()>> {
         Some(self.hamilton_rates(t, q, p, dq, dp))
     }
     fn dof(&self) -> usize {
@@ -133,7 +140,14 @@ impl<L: Lagrangian> FromLagrangian for Trapezoidal<L> {
 }
 
 impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
-    fn continuous_rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn continuous_rates(
+        &self,
+        t: f64,
+        q: &[f64],
+        p: &[f64],
+        dq: &mut [f64],
+        dp: &mut [f64],
+    ) -> Option<Result<()>> {
         Some(self.hamilton_rates(t, q, p, dq, dp))
     }
     fn dof(&self) -> usize {
