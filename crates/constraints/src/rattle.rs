@@ -45,7 +45,7 @@
 //!
 //! let mut rattle = Rattle::new(Midpoint::new(Mass), Sphere).unwrap();
 //! let mut s = rattle.state_from_velocities(0.0, &[0.6, 0.0, -0.8], &[0.0, 2.0, 0.0]).unwrap();
-//! let lz = |s: &State| s.q[0] * s.v[1] - s.q[1] * s.v[0]; // discrete Noether momentum of z-rotations
+//! let lz = |s: &State<Momenta>| s.q[0] * s.p()[1] - s.q[1] * s.p()[0]; // discrete Noether momentum of z-rotations
 //! let l0 = lz(&s);
 //! for _ in 0..1000 {
 //!     rattle.step(&mut s, 0.01).unwrap();

@@ -54,7 +54,7 @@ impl<S: Stepper> ChartGuard<S> {
         }
     }
 
-    /// The usual chart of a polar angle (Euler angle θ, spherical θ): valid while |sin q[index]| ≥
+    /// The usual chart of a polar angle (Euler angle θ, spherical θ): valid while |sin q\[index\]| ≥
     /// `min_sin`. Near θ = 0 or π the Euler-angle mass matrix has det ∝ sin²θ, so relative errors grow
     /// like 1/sin²θ: `min_sin` = 1e-2 keeps the amplification below 10⁴.
     pub fn polar_angle(stepper: S, index: usize, name: &'static str, min_sin: f64) -> Self {

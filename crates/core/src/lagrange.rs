@@ -8,7 +8,7 @@
 //! ```
 //!
 //! [`EulerLagrange`] evaluates the right-hand side without any hand-written derivative:
-//! - up to [`JET_MAX`] degrees of freedom, one evaluation of L with a
+//! - up to `JET_MAX` (12) degrees of freedom, one evaluation of L with a
 //!   [`LagrangeJet`](ad::LagrangeJet) gives ∂L/∂q, the term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (a
 //!   Hessian-vector product, never the full mixed Hessian) and M together, and M is factored by an
 //!   in-place LDLᵀ on the stack: no heap allocation per call;
@@ -260,7 +260,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
 
     /// Accelerations q̈ = M⁻¹ (∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q), written into `a`.
     ///
-    /// Up to [`JET_MAX`] degrees of freedom everything comes from one evaluation of L with a
+    /// Up to `JET_MAX` (12) degrees of freedom everything comes from one evaluation of L with a
     /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack (no heap allocation); larger
     /// systems take one taped evaluation of L ([`ad::lagrange_terms_taped`]) and a dense factor.
     pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
@@ -317,7 +317,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
     }
 
-    /// The run-time-sized path (more than [`JET_MAX`] degrees of freedom). A mass matrix
+    /// The run-time-sized path (more than `JET_MAX` (12) degrees of freedom). A mass matrix
     /// declared constant is factored once, and only ∂L/∂q and the mixed term are evaluated (chunked
     /// gradient and Hessian-vector product); otherwise one taped evaluation of L
     /// ([`ad::lagrange_terms_taped`]) gives ∂L/∂q, the mixed term and M together, and M is factored

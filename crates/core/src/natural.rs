@@ -6,7 +6,7 @@
 //! - a [`Lagrangian`] (so [`EulerLagrange`](crate::EulerLagrange) and every Lagrangian tool apply),
 //! - a [`Separable`] Hamiltonian T(p) + V(q) (state (q, p) through
 //!   [`SeparableHamiltonian`](crate::SeparableHamiltonian)),
-//! - a [`Dynamics`](crate::Dynamics) on (q, q̇) itself, with the fast vector field
+//! - a [`Dynamics`] on (q, q̇) itself, with the fast vector field
 //!   q̈ = −M⁻¹ ∇V(q) (one gradient of V by dual numbers, no Hessian, no mass matrix by AD).
 //!
 //! ```
@@ -74,7 +74,7 @@ enum Mass {
 /// A natural system L = ½ q̇ᵀ M q̇ − V(q) with constant SPD mass matrix M (see the [module](self) docs).
 ///
 /// Two phase-space readings, both documented where they are used:
-/// - as [`Dynamics`](crate::Dynamics) and [`SplitDynamics`](crate::integrators::SplitDynamics) the state
+/// - as [`Dynamics`] and [`SplitDynamics`](crate::integrators::SplitDynamics) the state
 ///   is (q, q̇);
 /// - wrapped as `SeparableHamiltonian(natural)` the state is (q, p) with p = M q̇.
 #[derive(Debug, Clone)]

@@ -30,7 +30,8 @@ impl<K: Partner> Solution<K> {
             .collect()
     }
 
-    /// Writes the solution as CSV to `w` (see the [module](self) docs for the layout).
+    /// Writes the solution as CSV to `w`: a header `t,q0,…,v0,…` (`p0,…` for momenta) and the observer
+    /// names, then one row per saved state in the shortest form that reads back to the same `f64`.
     pub fn write_csv<W: Write>(&self, w: W) -> Result<()> {
         let mut out = csv::Writer::from_writer(w);
         out.write_record(self.csv_header()).map_err(csv_error)?;

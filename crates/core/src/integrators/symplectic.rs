@@ -9,7 +9,7 @@
 //!   K(q) = −M⁻¹∇V(q) (M factored once). This is the same method as on (q, p = M q̇), written in
 //!   velocities.
 //!
-//! All gradients come from dual numbers ([`ad::gradient`](crate::ad::gradient)); no Hessian is formed.
+//! All gradients come from dual numbers ([`ad::gradient`]); no Hessian is formed.
 //! A general [`EulerLagrange`](crate::EulerLagrange) or [`HamiltonEquations`](crate::HamiltonEquations)
 //! system is not split, so asking an explicit symplectic method to step it does not compile:
 //!

@@ -138,7 +138,7 @@ where
     DefaultAllocator: Allocator<C, C> + Allocator<U1, C>,
 {
     /// `self += α (u vᵀ + v uᵀ)` for row vectors u, v (`v = u` gives 2α u uᵀ); only the columns where
-    /// u or v is non-zero are touched (for parts of at least [`SPAN_MIN`] columns).
+    /// u or v is non-zero are touched (for parts of at least `SPAN_MIN` columns).
     #[inline(always)]
     pub fn sym_outer(&mut self, alpha: &T, u: &Part<T, F, U1, C>, v: &Part<T, F, U1, C>) {
         let (Some(u), Some(v)) = (&u.0, &v.0) else {
