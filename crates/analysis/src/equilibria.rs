@@ -291,9 +291,17 @@ impl<P: Potential + ?Sized> NewtonSystem for GradientRoot<'_, P> {
             .try_symmetric_eigen(f64::EPSILON, 10_000)
             .ok_or(noether_core::Error::SingularMatrix {
                 what: "Hessian of V (eigen-decomposition did not converge)",
+                pivot_ratio: f64::NAN,
             })?;
+        // A pseudo-inverse (directions with |λ| ≤ zero_tolerance·max|λ| are dropped in `solve`), so
+        // only the zero or non-finite Hessian is singular here; the ratio reported is that of the
+        // eigenvalues.
         if eig.eigenvalues.amax() == 0.0 || !eig.eigenvalues.iter().all(|l| l.is_finite()) {
-            return Err(noether_core::Error::SingularMatrix { what: "Hessian of V" });
+            let (lo, hi) = noether_core::linalg::pivot_range(eig.eigenvalues.iter().copied());
+            return Err(noether_core::Error::SingularMatrix {
+                what: "Hessian of V",
+                pivot_ratio: noether_core::linalg::pivot_ratio(lo, hi, hi),
+            });
         }
         self.eigen = Some(eig);
         Ok(())
@@ -301,6 +309,7 @@ impl<P: Potential + ?Sized> NewtonSystem for GradientRoot<'_, P> {
     fn solve(&mut self, rhs: &mut [f64]) -> noether_core::Result<()> {
         let eig = self.eigen.as_ref().ok_or(noether_core::Error::SingularMatrix {
             what: "Hessian of V (not factored)",
+            pivot_ratio: f64::NAN,
         })?;
         let cut = self.zero_tolerance * eig.eigenvalues.amax();
         let b = DVector::from_column_slice(rhs);

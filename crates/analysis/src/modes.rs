@@ -35,7 +35,6 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
-use noether_core::lagrange::SINGULAR_PIVOT;
 use noether_core::{EulerLagrange, Lagrangian, Scalar};
 
 use crate::equilibria::{gradient_scale, signature};
@@ -195,7 +194,8 @@ impl SmallOscillations {
     /// Normal modes about the equilibrium `q0`: K X = ω² M X by the Cholesky factor of M.
     ///
     /// Errors: [`Error::NotEquilibrium`] (with the gradient norm) when q0 is not at rest,
-    /// `SingularMassMatrix` when M is singular or indefinite, [`Error::Gyroscopic`] when L couples
+    /// `SingularMassMatrix` when M is singular, `IndefiniteMassMatrix` when it is regular but not
+    /// positive definite, [`Error::Gyroscopic`] when L couples
     /// velocities and coordinates (use [`linear_stability`](Self::linear_stability)).
     pub fn normal_modes<L: Lagrangian>(&self, lagrangian: &L, q0: &[f64]) -> Result<NormalModes> {
         let lin = self.linearise(lagrangian, q0)?;
@@ -206,8 +206,10 @@ impl SmallOscillations {
         let chol = cholesky(&lin.mass, self.t)?;
         let l = chol.l();
         // A = L⁻¹ K L⁻ᵀ = L⁻¹ (L⁻¹ K)ᵀ since K is symmetric.
+        // L passed the pivot test: a triangular solve with it cannot meet a zero diagonal.
         let singular = || noether_core::Error::SingularMatrix {
             what: "Cholesky factor of M",
+            pivot_ratio: f64::NAN,
         };
         let lk = l.solve_lower_triangular(&lin.stiffness).ok_or_else(singular)?;
         let a = l.solve_lower_triangular(&lk.transpose()).ok_or_else(singular)?;
@@ -266,22 +268,8 @@ impl SmallOscillations {
     }
 }
 
-/// Cholesky factor of a mass matrix, with the pivot test of noether-core.
+/// Cholesky factor of a mass matrix by noether-core's factorization and pivot test: singular M is
+/// `SingularMassMatrix`, regular indefinite M `IndefiniteMassMatrix`.
 fn cholesky(m: &DMatrix<f64>, t: f64) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
-    let chol = m
-        .clone()
-        .cholesky()
-        .ok_or(noether_core::Error::SingularMassMatrix { t, pivot: 0.0 })?;
-    let d = chol.l_dirty().diagonal();
-    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
-        (lo.min(v * v), hi.max(v * v))
-    });
-    if hi.is_nan() || hi <= 0.0 || lo / hi < SINGULAR_PIVOT {
-        return Err(noether_core::Error::SingularMassMatrix {
-            t,
-            pivot: if hi > 0.0 { lo / hi } else { 0.0 },
-        }
-        .into());
-    }
-    Ok(chol)
+    Ok(noether_core::linalg::positive_definite_mass(m.clone(), t)?)
 }

@@ -5,6 +5,9 @@
 //!
 //! Run: `cargo bench -p noether-constraints --bench chain_step`
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use noether_constraints::prelude::*;
 use noether_discrete::{Midpoint, VariationalIntegrator};

@@ -28,11 +28,10 @@ use crate::set::ConstraintSet;
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
 use noether_core::error::{check_len, check_phase_point};
+use noether_core::linalg::DenseFactor;
 use noether_core::{Dynamics, Error, EulerLagrange, Lagrangian, Result, Scalar, State};
 use std::sync::OnceLock;
 
-/// Relative pivot of the LU factor of the index-1 matrix below which it is reported as singular.
-pub const SINGULAR_PIVOT: f64 = 1e-13;
 /// Singular values of A below this fraction of the largest count as zero in the rank diagnosis.
 pub const RANK_TOLERANCE: f64 = 1e-10;
 
@@ -193,17 +192,11 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
         if kkt.iter().chain(rhs.iter()).any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteState { step: 0, t });
         }
-        let lu = kkt.lu();
-        let d = lu.u().diagonal();
-        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), x| {
-            (lo.min(x.abs()), hi.max(x.abs()))
-        });
-        if hi == 0.0 || lo / hi < SINGULAR_PIVOT || !lu.solve_mut(&mut rhs) {
+        // The KKT matrix [M Aᵀ; A 0] is symmetric indefinite: LU (core's factorization and pivot test).
+        match DenseFactor::lu(kkt) {
+            Ok(f) => f.solve_in_place(rhs.as_mut_slice()),
             // Say why: redundant constraints, or a mass matrix degenerate on the allowed velocities.
-            return Err(rank_error(&a, t).unwrap_or(Error::SingularMassMatrix {
-                t,
-                pivot: if hi == 0.0 { 0.0 } else { lo / hi },
-            }));
+            Err(e) => return Err(rank_error(&a, t).unwrap_or(e.in_mass_matrix(t))),
         }
         qdd.copy_from_slice(&rhs.as_slice()[..n]);
         for (l, x) in lambda.iter_mut().zip(&rhs.as_slice()[n..]) {

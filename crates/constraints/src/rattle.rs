@@ -63,7 +63,8 @@ use crate::dynamics::{max_abs, rank_error, within};
 use crate::holonomic::{self, Holonomic};
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::check_step;
-use noether_core::newton::{lu_solve, Dense, DenseProblem};
+use noether_core::linalg::{solve_with, DenseFactor};
+use noether_core::newton::{Dense, DenseProblem};
 use noether_core::{
     Error, EulerLagrange, Lagrangian, Momenta, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
 };
@@ -101,7 +102,7 @@ pub struct Rattle<Ld, C> {
     stage1_lu: Option<(f64, Lu)>,
 }
 
-type Lu = nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>;
+type Lu = DenseFactor;
 
 /// Absolute Newton tolerance on the (scaled) residual; raised to the rounding floor ε·scale. In
 /// practice Newton stops when its step reaches rounding level (‖Δx‖∞ ≤ 1e-15 (1 + ‖x‖∞)): a residual
@@ -410,26 +411,14 @@ impl<P: DenseProblem> NewtonSystem for AcrossSteps<'_, P> {
         }
         *self.lu = None;
         self.problem.jacobian(x, &mut self.jac)?;
-        let singular = Error::SingularMatrix {
-            what: "constrained variational Jacobian [D₁₂L_d G₀ᵀ; G₁ 0]",
-        };
-        if self.jac.iter().any(|v| !v.is_finite()) {
-            return Err(singular);
-        }
-        let lu = self.jac.clone().lu();
-        let d = lu.u().diagonal();
-        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
-            (lo.min(v.abs()), hi.max(v.abs()))
-        });
-        if hi == 0.0 || lo / hi < crate::dynamics::SINGULAR_PIVOT {
-            return Err(singular);
-        }
+        let lu = DenseFactor::lu(self.jac.clone())
+            .map_err(|e| e.in_matrix("constrained variational Jacobian [D₁₂L_d G₀ᵀ; G₁ 0]"))?;
         *self.lu = Some((self.h, lu));
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         let lu = self.lu.as_ref().map(|(_, lu)| lu);
-        lu_solve(lu, rhs, "constrained variational Jacobian")
+        solve_with(lu, rhs, "constrained variational Jacobian")
     }
 }
 

@@ -5,9 +5,9 @@
 //!   for the double pendulum, the cyclic-coordinate closed form for the top, a stack Cholesky of the
 //!   hand-built mass matrix for the chain);
 //! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation and a stack LDLᵀ up to 10 dof;
-//!   one taped evaluation and a heap `MassFactor` beyond: the 20- and 40-link chains);
+//!   one taped evaluation and a heap `DenseFactor` beyond: the 20- and 40-link chains);
 //! - `ad_split`: the earlier scheme from the public kernels (gradient, one Hessian-vector product, the
-//!   Hessian in q̇, a heap `MassFactor`), kept as the reference point of the optimisation; it was the
+//!   Hessian in q̇, a heap `DenseFactor`), kept as the reference point of the optimisation; it was the
 //!   path of every system above 12 dof before the tape.
 //!
 //! A second group, `terms_<system>/{jet,tape}`, times the two fused evaluations of Lagrange's terms
@@ -17,10 +17,13 @@
 //!
 //! `cargo bench -p noether-core --bench accelerations`; results in docs/benchmarks.md.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::DMatrix;
 use noether_core::ad::{self, Block, Field};
-use noether_core::{EulerLagrange, Lagrangian, MassFactor, Scalar};
+use noether_core::{EulerLagrange, Lagrangian, Scalar};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -46,7 +49,7 @@ fn ad_split<L: Lagrangian>(f: &AsField<L>, t: f64, q: &[f64], v: &[f64], a: &mut
     a.iter_mut().zip(&mixed).for_each(|(ai, mi)| *ai -= mi);
     let mut m = DMatrix::zeros(n, n);
     ad::hessian_forward(f, t, q, v, Block::Y, Block::Y, &mut m);
-    MassFactor::new(m, t).unwrap().solve_in_place(a);
+    noether_core::linalg::factor_mass(m, t).unwrap().solve_in_place(a);
 }
 
 fn group<L: Lagrangian + Copy, const N: usize>(

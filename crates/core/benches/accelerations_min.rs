@@ -9,6 +9,9 @@
 //!
 //! Results in docs/benchmarks.md. Complements the criterion bench `accelerations`.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use noether_core::{EulerLagrange, Lagrangian};
 use std::hint::black_box;
 #[allow(dead_code)]

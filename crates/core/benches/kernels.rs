@@ -9,6 +9,9 @@
 //!
 //! `cargo bench -p noether-core --bench kernels`; results in docs/benchmarks.md.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::DMatrix;
 use noether_core::ad::{self, Block, Field};

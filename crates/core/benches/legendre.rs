@@ -7,6 +7,9 @@
 //!
 //! `cargo bench -p noether-core --bench legendre`; results in docs/benchmarks.md.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use noether_core::{HamiltonEquations, Hamiltonian, LegendreTransform, Scalar};
 use std::hint::black_box;

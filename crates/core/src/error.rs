@@ -43,12 +43,13 @@ pub enum Error {
         reason: &'static str,
     },
     /// The mass matrix ∂²L/∂q̇² is singular: the Lagrangian is degenerate and q̈ is not determined.
-    #[error("singular mass matrix ∂²L/∂q̇² (degenerate Lagrangian) at t = {t}: smallest pivot {pivot:e} relative to largest")]
+    #[error("singular mass matrix ∂²L/∂q̇² (degenerate Lagrangian) at t = {t}: smallest pivot {pivot_ratio:e} relative to the scale of M")]
     SingularMassMatrix {
         /// Time at which it was found.
         t: f64,
-        /// Smallest relative pivot.
-        pivot: f64,
+        /// Smallest pivot relative to the scale of M ([`linalg::pivot_ratio`](crate::linalg::pivot_ratio);
+        /// at most [`SINGULAR_PIVOT`](crate::linalg::SINGULAR_PIVOT)).
+        pivot_ratio: f64,
     },
     /// The mass matrix ∂²L/∂q̇² is regular but not positive definite where a Lagrangian convex in q̇
     /// is required (the Legendre transform to a Hamiltonian: p = ∂L/∂q̇ then need not have one
@@ -61,10 +62,16 @@ pub enum Error {
         eigenvalue: f64,
     },
     /// A linear system (Newton Jacobian, constraint matrix) is singular.
-    #[error("singular matrix in {what}")]
+    #[error("singular matrix in {what}: smallest pivot {pivot_ratio:e} relative to the scale of the matrix")]
     SingularMatrix {
         /// Which system.
         what: &'static str,
+        /// Smallest pivot relative to the scale of the matrix
+        /// ([`linalg::pivot_ratio`](crate::linalg::pivot_ratio); at most
+        /// [`SINGULAR_PIVOT`](crate::linalg::SINGULAR_PIVOT)); NaN when the matrix had a non-finite entry
+        /// or there was no factor to solve with, or for a solver that has no pivots (an
+        /// eigen-decomposition that did not converge).
+        pivot_ratio: f64,
     },
     /// Newton's method did not converge.
     #[error("Newton did not converge after {iterations} iterations: residual norm {residual:e} (tolerance {tolerance:e})")]

@@ -25,6 +25,7 @@
 
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len};
+use crate::linalg::{self, DenseFactor};
 use crate::newton::{DenseProblem, Newton};
 use crate::{Error, Lagrangian, Momenta, Result, Scalar, State, Velocities};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
@@ -48,62 +49,21 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
     }
 }
 
-/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: an in-place LDLᵀ
-/// factorization M = L D Lᵀ (L unit lower triangular; no square root, one division per pivot) with the
-/// same relative-pivot test as [`MassFactor::new`] (the pivots d_j are the squared diagonal of the
-/// Cholesky factor). An indefinite or non-finite M goes through [`MassFactor`] (LU, or the error it
-/// reports).
+/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: nalgebra's Cholesky of the
+/// static matrix (no heap allocation) with the relative-pivot test of [`linalg`] (pivots d_j = L_jj²,
+/// scale max(d_max, max |m_ij|)). An indefinite, singular or non-finite M goes through
+/// [`linalg::factor_mass`] (LU, or the error it reports).
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
-    // Column-major: l[(i, j)] for i > j holds L; the diagonal and the strict upper triangle keep M.
-    let mut l = m;
-    let (mut dd, mut inv_d) = ([0.0; N], [0.0; N]);
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
-    for j in 0..N {
-        // w[k] = l_jk d_k for k < j (the row of L D).
-        let mut w = [0.0; N];
-        let mut d = m[(j, j)];
-        for k in 0..j {
-            w[k] = l[(j, k)] * dd[k];
-            d -= l[(j, k)] * w[k];
-        }
-        // d is the j-th pivot.
-        if d.is_nan() || d <= 0.0 {
-            return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
-                .map(|f| f.solve_in_place(b.as_mut_slice()));
-        }
-        lo = lo.min(d);
-        hi = hi.max(d);
-        let inv = 1.0 / d;
-        (dd[j], inv_d[j]) = (d, inv);
-        for i in j + 1..N {
-            let mut s = m[(i, j)];
-            for k in 0..j {
-                s -= l[(i, k)] * w[k];
-            }
-            l[(i, j)] = s * inv;
+    if let Some(ch) = m.cholesky() {
+        let (lo, hi) = linalg::pivot_range(ch.l_dirty().diagonal().iter().map(|l| l * l));
+        if !linalg::is_singular(linalg::pivot_ratio(lo, hi, m.amax())) {
+            ch.solve_mut(b);
+            return Ok(());
         }
     }
-    if lo / hi < SINGULAR_PIVOT || !hi.is_finite() {
-        return MassFactor::new(DMatrix::from_column_slice(N, N, m.as_slice()), t)
-            .map(|f| f.solve_in_place(b.as_mut_slice()));
-    }
-    // L y = b, then Lᵀ x = D⁻¹ y.
-    for i in 0..N {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[(i, k)] * b[k];
-        }
-        b[i] = s;
-    }
-    for i in (0..N).rev() {
-        let mut s = b[i] * inv_d[i];
-        for k in i + 1..N {
-            s -= l[(k, i)] * b[k];
-        }
-        b[i] = s;
-    }
-    Ok(())
+    linalg::factor_mass(DMatrix::from_column_slice(N, N, m.as_slice()), t)
+        .map(|f| f.solve_in_place(b.as_mut_slice()))
 }
 
 /// Copies finite accelerations into `a`; a non-finite one is the model's failure, reported as such.
@@ -116,74 +76,10 @@ fn finish(b: &[f64], a: &mut [f64], t: f64) -> Result<()> {
     Ok(())
 }
 
-/// A factored mass matrix.
-#[derive(Debug, Clone)]
-pub enum MassFactor {
-    /// M = L Lᵀ (symmetric positive definite: the usual case).
-    Cholesky(nalgebra::Cholesky<f64, nalgebra::Dyn>),
-    /// M = P L U (regular but indefinite).
-    Lu(nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>),
-}
-
-/// Relative pivot below which a mass matrix is reported as singular.
-pub const SINGULAR_PIVOT: f64 = 1e-13;
-
-impl MassFactor {
-    /// Factors `m`, reporting a singular (degenerate) mass matrix at time `t` as an error.
-    pub fn new(m: DMatrix<f64>, t: f64) -> Result<Self> {
-        if m.iter().any(|v| !v.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
-        }
-        let scale = m
-            .diagonal()
-            .iter()
-            .fold(0.0_f64, |a, v| a.max(v.abs()))
-            .max(m.amax());
-        if scale == 0.0 {
-            return Err(Error::SingularMassMatrix { t, pivot: 0.0 });
-        }
-        if let Some(ch) = m.clone().cholesky() {
-            let d = ch.l_dirty().diagonal();
-            let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
-                (lo.min(v * v), hi.max(v * v))
-            });
-            if lo / hi < SINGULAR_PIVOT {
-                return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
-            }
-            return Ok(MassFactor::Cholesky(ch));
-        }
-        let lu = m.lu();
-        let u = lu.u();
-        let d = u.diagonal();
-        let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
-            (lo.min(v.abs()), hi.max(v.abs()))
-        });
-        if hi == 0.0 || lo / hi < SINGULAR_PIVOT {
-            return Err(Error::SingularMassMatrix {
-                t,
-                pivot: if hi == 0.0 { 0.0 } else { lo / hi },
-            });
-        }
-        Ok(MassFactor::Lu(lu))
-    }
-
-    /// Overwrites `b` with M⁻¹ b.
-    pub fn solve_in_place(&self, b: &mut [f64]) {
-        let n = b.len();
-        let mut v = nalgebra::DVectorViewMut::from_slice(b, n);
-        match self {
-            MassFactor::Cholesky(c) => c.solve_mut(&mut v),
-            MassFactor::Lu(l) => {
-                l.solve_mut(&mut v);
-            }
-        }
-    }
-}
-
 /// The Euler-Lagrange equations of a [`Lagrangian`]: accelerations, momenta, energy, Legendre maps.
 pub struct EulerLagrange<L> {
     lagrangian: L,
-    constant_mass: OnceLock<std::result::Result<MassFactor, Error>>,
+    constant_mass: OnceLock<std::result::Result<DenseFactor, Error>>,
 }
 
 impl<L: Lagrangian> EulerLagrange<L> {
@@ -234,16 +130,16 @@ impl<L: Lagrangian> EulerLagrange<L> {
     }
 
     /// The factored mass matrix at (t, q, q̇); computed once when the Lagrangian declares it constant.
-    pub fn mass_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<MassFactor> {
+    pub fn mass_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DenseFactor> {
         if self.lagrangian.constant_mass_matrix() {
             return self.constant_factor(t, q, v).cloned();
         }
-        MassFactor::new(self.mass_matrix(t, q, v)?, t)
+        linalg::factor_mass(self.mass_matrix(t, q, v)?, t)
     }
 
-    fn constant_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<&MassFactor> {
+    fn constant_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<&DenseFactor> {
         self.constant_mass
-            .get_or_init(|| MassFactor::new(self.mass_matrix(t, q, v)?, t))
+            .get_or_init(|| linalg::factor_mass(self.mass_matrix(t, q, v)?, t))
             .as_ref()
             .map_err(Clone::clone)
     }
@@ -253,7 +149,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         if self.lagrangian.constant_mass_matrix() {
             self.constant_factor(t, q, v)?.solve_in_place(b);
         } else {
-            MassFactor::new(self.mass_matrix(t, q, v)?, t)?.solve_in_place(b);
+            linalg::factor_mass(self.mass_matrix(t, q, v)?, t)?.solve_in_place(b);
         }
         Ok(())
     }
@@ -335,7 +231,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         } else {
             let terms = ad::lagrange_terms_taped(&f, t, q, v);
             let b = (terms.grad_x - terms.mixed).data.into();
-            (b, Some(MassFactor::new(terms.hess_yy, t)?))
+            (b, Some(linalg::factor_mass(terms.hess_yy, t)?))
         };
         if self.lagrangian.has_generalized_force() {
             let mut qf = vec![0.0; n];

@@ -77,7 +77,8 @@
 
 use crate::ad::{self, Block, Buf, MAX_FIXED};
 use crate::error::check_phase_point;
-use crate::lagrange::{LagrangianField, MassFactor, SINGULAR_PIVOT};
+use crate::lagrange::LagrangianField;
+use crate::linalg::positive_definite_mass as positive_definite;
 use crate::newton::max_norm;
 use crate::{Error, EulerLagrange, Hamiltonian, Lagrangian, Result, Scalar};
 use nalgebra::{Const, DMatrix, DVector, U1};
@@ -274,28 +275,6 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 fn residual(g: &mut [f64], p: &[f64]) -> f64 {
     g.iter_mut().zip(p).for_each(|(gi, pi)| *gi -= pi);
     max_norm(g)
-}
-
-/// The Cholesky factor of a positive definite mass matrix, or why there is none:
-/// [`Error::SingularMassMatrix`] (the crate's relative-pivot test, [`MassFactor`]) or
-/// [`Error::IndefiniteMassMatrix`] (regular with a negative eigenvalue).
-fn positive_definite(m: DMatrix<f64>, t: f64) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
-    match MassFactor::new(m.clone(), t)? {
-        MassFactor::Cholesky(c) => Ok(c),
-        MassFactor::Lu(_) => {
-            let eig = m.symmetric_eigenvalues();
-            let (lo, hi) = eig.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), e| {
-                (lo.min(*e), hi.max(e.abs()))
-            });
-            if lo.abs() < SINGULAR_PIVOT * hi {
-                return Err(Error::SingularMassMatrix { t, pivot: lo / hi });
-            }
-            Err(Error::IndefiniteMassMatrix {
-                t,
-                eigenvalue: lo / hi,
-            })
-        }
-    }
 }
 
 /// ∂L/∂q̇(t, q, v) in the scalar D, by nested duals `Dual<D>`: one evaluation per component (one

@@ -37,6 +37,7 @@ pub mod hamilton;
 pub mod integrators;
 pub mod lagrange;
 pub mod legendre;
+pub mod linalg;
 pub mod model;
 pub mod natural;
 pub mod newton;
@@ -52,8 +53,9 @@ pub use driver::{Direction, Driver, Event, EventRecord, Save, Solution, Stats, S
 pub use dynamics::Dynamics;
 pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;
-pub use lagrange::{EulerLagrange, MassFactor};
+pub use lagrange::EulerLagrange;
 pub use legendre::LegendreTransform;
+pub use linalg::DenseFactor;
 pub use model::{Hamiltonian, Lagrangian, Separable, SeparableHamiltonian};
 pub use natural::{Natural, Potential};
 pub use newton::{Newton, NewtonInfo, NewtonSystem};

@@ -138,15 +138,20 @@ impl<P: Potential> Natural<P> {
                 reason: "the mass matrix must be symmetric",
             });
         }
-        match crate::MassFactor::new(mass.clone(), 0.0)? {
-            crate::MassFactor::Cholesky(chol) => {
+        let factor = crate::linalg::factor_mass(mass.clone(), 0.0)?;
+        match factor.cholesky() {
+            Some(chol) => {
                 let inv = chol.inverse();
                 Ok(Natural {
                     potential,
-                    mass: Mass::Dense { m: mass, chol, inv },
+                    mass: Mass::Dense {
+                        m: mass,
+                        chol: chol.clone(),
+                        inv,
+                    },
                 })
             }
-            crate::MassFactor::Lu(_) => Err(Error::InvalidParameter {
+            None => Err(Error::InvalidParameter {
                 name: "mass matrix",
                 value: f64::NAN,
                 reason: "the mass matrix must be positive definite",

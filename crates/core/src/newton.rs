@@ -2,10 +2,12 @@
 //! Euler-Lagrange equations, constraint projections, the inverse Legendre map.
 //!
 //! Solves F(x) = 0 by x ← x − J⁻¹F(x). The problem supplies the residual and a way to factor and apply
-//! its Jacobian ([`NewtonSystem`]); [`Dense`] adapts any problem with a dense Jacobian (LU). A factored
+//! its Jacobian ([`NewtonSystem`]); [`Dense`] adapts any problem with a dense Jacobian (LU of
+//! [`linalg`](crate::linalg), which also rejects a near-singular Jacobian). A factored
 //! Jacobian is reused (modified Newton) while the residual keeps contracting and is refreshed when it
 //! does not. Convergence: ‖F‖∞ ≤ `tol_residual`, or ‖Δx‖∞ ≤ `tol_step`·(1 + ‖x‖∞) after a step.
 
+use crate::linalg::{solve_with, DenseFactor};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 
@@ -36,7 +38,7 @@ pub struct Dense<P> {
     /// The problem.
     pub problem: P,
     jac: DMatrix<f64>,
-    lu: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    lu: Option<DenseFactor>,
 }
 
 impl<P: DenseProblem> Dense<P> {
@@ -60,39 +62,13 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
     }
     fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
         self.problem.jacobian(x, &mut self.jac)?;
-        self.lu = Some(lu_factor(&self.jac, "Newton Jacobian")?);
+        self.lu = None;
+        let lu = DenseFactor::lu(self.jac.clone()).map_err(|e| e.in_matrix("Newton Jacobian"))?;
+        self.lu = Some(lu);
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        lu_solve(self.lu.as_ref(), rhs, "Newton Jacobian")
-    }
-}
-
-/// A dense LU factor, as kept by the Newton systems with a dense Jacobian.
-pub type DenseLu = nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>;
-
-/// LU-factors a dense Newton Jacobian (a copy of `jac`), with [`Error::SingularMatrix`] naming `what`
-/// when an entry is not finite or the factor is singular.
-pub fn lu_factor(jac: &DMatrix<f64>, what: &'static str) -> Result<DenseLu> {
-    if jac.iter().any(|v| !v.is_finite()) {
-        return Err(Error::SingularMatrix { what });
-    }
-    let lu = jac.clone().lu();
-    if !lu.is_invertible() {
-        return Err(Error::SingularMatrix { what });
-    }
-    Ok(lu)
-}
-
-/// Overwrites `rhs` with J⁻¹ rhs by the factor `lu`; [`Error::SingularMatrix`] naming `what` when there
-/// is no factor or it is singular.
-pub fn lu_solve(lu: Option<&DenseLu>, rhs: &mut [f64], what: &'static str) -> Result<()> {
-    let lu = lu.ok_or(Error::SingularMatrix { what })?;
-    let mut b = nalgebra::DVectorViewMut::from_slice(rhs, rhs.len());
-    if lu.solve_mut(&mut b) {
-        Ok(())
-    } else {
-        Err(Error::SingularMatrix { what })
+        solve_with(self.lu.as_ref(), rhs, "Newton Jacobian")
     }
 }
 

@@ -6,6 +6,9 @@
 //!
 //! Run: `cargo bench -p noether-discrete --bench variational`
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{DMatrix, DVector};
 use noether_core::{Newton, State, Stepper};

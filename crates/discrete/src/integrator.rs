@@ -48,7 +48,7 @@ use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::{check_finite, check_len};
-use noether_core::newton::{lu_factor, lu_solve, DenseLu};
+use noether_core::linalg::{solve_with, DenseFactor};
 use noether_core::{Error, Momenta, Newton, NewtonInfo, NewtonSystem, Result, State};
 
 /// Default absolute Newton tolerance on the momentum residual.
@@ -72,7 +72,7 @@ struct DelSystem<'a, Ld: ?Sized> {
     /// q₀ + Δ.
     q1: &'a mut [f64],
     jac: &'a mut DMatrix<f64>,
-    lu: &'a mut Option<DenseLu>,
+    lu: &'a mut Option<DenseFactor>,
     fm: &'a mut [f64],
     fp: &'a mut [f64],
 }
@@ -105,11 +105,13 @@ impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
     fn factor_jacobian(&mut self, d: &[f64]) -> Result<()> {
         self.end(d);
         self.ld.d12(self.t0, self.h, self.q0, self.q1, self.jac);
-        *self.lu = Some(lu_factor(self.jac, JACOBIAN)?);
+        *self.lu = None;
+        let f = DenseFactor::lu(self.jac.clone()).map_err(|e| e.in_matrix(JACOBIAN))?;
+        *self.lu = Some(f);
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        lu_solve(self.lu.as_ref(), rhs, JACOBIAN)
+        solve_with(self.lu.as_ref(), rhs, JACOBIAN)
     }
 }
 
@@ -127,7 +129,7 @@ pub struct VariationalIntegrator<Ld> {
     fm: Vec<f64>,
     fp: Vec<f64>,
     jac: DMatrix<f64>,
-    lu: Option<DenseLu>,
+    lu: Option<DenseFactor>,
     last: NewtonInfo,
     /// Step size of the Jacobian factor kept from the last step.
     factor_h: f64,

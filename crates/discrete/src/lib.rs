@@ -44,7 +44,6 @@
 //! assert!((l1 - l0).abs() < 1e-13); // angular momentum: a discrete Noether momentum
 //! ```
 
-pub mod banded;
 pub mod chains;
 pub mod composition;
 pub mod flow;

@@ -28,12 +28,12 @@
 //! assert_eq!(g, [-1.0, 1.0, -2.0, 2.0]); // ∂V/∂q_i = (q_i − q_{i−1}) − (q_{i+1} − q_i)
 //! ```
 
-use crate::banded::Banded;
 use nalgebra::DMatrix;
 use nalgebra::{Const, U1};
 use noether_core::ad::{self, Block, Field};
 use noether_core::error::{check_finite, check_len};
-use noether_core::{Error, Lagrangian, MassFactor, Result, Scalar};
+use noether_core::linalg::{self, Banded, DenseFactor};
+use noether_core::{Error, Lagrangian, Result, Scalar};
 use num_dual::{Dual2Vec, DualVec};
 
 /// Gradient of a two-variable term by one `DualVec<2>` evaluation (the common case: springs, pairs).
@@ -118,7 +118,7 @@ impl Assemble for Banded {
 /// L = ½ q̇ᵀMq̇ − Σ_k V_k(q) − with optional damping (see the module docs).
 pub struct Mechanical<P> {
     mass: Mass,
-    factor: Option<MassFactor>,
+    factor: Option<DenseFactor>,
     potential: P,
     damping: Option<Vec<f64>>,
     offsets: Vec<usize>,
@@ -137,11 +137,15 @@ impl<P: LocalPotential> Mechanical<P> {
             Mass::Diagonal(m) => {
                 check_len("diagonal mass", m, n)?;
                 check_finite("diagonal mass", m)?;
-                let hi = m.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-                if let Some(&lo) = m.iter().find(|v| **v <= 1e-13 * hi || **v <= 0.0) {
-                    return Err(Error::SingularMassMatrix {
-                        t: 0.0,
-                        pivot: if hi > 0.0 { lo / hi } else { 0.0 },
+                let pivot_ratio = linalg::diagonal_pivot_ratio(m);
+                if linalg::is_singular(pivot_ratio) {
+                    return Err(Error::SingularMassMatrix { t: 0.0, pivot_ratio });
+                }
+                if m.iter().any(|v| *v < 0.0) {
+                    return Err(Error::InvalidParameter {
+                        name: "diagonal mass",
+                        value: m.iter().fold(f64::INFINITY, |a, v| a.min(*v)),
+                        reason: "must be positive definite",
                     });
                 }
                 None
@@ -161,16 +165,15 @@ impl<P: LocalPotential> Mechanical<P> {
                         reason: "M = ∂²L/∂q̇² must be symmetric",
                     });
                 }
-                match MassFactor::new(m.clone(), 0.0)? {
-                    f @ MassFactor::Cholesky(_) => Some(f),
-                    MassFactor::Lu(_) => {
-                        return Err(Error::InvalidParameter {
-                            name: "mass matrix",
-                            value: f64::NAN,
-                            reason: "must be positive definite",
-                        })
-                    }
+                let f = linalg::factor_mass(m.clone(), 0.0)?;
+                if f.cholesky().is_none() {
+                    return Err(Error::InvalidParameter {
+                        name: "mass matrix",
+                        value: f64::NAN,
+                        reason: "must be positive definite",
+                    });
                 }
+                Some(f)
             }
         };
         let mut offsets = Vec::with_capacity(potential.terms() + 1);

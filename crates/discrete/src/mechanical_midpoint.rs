@@ -22,17 +22,16 @@
 //! J is stored banded (LU with partial pivoting, O(N) for a chain) when the half-bandwidth of M + ∇²V is
 //! small against N, dense (LU) otherwise.
 
-use crate::banded::{Banded, BandedLu};
 use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow, Predictor};
 use crate::integrator::{effective_newton, DEFAULT_TOL};
 use crate::mechanical::{LocalPotential, Mechanical};
 use nalgebra::DMatrix;
-use noether_core::newton::{lu_factor, lu_solve, DenseLu};
+use noether_core::linalg::{solve_with, Banded, BandedLu, DenseFactor};
 use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result};
 
 /// Storage of the Newton Jacobian.
 enum Jacobian {
-    Dense(DMatrix<f64>, Option<DenseLu>),
+    Dense(DMatrix<f64>, Option<DenseFactor>),
     Banded(usize, Option<BandedLu>),
 }
 
@@ -96,7 +95,9 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
                 if let Some(c) = damping {
                     (0..n).for_each(|i| m[(i, i)] += 0.5 * c[i]);
                 }
-                *lu = Some(lu_factor(m, "midpoint Newton Jacobian")?);
+                *lu = None;
+                let f = DenseFactor::lu(m.clone()).map_err(|e| e.in_matrix("midpoint Newton Jacobian"))?;
+                *lu = Some(f);
             }
             Jacobian::Banded(bw, lu) => {
                 let mut b = Banded::zeros(n, *bw, *bw);
@@ -105,7 +106,11 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
                 if let Some(c) = damping {
                     (0..n).for_each(|i| b.add(i, i, 0.5 * c[i]));
                 }
-                *lu = Some(b.factor()?);
+                *lu = None;
+                let f = b
+                    .factor()
+                    .map_err(|e| e.in_matrix("banded midpoint Newton Jacobian"))?;
+                *lu = Some(f);
             }
         }
         *self.factor_h = h;
@@ -114,13 +119,14 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
 
     fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         match self.jac {
-            Jacobian::Dense(_, lu) => lu_solve(lu.as_ref(), rhs, "midpoint Newton Jacobian"),
+            Jacobian::Dense(_, lu) => solve_with(lu.as_ref(), rhs, "midpoint Newton Jacobian"),
             Jacobian::Banded(_, Some(lu)) => {
                 lu.solve(rhs);
                 Ok(())
             }
             Jacobian::Banded(_, None) => Err(Error::SingularMatrix {
-                what: "midpoint Newton Jacobian (not factored)",
+                what: "banded midpoint Newton Jacobian (not factored)",
+                pivot_ratio: f64::NAN,
             }),
         }
     }

@@ -13,13 +13,14 @@
 
 use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow};
 use crate::mechanical::{LocalPotential, Mass, Mechanical};
-use noether_core::{Error, MassFactor, Result};
+use noether_core::linalg::{self, DenseFactor};
+use noether_core::{Error, Result};
 
 /// Störmer-Verlet as the trapezoidal variational integrator of a [`Mechanical`] system.
 pub struct Verlet<P> {
     sys: Mechanical<P>,
     /// Factor of M + (h/2)C for the step size `factor_h` (only with damping and a dense M).
-    factor: Option<(f64, MassFactor)>,
+    factor: Option<(f64, DenseFactor)>,
     /// ∇V at `cached_q` (first-same-as-last).
     cached_q: Vec<f64>,
     cached_grad: Vec<f64>,
@@ -53,13 +54,17 @@ impl<P: LocalPotential> Verlet<P> {
         match (self.sys.damping(), self.sys.mass()) {
             (None, _) => self.sys.mass_solve(b),
             (Some(c), Mass::Diagonal(m)) => {
-                for ((x, mi), ci) in b.iter_mut().zip(m).zip(c) {
-                    let d = mi + 0.5 * h * ci;
-                    if d <= 0.0 {
-                        return Err(Error::SingularMatrix {
-                            what: "M + (h/2)C in the damped Verlet step",
-                        });
-                    }
+                // A diagonal matrix: its pivots are its entries, tested as every factorization is.
+                let diag = || m.iter().zip(c).map(|(mi, ci)| mi + 0.5 * h * ci);
+                let (lo, hi) = linalg::pivot_range(diag());
+                let pivot_ratio = linalg::pivot_ratio(lo, hi, hi);
+                if linalg::is_singular(pivot_ratio) {
+                    return Err(Error::SingularMatrix {
+                        what: "M + (h/2)C in the damped Verlet step",
+                        pivot_ratio,
+                    });
+                }
+                for (x, d) in b.iter_mut().zip(diag()) {
                     *x /= d;
                 }
             }
@@ -69,7 +74,7 @@ impl<P: LocalPotential> Verlet<P> {
                     for (i, ci) in c.iter().enumerate() {
                         a[(i, i)] += 0.5 * h * ci;
                     }
-                    self.factor = Some((h, MassFactor::new(a, 0.0)?));
+                    self.factor = Some((h, linalg::factor_mass(a, 0.0)?));
                 }
                 if let Some((_, f)) = &self.factor {
                     f.solve_in_place(b);

@@ -3,6 +3,9 @@
 //! `cargo bench -p noether-particles --bench forces` (all groups, ~1 minute), or one group with a filter,
 //! e.g. `cargo bench -p noether-particles --bench forces -- chain_1e5`.
 
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use noether_particles::prelude::*;
 use std::hint::black_box;

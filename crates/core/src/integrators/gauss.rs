@@ -35,7 +35,7 @@ use crate::{
     ad, Dynamics, Error, HamiltonEquations, Hamiltonian, Result, Scalar, Separable, SeparableHamiltonian,
     State, StepInfo, Stepper,
 };
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 /// A [`Dynamics`] that also provides the Jacobian of its vector field.
 pub trait LinearizedDynamics: Dynamics {
@@ -189,18 +189,16 @@ impl<S: LinearizedDynamics> Gauss<S> {
         };
         // dᵀ = bᵀ A⁻¹, i.e. Aᵀ d = b.
         let at = DMatrix::from_row_slice(stages, stages, &a).transpose();
-        let d = at
-            .lu()
-            .solve(&DVector::from_vec(b))
-            .ok_or(Error::SingularMatrix {
-                what: "Gauss matrix A",
-            })?;
+        let mut d = b;
+        crate::linalg::DenseFactor::lu(at)
+            .map_err(|e| e.in_matrix("Gauss matrix A"))?
+            .solve_in_place(&mut d);
         Ok(Gauss {
             system,
             s: stages,
             a,
             c,
-            d: d.as_slice().to_vec(),
+            d,
             newton: Newton::default()
                 .tol_residual(1e-14)
                 .tol_step(1e-15)
