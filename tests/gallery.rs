@@ -99,6 +99,11 @@ fn closed_form_heavy_top() {
 }
 
 #[test]
+fn closed_form_sleeping_top() {
+    assert_example_passes("sleeping_top");
+}
+
+#[test]
 fn closed_form_harmonic_oscillator() {
     assert_example_passes("harmonic_oscillator");
 }
