@@ -44,7 +44,7 @@ impl Hamiltonian for RelativisticH {
 /// Charge in the field of `systems::ChargeInField`: H = |p − eA|²/(2m) + e φ, A = ½ B(t)(−y, x, 0),
 /// φ = ½ κ (x² + y²) + E0 z cos ωt, B(t) = B0 (1 + ε sin ωt) (explicit time dependence).
 #[derive(Debug, Clone, Copy)]
-struct ChargeH(crate::systems::ChargeInField);
+pub(crate) struct ChargeH(pub(crate) crate::systems::ChargeInField);
 
 impl Hamiltonian for ChargeH {
     fn dof(&self) -> usize {

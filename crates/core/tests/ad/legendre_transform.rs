@@ -9,6 +9,7 @@
 //! errors in each test). A wrong derivative order (say a Hessian without the Newton step in the dual
 //! scalar) is off by O(1).
 
+use crate::hamilton::ChargeH;
 use crate::systems::{ChargeInField, DoublePendulum, HeavyTop};
 use crate::{charge_state, draw, for_states, Sample, TOL};
 use noether_core::integrators::{Dop853, Gauss};
@@ -160,24 +161,6 @@ fn ad_vs_hand_legendre_transform_heavy_top() {
 }
 
 // ---------------------------------------------------------------------------------------------------
-/// The charge of `systems::ChargeInField` by hand: H = |p − eA|²/(2m) + e φ with A = ½ B(t)(−y, x, 0),
-/// φ = ½ κ (x² + y²) + E0 z cos ωt, B(t) = B0 (1 + ε sin ωt) (explicit time dependence).
-#[derive(Debug, Clone, Copy)]
-struct ChargeH(ChargeInField);
-
-impl Hamiltonian for ChargeH {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
-        let s = &self.0;
-        let b = ((t * s.omega).sin() * s.eps + 1.0) * s.b0;
-        let (px, py) = (p[0] + q[1] * b * (0.5 * s.e), p[1] - q[0] * b * (0.5 * s.e));
-        let phi = (q[0] * q[0] + q[1] * q[1]) * (0.5 * s.kappa) + q[2] * (t * s.omega).cos() * s.e0;
-        (px * px + py * py + p[2] * p[2]) * (0.5 / s.m) + phi * s.e
-    }
-}
-
 #[test]
 fn ad_vs_hand_legendre_transform_charge_in_magnetic_field() {
     let sys = ChargeInField::default();
