@@ -15,6 +15,13 @@ fn saved_run(line: Option<u64>, reason: impl std::fmt::Display) -> Error {
     }
 }
 
+/// The state's columns: `t`, `q0` … `q(n−1)`, then the partner's (`v0` … or `p0` …).
+fn state_columns<K: Partner>(dof: usize) -> impl Iterator<Item = String> {
+    std::iter::once("t".to_string())
+        .chain((0..dof).map(|i| format!("q{i}")))
+        .chain((0..dof).map(|i| format!("{}{i}", K::SYMBOL)))
+}
+
 fn csv_error(e: csv::Error) -> Error {
     saved_run(e.position().map(|p| p.line()), e)
 }
@@ -22,10 +29,7 @@ fn csv_error(e: csv::Error) -> Error {
 impl<K: Partner> Solution<K> {
     /// The CSV header: `t`, `q0` … , `v0` … (or `p0` …), then the observer names.
     pub fn csv_header(&self) -> Vec<String> {
-        let n = self.dof;
-        std::iter::once("t".to_string())
-            .chain((0..n).map(|i| format!("q{i}")))
-            .chain((0..n).map(|i| format!("{}{i}", K::SYMBOL)))
+        state_columns::<K>(self.dof)
             .chain(self.observer_names.iter().cloned())
             .collect()
     }
@@ -71,10 +75,7 @@ impl<K: Partner> Solution<K> {
             .map(str::to_string)
             .collect();
         let dof = header.iter().skip(1).take_while(|h| h.starts_with('q')).count();
-        let expected: Vec<String> = std::iter::once("t".to_string())
-            .chain((0..dof).map(|i| format!("q{i}")))
-            .chain((0..dof).map(|i| format!("{}{i}", K::SYMBOL)))
-            .collect();
+        let expected: Vec<String> = state_columns::<K>(dof).collect();
         if dof == 0 || header.len() < expected.len() || header[..expected.len()] != expected[..] {
             return Err(saved_run(
                 Some(1),
