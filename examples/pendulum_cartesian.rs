@@ -78,9 +78,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let cart = Driver::with_step(stepper, start, h)?
         .observe("θ", |s: &State| s.q[0].atan2(-s.q[1]))
         .observe("tension", |s: &State| {
-            cartesian
-                .constraint_forces(s.t, s.q.as_slice(), s.v.as_slice())
-                .map(|f| -f.lambda[0])
+            let f = cartesian.constraint_forces(s.t, s.q.as_slice(), s.v.as_slice())?;
+            Ok(-f.lambda[0])
         })
         .observe("|r| − l", |s: &State| s.q.norm() - l)
         .run_until(t_end)?;

@@ -37,6 +37,7 @@ use argmin::core::{
 };
 use argmin::solver::trustregion::{Steihaug, TrustRegion};
 use nalgebra::{DMatrix, DVector};
+use noether_core::error::check_positive;
 use noether_core::newton::{Newton, NewtonSystem};
 
 use crate::potential::{self, check_point, Potential};
@@ -138,6 +139,7 @@ pub fn classify<P: Potential + ?Sized>(pot: &P, q: &[f64], zero_tolerance: f64) 
 
 /// Finds and classifies equilibria. Builder-style setters; `Default` gives sensible tolerances.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct EquilibriumFinder {
     /// Converged when ‖∇V‖∞ ≤ `tol_gradient` · ‖H(q₀)‖max · (1 + ‖q₀‖∞).
     pub tol_gradient: f64,
@@ -158,36 +160,34 @@ impl Default for EquilibriumFinder {
 }
 
 impl EquilibriumFinder {
-    /// Sets the relative gradient tolerance.
-    pub fn tol_gradient(mut self, tol: f64) -> Self {
-        self.tol_gradient = tol;
-        self
+    /// Sets the relative gradient tolerance (finite and positive).
+    pub fn tol_gradient(mut self, tol: f64) -> Result<Self> {
+        self.tol_gradient = check_positive("tol_gradient", tol)?;
+        Ok(self)
     }
-    /// Sets the iteration cap.
-    pub fn max_iterations(mut self, n: u64) -> Self {
+    /// Sets the iteration cap (at least 1).
+    pub fn max_iterations(mut self, n: u64) -> Result<Self> {
+        if n == 0 {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "max_iterations",
+                value: 0.0,
+                reason: "must be at least 1",
+            }
+            .into());
+        }
         self.max_iterations = n;
-        self
+        Ok(self)
     }
-    /// Sets the relative zero-eigenvalue tolerance.
-    pub fn zero_tolerance(mut self, tol: f64) -> Self {
-        self.zero_tolerance = tol;
-        self
+    /// Sets the relative zero-eigenvalue tolerance (finite and positive).
+    pub fn zero_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.zero_tolerance = check_positive("zero_tolerance", tol)?;
+        Ok(self)
     }
 
     fn tolerance<P: Potential + ?Sized>(&self, pot: &P, q0: &[f64]) -> Result<f64> {
-        for (name, value) in [
-            ("tol_gradient", self.tol_gradient),
-            ("zero_tolerance", self.zero_tolerance),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(noether_core::Error::InvalidParameter {
-                    name,
-                    value,
-                    reason: "must be finite and positive",
-                }
-                .into());
-            }
-        }
+        // The fields are public: a value written directly is checked here.
+        check_positive("tol_gradient", self.tol_gradient)?;
+        check_positive("zero_tolerance", self.zero_tolerance)?;
         Ok(self.tol_gradient * gradient_scale(&potential::hessian(pot, q0)?, q0))
     }
 
@@ -280,12 +280,12 @@ impl<P: Potential + ?Sized> NewtonSystem for GradientRoot<'_, P> {
         self.pot.dof()
     }
     fn residual(&mut self, x: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
-        let (_, g) = potential::gradient(self.pot, x).map_err(core_error)?;
+        let (_, g) = potential::gradient(self.pot, x).map_err(noether_core::Error::from)?;
         r.copy_from_slice(g.as_slice());
         Ok(())
     }
     fn factor_jacobian(&mut self, x: &[f64]) -> noether_core::Result<()> {
-        let h = potential::hessian(self.pot, x).map_err(core_error)?;
+        let h = potential::hessian(self.pot, x).map_err(noether_core::Error::from)?;
         let h = (&h + h.transpose()) * 0.5;
         let eig = h
             .try_symmetric_eigen(f64::EPSILON, 10_000)
@@ -333,14 +333,6 @@ fn newton_root<P: Potential + ?Sized>(
     let mut x = q0.to_vec();
     let info = newton.solve(&mut sys, &mut x)?;
     Ok((DVector::from_vec(x), info))
-}
-
-/// The potential helpers only fail with core errors.
-fn core_error(e: Error) -> noether_core::Error {
-    match e {
-        Error::Core(c) => c,
-        _ => noether_core::Error::Unsupported("unexpected error in a potential"),
-    }
 }
 
 /// A potential as an argmin problem on nalgebra vectors.

@@ -8,10 +8,11 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// What went wrong, with the numbers that say how.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum Error {
     /// An error of noether-core (dimensions, non-finite input, singular mass matrix, Newton failure).
     #[error(transparent)]
-    Core(#[from] noether_core::Error),
+    Core(noether_core::Error),
     /// Normal modes or a linearisation were asked about a point where the generalized force does not vanish.
     #[error(
         "not an equilibrium: the gradient of the effective potential has max-norm {gradient_norm:e}, \
@@ -52,4 +53,25 @@ pub enum Error {
         /// Which matrix.
         what: &'static str,
     },
+}
+
+impl From<noether_core::Error> for Error {
+    /// Core's error, or this crate's own when it comes back through core's interfaces.
+    fn from(e: noether_core::Error) -> Self {
+        match e.downcast_ref::<Error>() {
+            Some(own) => own.clone(),
+            None => Error::Core(e),
+        }
+    }
+}
+
+impl From<Error> for noether_core::Error {
+    /// This crate's errors seen through core's interfaces (a Newton solve on a potential): core's
+    /// pass through, the others travel as [`noether_core::Error::Model`] with their data.
+    fn from(e: Error) -> Self {
+        match e {
+            Error::Core(c) => c,
+            own => noether_core::Error::model(own),
+        }
+    }
 }

@@ -35,6 +35,7 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
+use noether_core::error::check_positive;
 use noether_core::{EulerLagrange, Lagrangian, Scalar};
 
 use crate::equilibria::{gradient_scale, signature};
@@ -91,6 +92,7 @@ pub struct LinearStability {
 
 /// Settings of the linearisation: the time at which L is frozen and the tolerances.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct SmallOscillations {
     /// Time t at which L(t, q, q̇) is evaluated (irrelevant for autonomous L).
     pub t: f64,
@@ -137,20 +139,21 @@ struct Linearised {
 }
 
 impl SmallOscillations {
-    /// Sets the time.
-    pub fn t(mut self, t: f64) -> Self {
+    /// Sets the time (finite).
+    pub fn t(mut self, t: f64) -> Result<Self> {
+        noether_core::error::check_finite("t", &[t])?;
         self.t = t;
-        self
+        Ok(self)
     }
-    /// Sets the equilibrium tolerance.
-    pub fn tol_equilibrium(mut self, tol: f64) -> Self {
-        self.tol_equilibrium = tol;
-        self
+    /// Sets the equilibrium tolerance (finite and positive).
+    pub fn tol_equilibrium(mut self, tol: f64) -> Result<Self> {
+        self.tol_equilibrium = check_positive("tol_equilibrium", tol)?;
+        Ok(self)
     }
-    /// Sets the zero tolerance.
-    pub fn zero_tolerance(mut self, tol: f64) -> Self {
-        self.zero_tolerance = tol;
-        self
+    /// Sets the zero tolerance (finite and positive).
+    pub fn zero_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.zero_tolerance = check_positive("zero_tolerance", tol)?;
+        Ok(self)
     }
 
     fn linearise<L: Lagrangian>(&self, lagrangian: &L, q0: &[f64]) -> Result<Linearised> {

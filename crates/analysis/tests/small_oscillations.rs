@@ -335,10 +335,15 @@ fn bad_input_wrong_length_nan_and_bad_tolerance() {
         EquilibriumFinder::default().minimize(&pot, &[f64::INFINITY, 2.0, 3.0]),
         Err(Error::Core(noether_core::Error::NonFinite { .. }))
     ));
+    // A bad setting is refused when it is set, and when written into the public field directly.
     assert!(matches!(
-        EquilibriumFinder::default()
-            .tol_gradient(-1.0)
-            .minimize(&pot, &[1.0, 2.0, 3.0]),
+        EquilibriumFinder::default().tol_gradient(-1.0),
+        Err(Error::Core(noether_core::Error::InvalidParameter { .. }))
+    ));
+    let mut finder = EquilibriumFinder::default();
+    finder.tol_gradient = f64::NAN;
+    assert!(matches!(
+        finder.minimize(&pot, &[1.0, 2.0, 3.0]),
         Err(Error::Core(noether_core::Error::InvalidParameter { .. }))
     ));
 }
@@ -358,6 +363,7 @@ impl noether_analysis::Potential for Unbounded {
 fn bad_input_unbounded_potential_does_not_converge() {
     let r = EquilibriumFinder::default()
         .max_iterations(50)
+        .unwrap()
         .minimize(&Unbounded, &[1.0]);
     assert!(matches!(r, Err(Error::NotConverged { .. })), "{r:?}");
     // Newton still finds the stationary point (a maximum) at q = ½.

@@ -25,11 +25,12 @@ use crate::forces::ConstraintForces;
 use crate::holonomic::{Holonomic, HolonomicSet};
 use crate::nonholonomic::{Nonholonomic, NonholonomicSet};
 use crate::set::ConstraintSet;
+use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
-use noether_core::error::{check_len, check_phase_point};
+use noether_core::error::{check_len, check_phase_point, check_positive};
 use noether_core::linalg::DenseFactor;
-use noether_core::{Dynamics, Error, EulerLagrange, Lagrangian, Result, Scalar, State};
+use noether_core::{Dynamics, Error as CoreError, EulerLagrange, Lagrangian, Scalar, State};
 use std::sync::OnceLock;
 
 /// Singular values of A below this fraction of the largest count as zero in the rank diagnosis.
@@ -47,11 +48,21 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
 
 /// A Lagrangian system with constraints: the index-1 equations of motion, multipliers, constraint
 /// forces, residuals.
+///
+/// Stepped by a plain integrator (RK4, DOPRI5) the index-1 equations fix only the accelerations, and
+/// the state drifts off the constraints; every step starts by checking the state against
+/// [`violation_tolerance`](Self::violation_tolerance) (default 1e-8, max-norm of φ and of A q̇ + a) and
+/// stops the run with [`Error::ConstraintViolated`] beyond it. Wrap the stepper in
+/// [`Projected`](crate::Projected) (or use [`Rattle`](crate::Rattle)) to stay on the constraints.
 pub struct Constrained<L, K> {
     el: EulerLagrange<L>,
     set: K,
     constant_mass: OnceLock<DMatrix<f64>>,
+    violation: f64,
 }
+
+/// Default of [`Constrained::violation_tolerance`].
+pub const DEFAULT_VIOLATION: f64 = 1e-8;
 
 impl<L: Lagrangian, C: Holonomic> Constrained<L, HolonomicSet<C>> {
     /// A Lagrangian with holonomic constraints φ(t, q) = 0.
@@ -102,17 +113,31 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     /// A Lagrangian with any [`ConstraintSet`]; the two must have the same number of coordinates.
     pub fn new(lagrangian: L, constraints: K) -> Result<Self> {
         if constraints.dof() != lagrangian.dof() {
-            return Err(Error::Dimension {
+            return Err(CoreError::Dimension {
                 what: "coordinates of the constraint set",
                 expected: lagrangian.dof(),
                 got: constraints.dof(),
-            });
+            }
+            .into());
         }
         Ok(Constrained {
             el: EulerLagrange::new(lagrangian),
             set: constraints,
             constant_mass: OnceLock::new(),
+            violation: DEFAULT_VIOLATION,
         })
+    }
+
+    /// Sets the largest constraint residual (max-norm of φ and of A q̇ + a) accepted in the state at the
+    /// start of a step; finite and positive.
+    pub fn with_violation_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.violation = check_positive("violation tolerance", tol)?;
+        Ok(self)
+    }
+
+    /// The largest constraint residual accepted in the state at the start of a step.
+    pub fn violation_tolerance(&self) -> f64 {
+        self.violation
     }
 
     /// Number of coordinates n.
@@ -136,10 +161,10 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     }
 
     fn check(&self, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
-        check_phase_point(self.dof(), t, q, v, "q̇")
+        Ok(check_phase_point(self.dof(), t, q, v, "q̇")?)
     }
 
-    fn mass(&self, t: f64, q: &[f64], v: &[f64]) -> Result<DMatrix<f64>> {
+    fn mass(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<DMatrix<f64>> {
         if self.el.lagrangian().constant_mass_matrix() {
             if let Some(m) = self.constant_mass.get() {
                 return Ok(m.clone());
@@ -190,13 +215,17 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
         self.set.bias(t, q, v, &mut rhs.as_mut_slice()[n..]);
         rhs.rows_mut(n, m).neg_mut();
         if kkt.iter().chain(rhs.iter()).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(CoreError::NonFiniteResult {
+                what: "constrained equations of motion",
+                t,
+            }
+            .into());
         }
         // The KKT matrix [M Aᵀ; A 0] is symmetric indefinite: LU (core's factorization and pivot test).
         match DenseFactor::lu(kkt) {
             Ok(f) => f.solve_in_place(rhs.as_mut_slice()),
             // Say why: redundant constraints, or a mass matrix degenerate on the allowed velocities.
-            Err(e) => return Err(rank_error(&a, t).unwrap_or(e.in_mass_matrix(t))),
+            Err(e) => return Err(rank_error(&a, t).unwrap_or(e.in_mass_matrix(t).into())),
         }
         qdd.copy_from_slice(&rhs.as_slice()[..n]);
         for (l, x) in lambda.iter_mut().zip(&rhs.as_slice()[n..]) {
@@ -236,6 +265,17 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     pub fn check_state(&self, state: &State, tol: f64) -> Result<()> {
         state.validate(self.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
+        self.check_residuals(t, q, v, tol)?;
+        let mut a = DMatrix::zeros(self.count(), self.dof());
+        self.set.matrix(t, q, v, &mut a);
+        match rank_error(&a, t) {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// [`Error::ConstraintViolated`] when a residual of (t, q, q̇) exceeds `tol`.
+    fn check_residuals(&self, t: f64, q: &[f64], v: &[f64], tol: f64) -> Result<()> {
         let (pos, vel) = self.residuals(t, q, v);
         if let Some(p) = pos.filter(|p| !within(*p, tol)) {
             return Err(Error::ConstraintViolated {
@@ -253,12 +293,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
                 tolerance: tol,
             });
         }
-        let mut a = DMatrix::zeros(self.count(), self.dof());
-        self.set.matrix(t, q, v, &mut a);
-        match rank_error(&a, t) {
-            Some(e) => Err(e),
-            None => Ok(()),
-        }
+        Ok(())
     }
 }
 
@@ -277,15 +312,28 @@ impl<L: Lagrangian, K: ConstraintSet> Dynamics for Constrained<L, K> {
     fn dof(&self) -> usize {
         Constrained::dof(self)
     }
-    fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+    fn rates(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        dq: &mut [f64],
+        dv: &mut [f64],
+    ) -> noether_core::Result<()> {
         let mut lambda = vec![0.0; self.count()];
         self.solve(t, q, v, dv, &mut lambda)?;
         dq.copy_from_slice(v);
         Ok(())
     }
+    /// The state at the start of a step must satisfy the constraints to within
+    /// [`violation_tolerance`](Constrained::violation_tolerance).
+    fn admissible(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<()> {
+        self.check(t, q, v)?;
+        Ok(self.check_residuals(t, q, v, self.violation)?)
+    }
     /// The energy function h = q̇·∂L/∂q̇ − L (constraint forces of scleronomic constraints do no work,
     /// so h is conserved when neither L nor the constraints depend on t).
-    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         self.el.energy(t, q, v)
     }
 }

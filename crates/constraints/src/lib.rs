@@ -14,10 +14,10 @@
 //! - Nonholonomic constraints A(t, q) q̇ + a(t, q) = 0 ([`Nonholonomic`]) in the continuous equations
 //!   (Lagrange-d'Alembert).
 //!
-//! Bad input is an error, never a panic: a state off the constraints
-//! ([`Error::ConstraintViolated`](noether_core::Error::ConstraintViolated), naming the residual),
-//! redundant constraints ([`Error::RankDeficientConstraints`](noether_core::Error::RankDeficientConstraints),
-//! with the rank), Newton failures as in core.
+//! Bad input is an error, never a panic: a state off the constraints ([`Error::ConstraintViolated`],
+//! naming the residual), redundant constraints ([`Error::RankDeficientConstraints`], with the rank),
+//! Newton failures as in core. Through core's interfaces (a driver's run) these arrive as
+//! [`noether_core::Error::Model`]; [`Error::from`] gives them back.
 //!
 //! ```
 //! use noether_constraints::prelude::*;
@@ -54,6 +54,7 @@
 //! ```
 
 pub mod dynamics;
+pub mod error;
 pub mod forces;
 pub mod holonomic;
 pub mod jets;
@@ -63,6 +64,7 @@ pub mod rattle;
 pub mod set;
 
 pub use dynamics::Constrained;
+pub use error::{Error, Result};
 pub use forces::ConstraintForces;
 pub use holonomic::{Holonomic, HolonomicSet};
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
@@ -70,11 +72,12 @@ pub use projection::{project, Projected, Projection, ProjectionReport};
 pub use rattle::{Rattle, RattleInfo};
 pub use set::ConstraintSet;
 
-/// Models, constraints, and the integrators to step them, in one import.
+/// Models, constraints, and the integrators to step them, in one import. `Error` and `Result` here
+/// are this crate's (which wrap core's and convert from it with `?`).
 pub mod prelude {
     pub use crate::{
-        project, Constrained, ConstraintForces, ConstraintSet, Holonomic, HolonomicSet, Nonholonomic,
-        NonholonomicSet, Projected, Projection, ProjectionReport, Rattle, RattleInfo,
+        project, Constrained, ConstraintForces, ConstraintSet, Error, Holonomic, HolonomicSet, Nonholonomic,
+        NonholonomicSet, Projected, Projection, ProjectionReport, Rattle, RattleInfo, Result,
     };
     pub use noether_core::prelude::*;
 }

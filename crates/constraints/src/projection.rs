@@ -18,13 +18,15 @@
 
 use crate::dynamics::{max_abs, rank_error, within};
 use crate::set::ConstraintSet;
+use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 use noether_core::linalg::DenseFactor;
 use noether_core::newton::{DenseProblem, Newton};
-use noether_core::{Error, Result, State, StepInfo, Stepper, Velocities};
+use noether_core::{Error as CoreError, State, StepInfo, Stepper, Velocities};
 
 /// Settings of a projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Projection {
     /// Newton stops when ‖φ‖∞ ≤ this (or when its step reaches rounding level).
     pub tol: f64,
@@ -84,12 +86,12 @@ impl<K: ConstraintSet> DenseProblem for PositionProblem<'_, K> {
     fn dim(&self) -> usize {
         self.set.count()
     }
-    fn residual(&mut self, mu: &[f64], r: &mut [f64]) -> Result<()> {
+    fn residual(&mut self, mu: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
         self.point(mu);
         self.set.positions(self.t, &self.q, r);
         Ok(())
     }
-    fn jacobian(&mut self, mu: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+    fn jacobian(&mut self, mu: &[f64], j: &mut DMatrix<f64>) -> noether_core::Result<()> {
         self.point(mu);
         let zero = vec![0.0; self.q.len()];
         self.set.matrix(self.t, &self.q, &zero, &mut self.a);
@@ -126,8 +128,8 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
             .max_iterations(opts.max_iterations);
         let mut sys = noether_core::newton::Dense::new(prob);
         let info = newton.solve(&mut sys, &mut mu).map_err(|e| match e {
-            Error::SingularMatrix { .. } => rank_error(&a, t).unwrap_or(e),
-            e => e,
+            CoreError::SingularMatrix { .. } => rank_error(&a, t).unwrap_or(e.into()),
+            e => e.into(),
         })?;
         rep.iterations = info.iterations;
         let prob = &mut sys.problem;
@@ -145,7 +147,7 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
     // Core's factorization and pivot test (Cholesky: A Aᵀ is positive definite when A has full rank);
     // its pivots are squared singular values of A, so the test rejects σ_min/σ_max ≲ 3e-7.
     let chol = DenseFactor::symmetric(gram)
-        .map_err(|e| rank_error(&a, t).unwrap_or(e.in_matrix("constraint Gram matrix A Aᵀ")))?;
+        .map_err(|e| rank_error(&a, t).unwrap_or(e.in_matrix("constraint Gram matrix A Aᵀ").into()))?;
     let mut y = DVector::from_column_slice(&r);
     chol.solve_in_place(y.as_mut_slice());
     let dv = a.tr_mul(&y);
@@ -154,7 +156,11 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
     rep.velocity_residual.1 = max_abs(&r);
     rep.velocity_correction = max_abs(dv.as_slice());
     if !q.iter().chain(v.iter()).all(|x| x.is_finite()) {
-        return Err(Error::NonFiniteState { step: 0, t });
+        return Err(CoreError::NonFiniteResult {
+            what: "projected state",
+            t,
+        }
+        .into());
     }
     state.q = q;
     state.v = v;
@@ -212,7 +218,7 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Projected<S, K> {
 
 impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Stepper for Projected<S, K> {
     type Partner = Velocities;
-    fn step(&mut self, state: &mut State, h: f64) -> Result<StepInfo> {
+    fn step(&mut self, state: &mut State, h: f64) -> noether_core::Result<StepInfo> {
         let (t, n, m) = (state.t, self.set.dof(), self.set.count());
         state.validate(n)?;
         let mut r = vec![0.0; m];
@@ -231,7 +237,8 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Stepper for Projected<S
                     t,
                     residual: res,
                     tolerance: self.options.violation,
-                });
+                }
+                .into());
             }
         }
         let saved = state.clone();
@@ -245,7 +252,7 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Stepper for Projected<S
             }
             Err(e) => {
                 *state = saved;
-                Err(e)
+                Err(e.into())
             }
         }
     }

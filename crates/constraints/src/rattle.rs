@@ -61,12 +61,13 @@
 
 use crate::dynamics::{max_abs, rank_error, within};
 use crate::holonomic::{self, Holonomic};
+use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
-use noether_core::error::check_step;
+use noether_core::error::{check_positive, check_step};
 use noether_core::linalg::{solve_with, DenseFactor};
 use noether_core::newton::{Dense, DenseProblem};
 use noether_core::{
-    Error, EulerLagrange, Lagrangian, Momenta, Newton, NewtonSystem, Result, State, StepInfo, Stepper,
+    Error as CoreError, EulerLagrange, Lagrangian, Momenta, Newton, NewtonSystem, State, StepInfo, Stepper,
 };
 use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian};
 
@@ -118,16 +119,18 @@ where
     /// `Midpoint::new(l)`) with holonomic `constraints`.
     pub fn new(ld: Ld, constraints: C) -> Result<Self> {
         if constraints.dof() != ld.dof() {
-            return Err(Error::Dimension {
+            return Err(CoreError::Dimension {
                 what: "coordinates of the constraints",
                 expected: ld.dof(),
                 got: constraints.dof(),
-            });
+            }
+            .into());
         }
         if ld.has_discrete_force() {
-            return Err(Error::Unsupported(
+            return Err(CoreError::Unsupported(
                 "constrained variational integrator with discrete forces (non-conservative Q)",
-            ));
+            )
+            .into());
         }
         let m = constraints.count();
         Ok(Rattle {
@@ -152,10 +155,11 @@ where
         self
     }
 
-    /// Sets the largest constraint residual accepted in an incoming state (default 1e-9).
-    pub fn with_violation_tolerance(mut self, tol: f64) -> Self {
-        self.violation = tol;
-        self
+    /// Sets the largest constraint residual accepted in an incoming state (default 1e-9; finite and
+    /// positive).
+    pub fn with_violation_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.violation = check_positive("violation tolerance", tol)?;
+        Ok(self)
     }
 
     /// The discrete Lagrangian.
@@ -193,17 +197,17 @@ where
     /// The state (t, q, p = ∂L/∂q̇) of positions and velocities; both must satisfy the constraints
     /// (see [`check_state`](Self::check_state)).
     pub fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State<Momenta>> {
-        self.ld.state_from_velocities(t, q, v)
+        Ok(self.ld.state_from_velocities(t, q, v)?)
     }
 
     /// The velocities q̇ of a state (t, q, p) by the inverse Legendre map.
     pub fn velocities(&self, state: &State<Momenta>) -> Result<DVector<f64>> {
-        self.ld.velocities_at(state)
+        Ok(self.ld.velocities_at(state)?)
     }
 
     /// The energy h = q̇·∂L/∂q̇ − L of the continuous system at a state (t, q, p).
     pub fn energy(&self, state: &State<Momenta>) -> Result<f64> {
-        self.ld.energy_at(state)
+        Ok(self.ld.energy_at(state)?)
     }
 
     /// Checks that a state (t, q, p) lies on the constraint manifold to within the violation tolerance:
@@ -246,7 +250,7 @@ where
     /// The size of the largest mass-matrix entry (computed at the first step and kept: it only scales
     /// the momentum residual, whose difference quotient (q₁ − q₀)/h loses ε‖q‖/h and is multiplied by
     /// M, to position units).
-    fn mass_scale(&mut self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+    fn mass_scale(&mut self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         if let Some(s) = self.mass_scale {
             return Ok(s);
         }
@@ -266,7 +270,7 @@ where
         v0: &DVector<f64>,
         h: f64,
         continued: bool,
-    ) -> Result<(State<Momenta>, DVector<f64>)> {
+    ) -> noether_core::Result<(State<Momenta>, DVector<f64>)> {
         let (n, m) = (self.ld.dof(), self.constraints.count());
         let (t0, t1) = (state.t, state.t + h);
         let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
@@ -362,7 +366,10 @@ where
             .zip(&phi_t)
             .fold(0.0_f64, |a, (x, y)| a.max((x + y).abs()));
         if !q1.iter().chain(p1.iter()).all(|z| z.is_finite()) || !pos.is_finite() {
-            return Err(Error::NonFiniteState { step: 0, t: t0 });
+            return Err(CoreError::NonFiniteResult {
+                what: "state after the step",
+                t: t0,
+            });
         }
         self.last = RattleInfo {
             position_residual: pos,
@@ -380,9 +387,9 @@ where
 }
 
 /// A singular Newton Jacobian is reported as rank-deficient constraints when G has low rank.
-fn singular_as_rank(e: Error, g: &DMatrix<f64>, t: f64) -> Error {
+fn singular_as_rank(e: CoreError, g: &DMatrix<f64>, t: f64) -> CoreError {
     match e {
-        Error::SingularMatrix { .. } => rank_error(g, t).unwrap_or(e),
+        CoreError::SingularMatrix { .. } => rank_error(g, t).map_or(e, CoreError::from),
         e => e,
     }
 }
@@ -402,10 +409,10 @@ impl<P: DenseProblem> NewtonSystem for AcrossSteps<'_, P> {
     fn dim(&self) -> usize {
         self.problem.dim()
     }
-    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
         self.problem.residual(x, r)
     }
-    fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
+    fn factor_jacobian(&mut self, x: &[f64]) -> noether_core::Result<()> {
         if std::mem::take(&mut self.may_reuse) && self.lu.is_some() {
             return Ok(());
         }
@@ -416,7 +423,7 @@ impl<P: DenseProblem> NewtonSystem for AcrossSteps<'_, P> {
         *self.lu = Some((self.h, lu));
         Ok(())
     }
-    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+    fn solve(&mut self, rhs: &mut [f64]) -> noether_core::Result<()> {
         let lu = self.lu.as_ref().map(|(_, lu)| lu);
         solve_with(lu, rhs, "constrained variational Jacobian")
     }
@@ -440,7 +447,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
     fn dim(&self) -> usize {
         self.q0.len() + self.c.count()
     }
-    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
         let n = self.q0.len();
         let (q1, lam) = x.split_at(n);
         let (ra, rb) = r.split_at_mut(n);
@@ -452,7 +459,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         holonomic::values(self.c, self.t0 + self.h, q1, rb);
         Ok(())
     }
-    fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+    fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> noether_core::Result<()> {
         let n = self.q0.len();
         let m = self.c.count();
         let q1 = &x[..n];
@@ -482,7 +489,7 @@ impl<L: Lagrangian> DenseProblem for MomentumStage<'_, L> {
     fn dim(&self) -> usize {
         self.q1.len() + self.phi_t.len()
     }
-    fn residual(&mut self, y: &[f64], r: &mut [f64]) -> Result<()> {
+    fn residual(&mut self, y: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
         let n = self.q1.len();
         let (v, mu) = y.split_at(n);
         let (ra, rb) = r.split_at_mut(n);
@@ -496,7 +503,7 @@ impl<L: Lagrangian> DenseProblem for MomentumStage<'_, L> {
         }
         Ok(())
     }
-    fn jacobian(&mut self, y: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+    fn jacobian(&mut self, y: &[f64], j: &mut DMatrix<f64>) -> noether_core::Result<()> {
         let n = self.q1.len();
         let m = self.phi_t.len();
         j.fill(0.0);
@@ -519,7 +526,7 @@ where
     C: Holonomic,
 {
     type Partner = Momenta;
-    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> noether_core::Result<StepInfo> {
         check_step(h)?;
         // A state that is exactly the last output is on the manifold; anything else is checked.
         let (v0, continued) = match &self.cache {

@@ -284,12 +284,13 @@ impl<'a, S: Stepper> Driver<'a, S> {
         if t + h <= t || (t + h).is_nan() || (t + h - t - h).abs() > 0.01 * h {
             return Err(Error::StepBelowTimeResolution { t, h });
         }
+        let step = self.steps_taken;
         let res = self.stepper.step(&mut self.state, h).and_then(|info| {
             if self.state.is_finite() {
                 Ok(info)
             } else {
-                Err(Error::NonFiniteState {
-                    step: self.steps_taken,
+                Err(Error::NonFiniteResult {
+                    what: "state after the step",
                     t,
                 })
             }
@@ -302,10 +303,8 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 }
                 Ok(info)
             }
-            Err(Error::NonFiniteState { .. }) => Err(Error::NonFiniteState {
-                step: self.steps_taken,
-                t,
-            }),
+            // The model says what failed and when; the driver adds which step of the run.
+            Err(Error::NonFiniteResult { what, .. }) => Err(Error::NonFiniteState { what, step, t }),
             Err(e) => Err(e),
         }
     }

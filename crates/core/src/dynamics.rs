@@ -22,6 +22,15 @@ pub trait Dynamics {
     /// The conserved energy of autonomous systems: h = q̇·∂L/∂q̇ − L, or H.
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64>;
 
+    /// Checks that (t, q, v) is a state this system may be stepped from. Every continuous stepper of
+    /// core calls it on the state at the start of a step (not on its intermediate stages). The
+    /// default accepts every state; a system with constraints (noether-constraints' `Constrained`)
+    /// refuses one off its constraints, so that a plain integrator cannot run on from a state the
+    /// equations of motion do not describe.
+    fn admissible(&self, _t: f64, _q: &[f64], _v: &[f64]) -> Result<()> {
+        Ok(())
+    }
+
     /// Writes only q̇ into `dq` (used by semi-implicit methods that update v first). The default calls
     /// [`rates`](Dynamics::rates); systems where q̇ is cheap (q̇ = v, or ∂H/∂p alone) override it.
     fn position_rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
@@ -77,6 +86,9 @@ impl<S: Dynamics + ?Sized> Dynamics for &S {
     }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         (**self).energy(t, q, v)
+    }
+    fn admissible(&self, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
+        (**self).admissible(t, q, v)
     }
     fn position_rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
         (**self).position_rates(t, q, v, dq)

@@ -1,5 +1,12 @@
 //! Errors of noether-core: every failure a user can meet, with the data needed to act on it.
+//!
+//! The crates built on core have error enums of their own (noether-constraints, noether-particles,
+//! noether-analysis), each wrapping this one. When one of their errors crosses an interface of core
+//! (a [`Dynamics`](crate::Dynamics) model stepped by a core integrator, a [`Driver`](crate::Driver)
+//! run) it travels as [`Error::Model`] with all its data, and comes back out with
+//! [`Error::downcast_ref`] or the owning crate's `From<noether_core::Error>`.
 
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Result alias used throughout noether.
@@ -7,6 +14,7 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// What went wrong, with the numbers that say how.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A vector had the wrong length.
     #[error("dimension mismatch in {what}: expected {expected}, got {got}")]
@@ -83,10 +91,23 @@ pub enum Error {
         /// Requested tolerance.
         tolerance: f64,
     },
-    /// The model produced NaN or infinity during a run.
-    #[error("the model produced a non-finite value at step {step}, t = {t}")]
+    /// A model or a step produced NaN or infinity (a quantity that should be finite, at time `t`).
+    /// Model-level code and single steps report this; a [`Driver`](crate::Driver) turns it into
+    /// [`NonFiniteState`](Self::NonFiniteState) with the step index.
+    #[error("the model produced a non-finite {what} at t = {t}")]
+    NonFiniteResult {
+        /// The quantity that came out non-finite ("accelerations", "energy", "state after the step", ...).
+        what: &'static str,
+        /// Time of the evaluation (the start of the step).
+        t: f64,
+    },
+    /// A run produced NaN or infinity: [`NonFiniteResult`](Self::NonFiniteResult) with the step index
+    /// added by the driver.
+    #[error("the model produced a non-finite {what} at step {step}, t = {t}")]
     NonFiniteState {
-        /// Step index (0 for the first step of a stepper call or driver).
+        /// The quantity that came out non-finite.
+        what: &'static str,
+        /// Index of the failing step in the run (0 for the first).
         step: usize,
         /// Time at the start of the failing step.
         t: f64,
@@ -132,32 +153,6 @@ pub enum Error {
     /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
-    /// A state violates the constraints it must satisfy (positions φ(t, q) = 0 or velocities
-    /// A(t, q) q̇ + a(t, q) = 0); project it onto the constraint manifold first.
-    #[error("state violates the {what} constraints at t = {t}: residual {residual:e} > tolerance {tolerance:e} (project the state onto the constraints first)")]
-    ConstraintViolated {
-        /// "position" or "velocity".
-        what: &'static str,
-        /// Time of the state.
-        t: f64,
-        /// Residual norm ‖φ‖∞ (or of the velocity constraints).
-        residual: f64,
-        /// Largest residual accepted.
-        tolerance: f64,
-    },
-    /// The constraint Jacobian has lower rank than the number of constraints: some constraints are
-    /// redundant (or the constraint set is singular at this point) and their multipliers are not determined.
-    #[error("redundant or rank-deficient constraints at t = {t}: Jacobian rank {rank} < {count} constraints (smallest singular value {sigma_ratio:e} relative to largest)")]
-    RankDeficientConstraints {
-        /// Time.
-        t: f64,
-        /// Numerical rank of the constraint Jacobian.
-        rank: usize,
-        /// Number of constraints.
-        count: usize,
-        /// Smallest singular value relative to the largest.
-        sigma_ratio: f64,
-    },
     /// A coordinate chart became singular (e.g. Euler angles near θ = 0 or π).
     #[error("coordinate singularity: {what} at t = {t}")]
     CoordinateSingularity {
@@ -166,6 +161,66 @@ pub enum Error {
         /// Time.
         t: f64,
     },
+    /// An error of a crate built on core (noether-constraints, noether-particles, a user's model)
+    /// carried through core's interfaces with its data; see [`Error::downcast_ref`].
+    #[error(transparent)]
+    Model(ModelError),
+}
+
+impl Error {
+    /// Wraps the error of a crate built on core, to pass it through core's interfaces
+    /// ([`Dynamics`](crate::Dynamics), [`Stepper`](crate::Stepper), [`Driver`](crate::Driver)).
+    pub fn model<E: std::error::Error + Send + Sync + 'static>(error: E) -> Self {
+        Error::Model(ModelError(Arc::new(error)))
+    }
+
+    /// The error of type `E` carried by [`Error::Model`], if this is one.
+    ///
+    /// ```
+    /// # use noether_core::Error;
+    /// #[derive(Debug, thiserror::Error, PartialEq)]
+    /// #[error("rod {0} broke")]
+    /// struct Broken(usize);
+    /// let e = Error::model(Broken(3));
+    /// assert_eq!(e.downcast_ref::<Broken>(), Some(&Broken(3)));
+    /// assert_eq!(e.to_string(), "rod 3 broke");
+    /// ```
+    pub fn downcast_ref<E: std::error::Error + 'static>(&self) -> Option<&E> {
+        match self {
+            Error::Model(m) => m.0.downcast_ref::<E>(),
+            _ => None,
+        }
+    }
+}
+
+/// The error of a crate built on core inside [`Error::Model`]: shared, so that [`Error`] stays
+/// `Clone`; two are equal when they are the same error or print the same.
+#[derive(Debug, Clone)]
+pub struct ModelError(Arc<dyn std::error::Error + Send + Sync + 'static>);
+
+impl ModelError {
+    /// The wrapped error.
+    pub fn get(&self) -> &(dyn std::error::Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+impl std::fmt::Display for ModelError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::error::Error for ModelError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.0.source()
+    }
+}
+
+impl PartialEq for ModelError {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0) || self.0.to_string() == other.0.to_string()
+    }
 }
 
 /// Checks that `x` has length `n`.
@@ -211,5 +266,18 @@ pub fn check_step(h: f64) -> Result<()> {
         Ok(())
     } else {
         Err(Error::InvalidStep { h })
+    }
+}
+
+/// Checks that a setting (a tolerance, a scale) is finite and positive; returns it.
+pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            reason: "must be finite and positive",
+        })
     }
 }

@@ -42,11 +42,14 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
     }
 
     /// The error for a non-finite result at (t, q, p): the model's own
-    /// ([`Hamiltonian::failure`]) or [`Error::NonFiniteState`].
+    /// ([`Hamiltonian::failure`]) or [`Error::NonFiniteResult`].
     fn failure(&self, t: f64, q: &[f64], p: &[f64]) -> Error {
         self.hamiltonian
             .failure(t, q, p)
-            .unwrap_or(Error::NonFiniteState { step: 0, t })
+            .unwrap_or(Error::NonFiniteResult {
+                what: "Hamiltonian or its derivatives",
+                t,
+            })
     }
 
     /// The value H(t, q, p) (the energy when H has no explicit time dependence).

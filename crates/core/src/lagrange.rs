@@ -70,7 +70,10 @@ fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, 
 #[inline]
 fn finish(b: &[f64], a: &mut [f64], t: f64) -> Result<()> {
     if b.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFiniteState { step: 0, t });
+        return Err(Error::NonFiniteResult {
+            what: "accelerations",
+            t,
+        });
     }
     a.copy_from_slice(b);
     Ok(())

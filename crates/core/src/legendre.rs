@@ -151,7 +151,10 @@ impl<L: Lagrangian> LegendreTransform<L> {
         let v = self.solve(t, q, p, false)?.v;
         let h = p.iter().zip(&v).map(|(a, b)| a * b).sum::<f64>() - self.lagrangian().lagrangian(t, q, &v);
         if !h.is_finite() {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "Hamiltonian",
+                t,
+            });
         }
         Ok(h)
     }
@@ -195,7 +198,10 @@ impl<L: Lagrangian> LegendreTransform<L> {
         chol.solve_mut(&mut dv);
         v.iter_mut().zip(dv.iter()).for_each(|(vi, di)| *vi -= di);
         if v.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "velocities q̇ from p",
+                t,
+            });
         }
         if let Ok(mut w) = self.warm.try_lock() {
             w.clone_from(&v);
@@ -224,7 +230,10 @@ impl<L: Lagrangian> LegendreTransform<L> {
         let r = DVector::from_iterator(n, p.iter().zip(&a).map(|(pi, ai)| pi - ai));
         let v: Vec<f64> = (minv * r).data.into();
         if v.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "velocities q̇ from p",
+                t,
+            });
         }
         Ok(Solved {
             v,

@@ -116,10 +116,13 @@ impl FactorError {
     }
 
     /// As the error of a mass matrix at time `t`: [`Error::SingularMassMatrix`], or
-    /// [`Error::NonFiniteState`] when the model produced a non-finite entry.
+    /// [`Error::NonFiniteResult`] when the model produced a non-finite entry.
     pub fn in_mass_matrix(self, t: f64) -> Error {
         match self {
-            FactorError::NonFinite => Error::NonFiniteState { step: 0, t },
+            FactorError::NonFinite => Error::NonFiniteResult {
+                what: "mass matrix",
+                t,
+            },
             FactorError::Singular { pivot_ratio } => Error::SingularMassMatrix { t, pivot_ratio },
         }
     }
@@ -277,7 +280,7 @@ impl DenseFactor {
 }
 
 /// Factors a mass matrix M = ∂²L/∂q̇² found at time `t` ([`DenseFactor::symmetric`]), with its
-/// failures as [`Error::SingularMassMatrix`] or [`Error::NonFiniteState`].
+/// failures as [`Error::SingularMassMatrix`] or [`Error::NonFiniteResult`].
 pub fn factor_mass(m: DMatrix<f64>, t: f64) -> crate::Result<DenseFactor> {
     DenseFactor::symmetric(m).map_err(|e| e.in_mass_matrix(t))
 }

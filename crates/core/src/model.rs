@@ -60,7 +60,7 @@ pub trait Hamiltonian {
     /// a solve, e.g. [`LegendreTransform`](crate::LegendreTransform)): a model signals failure by a
     /// non-finite value of [`hamiltonian`](Self::hamiltonian), and [`HamiltonEquations`](crate::HamiltonEquations)
     /// (so every Hamiltonian integrator) then reports the error returned here, or
-    /// [`Error::NonFiniteState`] when it is `None` (the default).
+    /// [`Error::NonFiniteResult`] when it is `None` (the default).
     fn failure(&self, _t: f64, _q: &[f64], _p: &[f64]) -> Option<Error> {
         None
     }

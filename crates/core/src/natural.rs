@@ -190,7 +190,10 @@ impl<P: Potential> Natural<P> {
         ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, f);
         f.iter_mut().for_each(|x| *x = -*x);
         if f.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t: 0.0 });
+            return Err(Error::NonFiniteResult {
+                what: "potential forces",
+                t: 0.0,
+            });
         }
         Ok(())
     }
@@ -357,7 +360,7 @@ impl<P: Potential> Dynamics for Natural<P> {
         check_finite("q̇", v)?;
         dq.copy_from_slice(v);
         self.accelerations(q, dv).map_err(|e| match e {
-            Error::NonFiniteState { step, .. } => Error::NonFiniteState { step, t },
+            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
             other => other,
         })
     }

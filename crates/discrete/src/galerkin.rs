@@ -284,7 +284,10 @@ impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
         let p1 = sys.problem.gy[(s - 1) * n..].to_vec();
         let q1 = &y[(s - 1) * n..];
         if q1.iter().chain(&p1).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t,
+            });
         }
         q.copy_from_slice(q1);
         p.copy_from_slice(&p1);

@@ -286,7 +286,10 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
             }
         }
         if self.d.iter().chain(&self.dp).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t,
+            });
         }
         // q_{k+1} is the point L_d was evaluated at, so the discrete Noether identity
         // D₁L_d·ξ(q_k) + D₂L_d·ξ(q_{k+1}) = 0 holds for the state as stored.

@@ -255,7 +255,10 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
             }
         }
         if self.d.iter().chain(&p1).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t,
+            });
         }
         q.iter_mut().zip(&self.d).for_each(|(qi, di)| *qi += di);
         self.predictor.record_increment(q, &self.d, h);

@@ -129,7 +129,10 @@ impl<P: LocalPotential> DiscreteFlow for Verlet<P> {
             }
         }
         if self.q1.iter().chain(&p1).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t,
+            });
         }
         q.copy_from_slice(&self.q1);
         p.copy_from_slice(&p1);

@@ -7,6 +7,7 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// What went wrong in building or evaluating a particle system.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum Error {
     /// An interaction names a particle that does not exist.
     #[error("interaction {interaction} names particle {index}, but the system has {n} particles")]
@@ -46,35 +47,46 @@ pub enum Error {
     },
     /// An error of noether-core (dimensions, non-finite input, step size, ...).
     #[error(transparent)]
-    Core(#[from] noether_core::Error),
+    Core(noether_core::Error),
+}
+
+impl From<noether_core::Error> for Error {
+    /// Core's error, or this crate's own when it comes back through core's interfaces (a particle
+    /// system stepped by a core integrator or a driver).
+    fn from(e: noether_core::Error) -> Self {
+        match e.downcast_ref::<Error>() {
+            Some(own) => own.clone(),
+            None => Error::Core(e),
+        }
+    }
 }
 
 impl From<Error> for noether_core::Error {
-    /// Particle errors seen through core's [`Dynamics`](noether_core::Dynamics) interface: core errors
-    /// pass through, the others become `InvalidParameter`/`NonFiniteState` with the numbers kept.
+    /// Particle errors seen through core's [`Dynamics`](noether_core::Dynamics) interface: core's
+    /// pass through, the others travel as [`noether_core::Error::Model`] with their particle indices
+    /// (`noether_particles::Error::from` gives them back).
     fn from(e: Error) -> Self {
         match e {
             Error::Core(c) => c,
-            Error::InvalidMass { mass, .. } => noether_core::Error::InvalidParameter {
-                name: "mass",
-                value: mass,
-                reason: "masses must be finite and positive",
-            },
-            Error::Coincident { distance, .. } => noether_core::Error::InvalidParameter {
-                name: "|r21|",
-                value: distance,
-                reason: "two particles coincide under a potential singular at r = 0",
-            },
-            Error::UnknownParticle { index, .. } => noether_core::Error::InvalidParameter {
-                name: "particle index",
-                value: index as f64,
-                reason: "no such particle",
-            },
-            Error::SelfInteraction { index, .. } => noether_core::Error::InvalidParameter {
-                name: "particle index",
-                value: index as f64,
-                reason: "internal interaction of a particle with itself",
-            },
+            own => noether_core::Error::model(own),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Coincident particles keep their indices through core's error type.
+    #[test]
+    fn error_round_trip_through_core() {
+        let e = Error::Coincident {
+            a: 3,
+            b: 7,
+            distance: 0.0,
+        };
+        let core = noether_core::Error::from(e.clone());
+        assert_eq!(core.downcast_ref::<Error>(), Some(&e));
+        assert_eq!(Error::from(core), e);
     }
 }

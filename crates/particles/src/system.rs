@@ -196,7 +196,10 @@ impl<I: Interaction> System<I> {
         Err(self
             .interactions
             .find_singular(t, x, &self.particles)
-            .unwrap_or(Error::Core(noether_core::Error::NonFiniteState { step: 0, t })))
+            .unwrap_or(Error::Core(noether_core::Error::NonFiniteResult {
+                what: "forces",
+                t,
+            })))
     }
 
     /// Writes the accelerations a_i = F_i / m_i into `a`.

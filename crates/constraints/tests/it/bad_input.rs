@@ -2,6 +2,7 @@
 
 use crate::models::*;
 use noether_constraints::prelude::*;
+use noether_core::Error as CoreError;
 
 fn pendulum(copies: usize) -> Constrained<Masses, HolonomicSet<Rod>> {
     Constrained::holonomic(
@@ -34,7 +35,8 @@ fn bad_input_initial_state_violating_constraints_names_the_residual() {
         1e-3,
     )
     .unwrap();
-    let e = run.next().unwrap().unwrap_err();
+    // Through the driver (core's interface) the error travels as core's `Model` and comes back whole.
+    let e = Error::from(run.next().unwrap().unwrap_err());
     assert!(matches!(e, Error::ConstraintViolated { .. }));
     assert!(e.to_string().contains("1.05"), "{e}");
     // A velocity with a radial component is a velocity violation.
@@ -56,7 +58,7 @@ fn bad_input_redundant_constraints_reported_with_rank() {
     expect(sys.check_state(&s, 1e-10).unwrap_err());
     expect(sys.multipliers(0.0, s.q.as_slice(), s.v.as_slice()).unwrap_err());
     let mut run = Driver::with_step(Rk4::new(&sys), s.clone(), 1e-3).unwrap();
-    expect(run.next().unwrap().unwrap_err());
+    expect(run.next().unwrap().unwrap_err().into());
     let mut s2 = s.clone();
     expect(project(sys.constraints(), &mut s2, &Projection::default()).unwrap_err());
     assert_eq!(s2, s, "a failed projection leaves the state unchanged");
@@ -81,20 +83,20 @@ fn bad_input_dimensions_and_non_finite() {
     .unwrap();
     assert!(matches!(
         e,
-        Error::Dimension {
+        Error::Core(CoreError::Dimension {
             expected: 3,
             got: 2,
             ..
-        }
+        })
     ));
     let sys = pendulum(1);
     assert!(matches!(
         sys.multipliers(0.0, &[0.0, 1.0, 2.0], &[0.0, 0.0]),
-        Err(Error::Dimension { .. })
+        Err(Error::Core(CoreError::Dimension { .. }))
     ));
     assert!(matches!(
         sys.multipliers(0.0, &[f64::NAN, 1.0], &[0.0, 0.0]),
-        Err(Error::NonFinite { .. })
+        Err(Error::Core(CoreError::NonFinite { .. }))
     ));
     let mut s = State::new(0.0, [f64::INFINITY, 1.0], [0.0, 0.0]);
     assert!(project(sys.constraints(), &mut s, &Projection::default()).is_err());
@@ -110,9 +112,47 @@ fn bad_input_projection_from_a_singular_point() {
     assert!(
         matches!(
             e,
-            Error::RankDeficientConstraints { rank: 0, .. } | Error::NewtonDiverged { .. }
+            Error::RankDeficientConstraints { rank: 0, .. } | Error::Core(CoreError::NewtonDiverged { .. })
         ),
         "{e}"
     );
     assert_eq!(s.q.as_slice(), &[0.0, 0.0]);
+}
+
+/// Issue 15, case 3: a constrained system stepped by a plain integrator (no projection) from a state
+/// off its rod (|r| = 1.1, φ = (1.21 − 1)/2 = 0.105) used to run to the end with Ok and |r| = 1.1
+/// throughout. Every step now checks the state it starts from: the first step fails, naming the
+/// residual, and the state is unchanged.
+#[test]
+fn regress_plain_integrator_from_a_state_off_the_constraints() {
+    let sys = pendulum(1);
+    let off = State::new(0.0, [0.0, -1.1], [0.0, 0.0]);
+    fn first_error<S: Stepper<Partner = Velocities>>(mut run: Driver<S>, start: &State) -> Error {
+        let e = Error::from(run.run_until(1.0).unwrap_err());
+        assert_eq!(run.state(), start, "the state is unchanged");
+        e
+    }
+    for e in [
+        first_error(
+            Driver::with_step(Rk4::new(&sys), off.clone(), 1e-3).unwrap(),
+            &off,
+        ),
+        first_error(Driver::new(Dopri5::new(&sys), off.clone()).unwrap(), &off),
+    ] {
+        match e {
+            Error::ConstraintViolated { what, residual, .. } => {
+                assert_eq!(what, "position");
+                assert!((residual - 0.105).abs() < 1e-15, "{residual}");
+            }
+            e => panic!("unexpected {e}"),
+        }
+    }
+    // The tolerance is the user's to set, and is validated when set.
+    assert!(matches!(
+        pendulum(1).with_violation_tolerance(f64::NAN),
+        Err(Error::Core(CoreError::InvalidParameter { .. }))
+    ));
+    let loose = pendulum(1).with_violation_tolerance(0.2).unwrap();
+    let mut run = Driver::with_step(Rk4::new(&loose), off, 1e-3).unwrap();
+    assert!(run.run_until(0.01).is_ok());
 }

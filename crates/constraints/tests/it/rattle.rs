@@ -3,6 +3,7 @@
 
 use crate::models::*;
 use noether_constraints::prelude::*;
+use noether_core::Error as CoreError;
 use noether_core::Newton;
 use noether_discrete::momentum::{noether_momentum, PlanarRotation};
 use noether_discrete::{Midpoint, Trapezoidal};
@@ -182,7 +183,8 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     // Off the circle: error names the residual φ = (1.21 − 1)/2.
     let mut s = State::new(0.0, [0.0, -1.1], [0.0, 0.0]);
     let before = s.clone();
-    match r.step(&mut s, 0.01).unwrap_err() {
+    // A step is core's interface: the error travels as core's `Model` and `Error::from` gives it back.
+    match Error::from(r.step(&mut s, 0.01).unwrap_err()) {
         Error::ConstraintViolated { what, residual, .. } => {
             assert_eq!(what, "position");
             assert!((residual - 0.105).abs() < 1e-12);
@@ -193,12 +195,12 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     // Radial momentum: a velocity violation.
     let mut s = State::new(0.0, [0.0, -1.0], [0.0, 0.5]);
     assert!(matches!(
-        r.step(&mut s, 0.01),
+        r.step(&mut s, 0.01).map_err(Error::from),
         Err(Error::ConstraintViolated { what: "velocity", .. })
     ));
     // Bad step.
     let mut s = r.state_from_velocities(0.0, &[0.0, -1.0], &[1.0, 0.0]).unwrap();
-    assert!(matches!(r.step(&mut s, -0.1), Err(Error::InvalidStep { .. })));
+    assert!(matches!(r.step(&mut s, -0.1), Err(CoreError::InvalidStep { .. })));
     // Newton capped at one iteration cannot solve the nonlinear constraint: the core error, state kept.
     let mut capped = Rattle::new(
         Midpoint::new(Masses { n: 1, d: 2, m, g }),
@@ -209,7 +211,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     let s0 = s.clone();
     assert!(matches!(
         capped.step(&mut s, 0.1),
-        Err(Error::NewtonDiverged { iterations: 1, .. })
+        Err(CoreError::NewtonDiverged { iterations: 1, .. })
     ));
     assert_eq!(s, s0);
     // The same rod twice: rank 1 < 2 constraints.
@@ -218,7 +220,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
         Rod { d: 2, l, copies: 2 },
     )
     .unwrap();
-    match red.step(&mut s, 0.01).unwrap_err() {
+    match Error::from(red.step(&mut s, 0.01).unwrap_err()) {
         Error::RankDeficientConstraints { rank, count, .. } => assert_eq!((rank, count), (1, 2)),
         e => panic!("unexpected {e}"),
     }
@@ -228,7 +230,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
             Midpoint::new(Masses { n: 1, d: 3, m, g }),
             Rod { d: 2, l, copies: 1 }
         ),
-        Err(Error::Dimension { .. })
+        Err(Error::Core(CoreError::Dimension { .. }))
     ));
 }
 

@@ -146,6 +146,9 @@ impl Observation for f64 {
     }
 }
 
+/// A fallible quantity. A closure that computes it with `?` may use the errors of the crates built on
+/// core (noether-constraints' multipliers, noether-particles' energies): they convert into core's
+/// [`Error::Model`](crate::Error::Model).
 impl Observation for Result<f64> {
     fn into_result(self) -> Result<f64> {
         self

@@ -230,7 +230,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         self.evaluations += 1;
         match self.system.rates(t, &y[..n], &y[n..], dq, dv) {
             Ok(()) => Ok(self.k[i].iter().all(|x| x.is_finite())),
-            Err(Error::NonFiniteState { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
+            Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
             Err(e) => Err(e),
         }
     }
@@ -272,7 +272,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         for (j, (c, row)) in M::DENSE_STAGES.iter().enumerate() {
             self.combine(h, row);
             if !self.eval(s + 1 + j, t + c * h, true)? {
-                return Err(Error::NonFiniteState { step: 0, t });
+                return Err(Error::NonFiniteResult { what: "rates", t });
             }
         }
         let mut coeffs = match self.dense.take() {
@@ -303,7 +303,10 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let n2 = 2 * self.n;
         self.load(state);
         if !self.eval(0, state.t, false)? {
-            return Err(Error::NonFiniteState { step: 0, t: state.t });
+            return Err(Error::NonFiniteResult {
+                what: "rates",
+                t: state.t,
+            });
         }
         let sk: Vec<f64> = self.y0.iter().map(|y| self.atol + self.rtol * y.abs()).collect();
         let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|v| v * v).sum::<f64>().sqrt();
@@ -349,6 +352,8 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.n)?;
+        self.system
+            .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
         let evaluations = self.evaluations;
         let t = state.t;
         let reuse = self.fsal == Some(t)
@@ -359,7 +364,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             let s = M::C.len();
             self.k.swap(0, s);
         } else if !self.eval(0, t, false)? {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult { what: "rates", t });
         }
         self.fsal = None;
         let c = self.controller;
@@ -400,7 +405,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                     .with_evaluations(self.evaluations - evaluations));
             }
             if self.fixed {
-                return Err(Error::NonFiniteState { step: 0, t });
+                return Err(Error::NonFiniteResult { what: "rates", t });
             }
             rejected += 1;
             last_err = err;

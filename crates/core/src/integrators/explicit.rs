@@ -22,7 +22,10 @@ impl Pair {
     /// Checks this new (q, v) is finite, then writes it and t + h into `state`.
     fn commit<K: Partner>(&self, state: &mut State<K>, h: f64) -> Result<StepInfo> {
         if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t: state.t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t: state.t,
+            });
         }
         state.q.as_mut_slice().copy_from_slice(&self.q);
         state.v.as_mut_slice().copy_from_slice(&self.v);
@@ -115,13 +118,17 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
+        self.system.admissible(t, q, v)?;
         let y = &mut self.y;
         self.system.rates(t, q, v, &mut y.q, &mut y.v)?;
         advance(&mut y.v, v, h); // v' = v + h v̇(t, q, v)
         if R::NEW_VELOCITIES {
             // Euler-Cromer: q̇ at the new velocities v'.
             if y.v.iter().any(|x| !x.is_finite()) {
-                return Err(Error::NonFiniteState { step: 0, t });
+                return Err(Error::NonFiniteResult {
+                    what: "velocities",
+                    t,
+                });
             }
             self.system.position_rates(t, q, &y.v, &mut y.q)?;
         }
@@ -179,6 +186,7 @@ impl<S: Dynamics> Stepper for Rk4<S> {
         check_step(h)?;
         state.validate(self.system.dof())?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
+        self.system.admissible(t, q, v)?;
         let (sys, y) = (&self.system, &mut self.y);
         let [k1, k2, k3, k4] = &mut self.k;
         sys.rates(t, q, v, &mut k1.q, &mut k1.v)?;

@@ -368,7 +368,7 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             jac: DMatrix::zeros(m, m),
         });
         let info = newton.solve(&mut sys, &mut z).map_err(|e| match e {
-            Error::NonFiniteState { .. } => Error::NonFiniteState { step: 0, t },
+            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
             other => other,
         })?;
         let mut y1 = y0.clone();
@@ -378,7 +378,10 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             }
         }
         if y1.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t,
+            });
         }
         state.q.as_mut_slice().copy_from_slice(&y1[..n]);
         state.v.as_mut_slice().copy_from_slice(&y1[n..]);

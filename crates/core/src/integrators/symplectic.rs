@@ -64,7 +64,10 @@ impl<S: Separable + ?Sized> Field for PotentialOf<'_, S> {
 
 fn finite_or(out: &[f64]) -> Result<()> {
     if out.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFiniteState { step: 0, t: f64::NAN });
+        return Err(Error::NonFiniteResult {
+            what: "forces",
+            t: f64::NAN,
+        });
     }
     Ok(())
 }
@@ -137,7 +140,7 @@ impl<S: SplitDynamics + ?Sized> SplitDynamics for &S {
 
 fn with_time(e: Error, t: f64) -> Error {
     match e {
-        Error::NonFiniteState { step, .. } => Error::NonFiniteState { step, t },
+        Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
         other => other,
     }
 }
@@ -177,7 +180,10 @@ impl Work {
     }
     fn commit<K: Partner>(&self, state: &mut State<K>, h: f64) -> Result<()> {
         if self.q.iter().chain(&self.v).any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteState { step: 0, t: state.t });
+            return Err(Error::NonFiniteResult {
+                what: "state after the step",
+                t: state.t,
+            });
         }
         state.q.as_mut_slice().copy_from_slice(&self.q);
         state.v.as_mut_slice().copy_from_slice(&self.v);

@@ -101,7 +101,7 @@ fn bad_input_model_returns_nan_taped_path() {
     v[7] = 1.2;
     let mut a = [0.0; 12];
     let r = el.accelerations(0.0, &[0.1; 12], &v, &mut a);
-    assert!(matches!(r, Err(Error::NonFiniteState { .. })), "{r:?}");
+    assert!(matches!(r, Err(Error::NonFiniteResult { .. })), "{r:?}");
     assert_eq!(a, [0.0; 12], "nothing written on error");
 }
 
@@ -170,6 +170,6 @@ fn bad_input_model_returns_nan() {
     });
     let mut a = [0.0; 3];
     let r = el.accelerations(0.0, &[0.1, 0.2, 0.3], &[1.5, 0.0, 0.0], &mut a);
-    assert!(matches!(r, Err(Error::NonFiniteState { .. })), "{r:?}");
+    assert!(matches!(r, Err(Error::NonFiniteResult { .. })), "{r:?}");
     assert_eq!(a, [0.0; 3]);
 }

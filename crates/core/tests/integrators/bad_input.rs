@@ -144,7 +144,7 @@ fn bad_input_nan_mid_run_names_step_and_time() {
             }
         };
         match err {
-            Error::NonFiniteState { step, t } => {
+            Error::NonFiniteState { step, t, .. } => {
                 assert_eq!(step, good, "{name}");
                 assert!((t - good as f64 * h).abs() < 1e-12, "{name}: t = {t}");
                 assert!(good > 0 && t < 1.0, "{name}: failed at step {step}");
