@@ -71,8 +71,8 @@ pub fn radial_period(pot: PowerLaw, lambda: f64, h: f64) -> Result<(f64, f64), B
     let sys = Natural::unit(pot);
     let r0 = 1.0;
     let start = State::new(0.0, [r0, 0.0], [0.0, lambda * pot.circular_speed(r0)]);
-    let energy = |s: &State| 0.5 * s.v.norm_squared() + sys.potential_energy(s.q.as_slice());
-    let e0 = energy(&start);
+    let energy = |s: &State| sys.energy(s.q.as_slice(), s.v.as_slice());
+    let e0 = energy(&start)?;
     // r·v = r v_r is 0 at the start; it turns negative at apoapsis and back up at the next periapsis.
     let sol = Driver::with_step(Composition::yoshida4(&sys), start, h)?
         .event(
@@ -80,7 +80,7 @@ pub fn radial_period(pot: PowerLaw, lambda: f64, h: f64) -> Result<(f64, f64), B
                 .rising()
                 .terminal(),
         )
-        .observe("energy error", |s: &State| ((energy(s) - e0) / e0).abs())
+        .observe("energy error", |s: &State| Ok(((energy(s)? - e0) / e0).abs()))
         .run_steps(MAX_STEPS)?;
     if sol.event_times("periapsis").is_empty() {
         return Err("no radial period found".into());

@@ -66,7 +66,7 @@ impl Lagrangian for HeavyTop {
 }
 
 /// The Euler-angle integrator: RK4 guarded against the poles of the chart (sin θ < 10⁻²).
-pub fn euler_angle_stepper(top: HeavyTop) -> ChartGuard<Rk4<EulerLagrange<HeavyTop>>> {
+pub fn euler_angle_stepper(top: HeavyTop) -> Result<ChartGuard<Rk4<EulerLagrange<HeavyTop>>>, Error> {
     ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(top)), 0, "θ", 1e-2)
 }
 
@@ -169,7 +169,7 @@ fn run_euler(top: HeavyTop, start: State, t_end: f64) -> Result<Solution, BoxErr
     let el = EulerLagrange::new(top);
     let (pf0, pp0, _) = constants(&el, &start)?;
     let dop853 = Dop853::new(EulerLagrange::new(top)).tolerances(TOL, TOL)?;
-    let sol = Driver::new(ChartGuard::polar_angle(dop853, 0, "θ", 1e-2), start)?
+    let sol = Driver::new(ChartGuard::polar_angle(dop853, 0, "θ", 1e-2)?, start)?
         .keep_dense_output(true)
         .observe_each([P_PHI, P_PSI, ENERGY], |s: &State, out: &mut [f64]| {
             let (pf, pp, e) = constants(&el, s)?;

@@ -64,7 +64,7 @@ pub fn run_steps(steps: usize) -> Result<Report, BoxError> {
     v.iter_mut().for_each(|w| (0..3).for_each(|k| w[k] -= mean[k]));
     let s0 = sys.state(0.0, &x, &v)?;
     let e0 = sys.total_energy(&s0)?;
-    let p0 = sys.momentum(s0.v.as_slice());
+    let p0 = sys.momentum(s0.v.as_slice())?;
     let h = 0.002;
     let samples = 1000;
     let every = steps / samples;
@@ -86,7 +86,7 @@ pub fn run_steps(steps: usize) -> Result<Report, BoxError> {
     let tenth = samples / 10;
     let mean_of = |es: &[f64]| es.iter().sum::<f64>() / es.len() as f64;
     let drift = (mean_of(&energies[samples - tenth..]) - mean_of(&energies[..tenth])) / e0.abs();
-    let p = sys.momentum(s.v.as_slice());
+    let p = sys.momentum(s.v.as_slice())?;
     let dp = (0..3).fold(0.0_f64, |m, k| m.max((p[k] - p0[k]).abs()));
     let scale: f64 = s.v.iter().map(|w| w.abs()).sum();
     let label = format!("{steps} steps");

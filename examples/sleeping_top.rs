@@ -138,7 +138,7 @@ fn pole_approach(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
     let start = State::new(0.0, [th0, 0.0, 0.0], [dth0, dphi0, dpsi0]);
     let (pf, pp, e) = constants(&el, &start)?;
     let h = 1e-3;
-    let mut driver = Driver::with_step(euler_angle_stepper(top), start, h)?.save(Save::End)?;
+    let mut driver = Driver::with_step(euler_angle_stepper(top)?, start, h)?.save(Save::End)?;
     let t_err = match driver.run_until(5.0) {
         Err(Error::CoordinateSingularity { t, .. }) => t,
         Ok(_) => return Err("the run through the pole finished without a chart error".into()),

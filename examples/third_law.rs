@@ -84,8 +84,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
             .collect();
         let s0 = sys.state(0.0, &x, &v)?;
         let (p0, l0) = (
-            sys.momentum(s0.v.as_slice()),
-            sys.angular_momentum(s0.q.as_slice(), s0.v.as_slice()),
+            sys.momentum(s0.v.as_slice())?,
+            sys.angular_momentum(s0.q.as_slice(), s0.v.as_slice())?,
         );
         let sol = sys
             .evolver(Method::VelocityVerlet, s0.clone(), 0.01)?
@@ -93,8 +93,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
             .run_steps(10_000)?;
         let s = sol.last();
         let (p1, l1) = (
-            sys.momentum(s.v.as_slice()),
-            sys.angular_momentum(s.q.as_slice(), s.v.as_slice()),
+            sys.momentum(s.v.as_slice())?,
+            sys.angular_momentum(s.q.as_slice(), s.v.as_slice())?,
         );
         // Scales: Σ m |v| and Σ m |r| |v| along the run's end (the system spreads out a little).
         let norm = |a: &[f64]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();

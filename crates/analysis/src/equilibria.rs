@@ -192,7 +192,10 @@ impl EquilibriumFinder {
     }
 
     /// A local minimum of V from `q0` by argmin's trust-region method (Steihaug subproblem, exact
-    /// Hessian): it descends from any start, through regions where the Hessian is indefinite.
+    /// Hessian): it descends from any start, through regions where the Hessian is indefinite. A run
+    /// that ends on a saddle or a maximum (a start exactly there, where the gradient vanishes) is
+    /// [`Error::NotMinimum`]; one that does not reach the gradient tolerance is
+    /// [`Error::NotConverged`].
     ///
     /// A cost-based method cannot resolve ∇V much below sqrt(ε)·scale (the decrease of V is lost in
     /// rounding), so argmin stops at ‖∇V‖∞ ≤ sqrt(`tol_gradient`)·scale and Newton's method on ∇V = 0
@@ -232,6 +235,12 @@ impl EquilibriumFinder {
         let (q, info) = newton_root(&self.newton(tol), pot, q.as_slice(), self.zero_tolerance)
             .map_err(|_| not_converged(g.amax()))?;
         let mut eq = classify(pot, q.as_slice(), self.zero_tolerance)?;
+        if matches!(eq.kind, Kind::Saddle | Kind::Maximum) {
+            return Err(Error::NotMinimum {
+                kind: eq.kind,
+                point: eq.q.as_slice().to_vec(),
+            });
+        }
         eq.iterations = iterations + info.iterations as u64;
         Ok(eq)
     }

@@ -34,6 +34,15 @@ pub enum Error {
         /// Requested tolerance.
         tolerance: f64,
     },
+    /// The minimiser stopped at a stationary point that is not a minimum (it was started exactly on a
+    /// maximum or a saddle, where the gradient vanishes and no descent direction is taken).
+    #[error("the minimiser stopped at a {kind:?}, not a minimum, at q = {point:?} (start elsewhere, or use stationary_point to find any kind)")]
+    NotMinimum {
+        /// What the point is.
+        kind: crate::Kind,
+        /// Where.
+        point: Vec<f64>,
+    },
     /// The optimiser (argmin) reported an error.
     #[error("optimiser failed: {0}")]
     Optimizer(String),

@@ -372,4 +372,10 @@ fn bad_input_unbounded_potential_does_not_converge() {
         .unwrap();
     assert_relative_eq!(top.q[0], 0.5, max_relative = 1e-14);
     assert_eq!(top.kind, Kind::Maximum);
+    // Issue 15, case 10: `minimize` started on that maximum returned it as Ok(kind = Maximum).
+    let r = EquilibriumFinder::default().minimize(&Unbounded, &[0.5]);
+    assert!(
+        matches!(&r, Err(Error::NotMinimum { kind: Kind::Maximum, point }) if point == &[0.5]),
+        "{r:?}"
+    );
 }

@@ -40,17 +40,18 @@
 //!     }
 //! }
 //!
-//! let sys = Constrained::holonomic(Mass { m: 1.0, g: 9.81 }, Rod { l: 1.0 }).unwrap();
+//! let sys = Constrained::holonomic(Mass { m: 1.0, g: 9.81 }, Rod { l: 1.0 })?;
 //! // Hanging at rest: the rod carries the weight, T = m g (the force on the bob points up).
-//! let f = sys.constraint_forces(0.0, &[0.0, -1.0], &[0.0, 0.0]).unwrap();
-//! assert!((f.on_particle(0, 2)[1] - 9.81).abs() < 1e-12);
+//! let f = sys.constraint_forces(0.0, &[0.0, -1.0], &[0.0, 0.0])?;
+//! assert!((f.on_particle(0, 2)?[1] - 9.81).abs() < 1e-12);
 //!
 //! // RK4 with a projection after every step stays on the circle.
 //! let stepper = Projected::new(Rk4::new(&sys), sys.constraints());
 //! let start = State::new(0.0, [0.6, -0.8], [0.8, 0.6]);
-//! let mut run = Driver::with_step(stepper, start, 1e-3).unwrap();
-//! let end = run.run_until(1.0).unwrap().last().clone();
+//! let mut run = Driver::with_step(stepper, start, 1e-3)?;
+//! let end = run.run_until(1.0)?.last().clone();
 //! assert!((end.q.norm() - 1.0).abs() < 1e-13);
+//! # Ok::<(), noether_constraints::Error>(())
 //! ```
 
 pub mod dynamics;

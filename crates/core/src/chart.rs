@@ -56,9 +56,24 @@ impl<S: Stepper> ChartGuard<S> {
 
     /// The usual chart of a polar angle (Euler angle θ, spherical θ): valid while |sin q\[index\]| ≥
     /// `min_sin`. Near θ = 0 or π the Euler-angle mass matrix has det ∝ sin²θ, so relative errors grow
-    /// like 1/sin²θ: `min_sin` = 1e-2 keeps the amplification below 10⁴.
-    pub fn polar_angle(stepper: S, index: usize, name: &'static str, min_sin: f64) -> Self {
-        Self::new(stepper, move |s: &State<S::Partner>| {
+    /// like 1/sin²θ: `min_sin` = 1e-2 keeps the amplification below 10⁴. The index must name a
+    /// coordinate and `min_sin` lie in (0, 1).
+    pub fn polar_angle(stepper: S, index: usize, name: &'static str, min_sin: f64) -> Result<Self> {
+        if index >= stepper.dof() {
+            return Err(Error::InvalidParameter {
+                name: "polar angle index",
+                value: index as f64,
+                reason: "no such coordinate",
+            });
+        }
+        if !(min_sin > 0.0 && min_sin < 1.0) {
+            return Err(Error::InvalidParameter {
+                name: "min_sin",
+                value: min_sin,
+                reason: "must lie in (0, 1)",
+            });
+        }
+        Ok(Self::new(stepper, move |s: &State<S::Partner>| {
             let th = s.q[index];
             (th.sin().abs() < min_sin).then(|| {
                 format!(
@@ -66,7 +81,7 @@ impl<S: Stepper> ChartGuard<S> {
                      is singular (det ∂²L/∂q̇² ∝ sin²θ); use a chart regular there"
                 )
             })
-        })
+        }))
     }
 
     /// The wrapped stepper.
@@ -78,6 +93,8 @@ impl<S: Stepper> ChartGuard<S> {
 impl<S: Stepper> Stepper for ChartGuard<S> {
     type Partner = S::Partner;
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
+        // The chart test may index the state: check its size first.
+        state.validate(self.saved_q.len())?;
         if let Some(what) = (self.check)(state) {
             return Err(Error::CoordinateSingularity { what, t: state.t });
         }
@@ -122,7 +139,7 @@ mod tests {
     fn bad_input_chart_singularity_is_an_error_and_state_stays_valid() {
         // Released from θ = 0.5 toward the bottom with no azimuthal momentum: it swings through θ = 0,
         // the pole of the chart, after t ≈ quarter period ≈ 1.6.
-        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
+        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2).unwrap();
         let mut traj = Driver::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0]))
             .unwrap()
             .step(1e-3)
@@ -138,7 +155,7 @@ mod tests {
         let s = traj.state();
         assert!(s.is_finite() && s.q[0].sin().abs() >= 1e-2);
         // A run started at the pole is refused before any step.
-        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2);
+        let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2).unwrap();
         let mut traj = Driver::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0]))
             .unwrap()
             .step(1e-3)
@@ -147,5 +164,31 @@ mod tests {
             traj.run_steps(1),
             Err(Error::CoordinateSingularity { t, .. }) if t == 0.0
         ));
+    }
+
+    /// Issue 15, case 9: a state of the wrong size and an angle index out of range were panics.
+    #[test]
+    fn bad_input_chart_guard_sizes_and_index() {
+        let stepper = || Rk4::new(EulerLagrange::new(Spherical));
+        assert!(matches!(
+            ChartGuard::polar_angle(stepper(), 2, "θ", 1e-2),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
+            ChartGuard::polar_angle(stepper(), 0, "θ", f64::NAN),
+            Err(Error::InvalidParameter { .. })
+        ));
+        let mut guarded = ChartGuard::polar_angle(stepper(), 1, "φ", 1e-2).unwrap();
+        let mut short = State::new(0.0, [0.5], [0.0]);
+        let before = short.clone();
+        assert!(matches!(
+            guarded.step(&mut short, 1e-3),
+            Err(Error::Dimension {
+                expected: 2,
+                got: 1,
+                ..
+            })
+        ));
+        assert_eq!(short, before);
     }
 }

@@ -16,8 +16,9 @@
 //! The [`Driver`](crate::Driver) chooses the first that the stepper offers, and says which in
 //! [`Solution::interpolation_order`](crate::Solution::interpolation_order).
 
+use crate::error::check_len;
 use crate::roots::bracketed_root;
-use crate::{Partner, State, Velocities};
+use crate::{Error, Partner, Result, State, Velocities};
 use std::marker::PhantomData;
 
 /// y(t₀ + θh) from θ, y₀ and the coefficient vectors of an interpolant.
@@ -105,25 +106,56 @@ impl<K: Partner> DenseOutput<K> {
         self.n
     }
 
-    /// Writes y(t) into `q` and `v` (t should lie in the step; outside, the polynomial extrapolates).
-    pub fn eval(&self, t: f64, q: &mut [f64], v: &mut [f64]) {
+    /// Writes y(t) into `q` and `v`. The interpolant holds inside its step only: a time outside
+    /// [t₀, t₀ + h] (beyond a rounding margin of 1e-12 h) is an error, not an extrapolation.
+    pub fn eval(&self, t: f64, q: &mut [f64], v: &mut [f64]) -> Result<()> {
+        self.check_time(t)?;
+        check_len("q (output)", q, self.n)?;
+        check_len("v (output)", v, self.n)?;
+        self.fill(t, q, v);
+        Ok(())
+    }
+
+    /// Overwrites `state` with the interpolated state at time `t` (see [`eval`](Self::eval)).
+    pub fn eval_state(&self, t: f64, state: &mut State<K>) -> Result<()> {
+        self.eval(t, state.q.as_mut_slice(), state.v.as_mut_slice())?;
+        state.t = t;
+        Ok(())
+    }
+
+    /// The interpolated state at time `t` (see [`eval`](Self::eval)).
+    pub fn state_at(&self, t: f64) -> Result<State<K>> {
+        self.check_time(t)?;
+        let mut s = State::zeros(t, self.n);
+        self.fill_state(t, &mut s);
+        Ok(s)
+    }
+
+    /// An error unless t lies in the step (to a rounding margin of 1e-12 h).
+    fn check_time(&self, t: f64) -> Result<()> {
+        let theta = (t - self.t0) / self.h;
+        if (-1e-12..=1.0 + 1e-12).contains(&theta) {
+            return Ok(());
+        }
+        Err(Error::InvalidParameter {
+            name: "t",
+            value: t,
+            reason: "outside the step of this dense output (an interpolant does not extrapolate)",
+        })
+    }
+
+    /// y(t) into `q` and `v`, unchecked (the driver's own calls, inside the step by construction).
+    fn fill(&self, t: f64, q: &mut [f64], v: &mut [f64]) {
         let mut y = vec![0.0; 2 * self.n];
         (self.eval)((t - self.t0) / self.h, &self.y0, &self.coeffs, &mut y);
         q.copy_from_slice(&y[..self.n]);
         v.copy_from_slice(&y[self.n..]);
     }
 
-    /// Overwrites `state` with the interpolated state at time `t` (same dimensions).
-    pub fn eval_state(&self, t: f64, state: &mut State<K>) {
-        self.eval(t, state.q.as_mut_slice(), state.v.as_mut_slice());
+    /// [`fill`](Self::fill) into a state of the right size.
+    pub(crate) fn fill_state(&self, t: f64, state: &mut State<K>) {
+        self.fill(t, state.q.as_mut_slice(), state.v.as_mut_slice());
         state.t = t;
-    }
-
-    /// The interpolated state at time `t` (see [`eval`](Self::eval)).
-    pub fn state_at(&self, t: f64) -> State<K> {
-        let mut s = State::zeros(t, self.n);
-        self.eval_state(t, &mut s);
-        s
     }
 
     /// A time in the step where `g(state)` vanishes, when g changes sign between the ends of the step,
@@ -132,7 +164,7 @@ impl<K: Partner> DenseOutput<K> {
     pub fn locate(&self, mut g: impl FnMut(&State<K>) -> f64) -> Option<f64> {
         let mut s = State::zeros(self.t0, self.n);
         let mut g_at = |t: f64| {
-            self.eval_state(t, &mut s);
+            self.fill_state(t, &mut s);
             g(&s)
         };
         let (a, b) = (self.t0, self.t_end());
@@ -171,7 +203,7 @@ mod tests {
         let (t0, h) = (0.5, 0.75);
         let d: DenseOutput = DenseOutput::hermite(t0, h, &y(t0), &f(t0), &y(t0 + h), &f(t0 + h));
         for t in [0.5, 0.6, 0.9, 1.25] {
-            let s = d.state_at(t);
+            let s = d.state_at(t).unwrap();
             let e = y(t);
             // Rounding of a few operations on O(1) values.
             assert!(
@@ -180,6 +212,18 @@ mod tests {
             );
         }
         assert_eq!(d.order(), 3);
+        // Issue 15, case 10: outside its step the interpolant used to extrapolate silently.
+        for t in [0.4, 1.3, f64::NAN] {
+            assert!(
+                matches!(d.state_at(t), Err(Error::InvalidParameter { name: "t", .. })),
+                "t = {t}"
+            );
+        }
+        let (mut q, mut v) = ([0.0; 2], [0.0]);
+        assert!(matches!(
+            d.eval(1.0, &mut q, &mut v),
+            Err(Error::Dimension { .. })
+        ));
     }
 
     #[test]

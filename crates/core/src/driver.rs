@@ -471,7 +471,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                     let d = dense.as_ref().expect("events interpolate");
                     let tc = crate::roots::bracketed_root(
                         |t| {
-                            d.eval_state(t, &mut scratch);
+                            d.fill_state(t, &mut scratch);
                             (ev.g)(&scratch)
                         },
                         (t0, g_prev[i]),
@@ -487,7 +487,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 let at = if tc == t1 {
                     self.state.clone()
                 } else {
-                    d.state_at(tc)
+                    d.state_at(tc)?
                 };
                 sol.events.push(EventRecord {
                     event: i,
@@ -513,7 +513,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                         dense
                             .as_ref()
                             .expect("output times interpolate")
-                            .eval_state(t, &mut scratch);
+                            .fill_state(t, &mut scratch);
                     }
                     self.observe_state(&scratch, &mut obs_row)?;
                     sol.push(&scratch, &obs_row);

@@ -66,6 +66,20 @@ fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, 
         .map(|f| f.solve_in_place(b.as_mut_slice()))
 }
 
+/// `x`, or [`Error::NonFiniteResult`] naming `what` at `t`.
+fn finite(what: &'static str, t: f64, x: f64) -> Result<f64> {
+    all_finite(what, t, &[x]).map(|()| x)
+}
+
+/// [`Error::NonFiniteResult`] naming `what` at `t` when an entry of `x` is NaN or infinite.
+fn all_finite(what: &'static str, t: f64, x: &[f64]) -> Result<()> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFiniteResult { what, t })
+    }
+}
+
 /// Copies finite accelerations into `a`; a non-finite one is the model's failure, reported as such.
 #[inline]
 fn finish(b: &[f64], a: &mut [f64], t: f64) -> Result<()> {
@@ -114,8 +128,9 @@ impl<L: Lagrangian> EulerLagrange<L> {
     }
 
     /// The value of L.
-    pub fn value(&self, t: f64, q: &[f64], v: &[f64]) -> f64 {
-        self.lagrangian.lagrangian(t, q, v)
+    pub fn value(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        self.check(t, q, v)?;
+        finite("Lagrangian", t, self.lagrangian.lagrangian(t, q, v))
     }
 
     /// Mass matrix M = ∂²L/∂q̇².
@@ -125,10 +140,13 @@ impl<L: Lagrangian> EulerLagrange<L> {
         let f = LagrangianField(&self.lagrangian);
         if n > JET_MAX {
             // One taped evaluation instead of one wide Dual2 or ⌈n/8⌉² hyper-dual evaluations.
-            return Ok(ad::lagrange_terms_taped(&f, t, q, v).hess_yy);
+            let m = ad::lagrange_terms_taped(&f, t, q, v).hess_yy;
+            all_finite("mass matrix", t, m.as_slice())?;
+            return Ok(m);
         }
         let mut m = DMatrix::zeros(n, n);
         ad::hessian(&f, t, q, v, Block::Y, Block::Y, &mut m);
+        all_finite("mass matrix", t, m.as_slice())?;
         Ok(m)
     }
 
@@ -252,7 +270,10 @@ impl<L: Lagrangian> EulerLagrange<L> {
     pub fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
         self.check(t, q, v)?;
         check_len("p (output)", p, self.dof())?;
-        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, p);
+        let mut out = vec![0.0; self.dof()];
+        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, &mut out);
+        all_finite("momenta", t, &out)?;
+        p.copy_from_slice(&out);
         Ok(())
     }
 
@@ -261,14 +282,21 @@ impl<L: Lagrangian> EulerLagrange<L> {
         self.check(t, q, v)?;
         let mut p = vec![0.0; self.dof()];
         let l = ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, &mut p);
-        Ok(p.iter().zip(v).map(|(pi, vi)| pi * vi).sum::<f64>() - l)
+        finite(
+            "energy",
+            t,
+            p.iter().zip(v).map(|(pi, vi)| pi * vi).sum::<f64>() - l,
+        )
     }
 
     /// ∂L/∂q (the generalized force of the potential part).
     pub fn gradient_q(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) -> Result<()> {
         self.check(t, q, v)?;
         check_len("∂L/∂q (output)", out, self.dof())?;
-        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::X, out);
+        let mut g = vec![0.0; self.dof()];
+        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::X, &mut g);
+        all_finite("∂L/∂q", t, &g)?;
+        out.copy_from_slice(&g);
         Ok(())
     }
 

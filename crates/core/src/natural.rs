@@ -178,8 +178,10 @@ impl<P: Potential> Natural<P> {
     }
 
     /// The value V(q).
-    pub fn potential_energy(&self, q: &[f64]) -> f64 {
-        self.potential.potential(q)
+    pub fn potential_energy(&self, q: &[f64]) -> Result<f64> {
+        check_len("q", q, self.dof())?;
+        check_finite("q", q)?;
+        finite_value("potential energy", self.potential.potential(q))
     }
 
     /// Forces f = −∇V(q) (one gradient by dual numbers) into `f`.
@@ -201,12 +203,19 @@ impl<P: Potential> Natural<P> {
     /// Accelerations q̈ = −M⁻¹ ∇V(q) into `a`.
     pub fn accelerations(&self, q: &[f64], a: &mut [f64]) -> Result<()> {
         self.forces(q, a)?;
-        self.solve_mass(a);
+        self.apply_inverse_mass(a);
         Ok(())
     }
 
     /// Overwrites `b` with M⁻¹ b (using the factor computed once).
-    pub fn solve_mass(&self, b: &mut [f64]) {
+    pub fn solve_mass(&self, b: &mut [f64]) -> Result<()> {
+        check_len("b", b, self.dof())?;
+        self.apply_inverse_mass(b);
+        Ok(())
+    }
+
+    /// M⁻¹ b in place, for `b` of length n.
+    pub(crate) fn apply_inverse_mass(&self, b: &mut [f64]) {
         match &self.mass {
             Mass::Diagonal { inv, .. } => b.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= i),
             Mass::Dense { chol, .. } => {
@@ -217,7 +226,15 @@ impl<P: Potential> Natural<P> {
     }
 
     /// Momenta p = M q̇ into `p`.
-    pub fn momenta(&self, v: &[f64], p: &mut [f64]) {
+    pub fn momenta(&self, v: &[f64], p: &mut [f64]) -> Result<()> {
+        check_len("q̇", v, self.dof())?;
+        check_len("p (output)", p, self.dof())?;
+        self.apply_mass(v, p);
+        Ok(())
+    }
+
+    /// M v into `p` (both of length n).
+    fn apply_mass(&self, v: &[f64], p: &mut [f64]) {
         match &self.mass {
             Mass::Diagonal { m, .. } => {
                 for i in 0..p.len() {
@@ -233,16 +250,19 @@ impl<P: Potential> Natural<P> {
     }
 
     /// Velocities q̇ = M⁻¹ p into `v`.
-    pub fn velocities(&self, p: &[f64], v: &mut [f64]) {
+    pub fn velocities(&self, p: &[f64], v: &mut [f64]) -> Result<()> {
+        check_len("p", p, self.dof())?;
+        check_len("q̇ (output)", v, self.dof())?;
         v.copy_from_slice(p);
-        self.solve_mass(v);
+        self.apply_inverse_mass(v);
+        Ok(())
     }
 
     /// The state in momenta, (t, q, q̇) ↦ (t, q, M q̇).
     pub fn to_momenta(&self, state: &crate::State) -> crate::Result<crate::State<crate::Momenta>> {
         state.validate(self.dof())?;
         let mut s = crate::State::from_vectors(state.t, state.q.clone(), state.v.clone());
-        self.momenta(state.v.as_slice(), s.v.as_mut_slice());
+        self.apply_mass(state.v.as_slice(), s.v.as_mut_slice());
         Ok(s)
     }
 
@@ -250,22 +270,46 @@ impl<P: Potential> Natural<P> {
     pub fn to_velocities(&self, state: &crate::State<crate::Momenta>) -> crate::Result<crate::State> {
         state.validate(self.dof())?;
         let mut s = crate::State::from_vectors(state.t, state.q.clone(), state.v.clone());
-        self.solve_mass(s.v.as_mut_slice());
+        self.apply_inverse_mass(s.v.as_mut_slice());
         Ok(s)
     }
 
     /// Kinetic energy ½ q̇ᵀ M q̇ in terms of velocities.
-    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        quadratic(&self.mass_as(false), v)
+    pub fn kinetic_energy(&self, v: &[f64]) -> Result<f64> {
+        check_len("q̇", v, self.dof())?;
+        check_finite("q̇", v)?;
+        finite_value("kinetic energy", quadratic(&self.mass_as(false), v))
     }
 
     /// The energy ½ q̇ᵀ M q̇ + V(q).
-    pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
-        self.kinetic_energy(v) + self.potential.potential(q)
+    pub fn energy(&self, q: &[f64], v: &[f64]) -> Result<f64> {
+        finite_value("energy", self.kinetic_energy(v)? + self.potential_energy(q)?)
     }
 
-    /// Hessian ∇²V(q) (for implicit methods; explicit methods never form it).
-    pub fn potential_hessian(&self, q: &[f64], out: &mut DMatrix<f64>) {
+    /// Hessian ∇²V(q) (for implicit methods; explicit methods never form it) into the n × n `out`.
+    pub fn potential_hessian(&self, q: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_finite("q", q)?;
+        if out.shape() != (n, n) {
+            return Err(Error::Dimension {
+                what: "Hessian (output) rows and columns",
+                expected: n,
+                got: out.nrows().max(out.ncols()),
+            });
+        }
+        self.potential_hessian_unchecked(q, out);
+        if out.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteResult {
+                what: "potential Hessian",
+                t: 0.0,
+            });
+        }
+        Ok(())
+    }
+
+    /// ∇²V(q) into `out` (q and `out` of the right sizes).
+    pub(crate) fn potential_hessian_unchecked(&self, q: &[f64], out: &mut DMatrix<f64>) {
         ad::hessian(
             &PotentialField(&self.potential),
             0.0,
@@ -364,14 +408,24 @@ impl<P: Potential> Dynamics for Natural<P> {
             other => other,
         })
     }
-    fn energy(&self, _t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
-        check_len("q", q, self.dof())?;
-        check_len("q̇", v, self.dof())?;
-        Ok(Natural::energy(self, q, v))
+    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        Natural::energy(self, q, v).map_err(|e| match e {
+            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
+            other => other,
+        })
     }
     fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
         check_len("q̇", v, self.dof())?;
         dq.copy_from_slice(v);
         Ok(())
+    }
+}
+
+/// `x`, or [`Error::NonFiniteResult`] naming `what` when it is NaN or infinite.
+fn finite_value(what: &'static str, x: f64) -> Result<f64> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Error::NonFiniteResult { what, t: 0.0 })
     }
 }

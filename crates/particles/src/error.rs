@@ -27,8 +27,8 @@ pub enum Error {
         /// The particle.
         index: usize,
     },
-    /// A mass that is zero, negative or not finite.
-    #[error("particle {index} has mass {mass}: masses must be finite and positive")]
+    /// A mass that is zero, negative or not finite, or so small that 1/m overflows.
+    #[error("particle {index} has mass {mass:e}: masses must be finite and positive, with a finite 1/m")]
     InvalidMass {
         /// The particle.
         index: usize,
@@ -44,6 +44,23 @@ pub enum Error {
         b: usize,
         /// Their distance.
         distance: f64,
+    },
+    /// A pair interaction that is not finite although the particles are apart: a parameter of the
+    /// law is not finite (G = NaN), or the particles are so close that the law overflows.
+    #[error("the interaction of particles {a} and {b} is not finite at distance {distance:e} (a parameter of the law is not finite, or the particles are too close)")]
+    NonFiniteInteraction {
+        /// First particle.
+        a: usize,
+        /// Second particle.
+        b: usize,
+        /// Their distance.
+        distance: f64,
+    },
+    /// A quantity that needs at least one particle, asked of an empty system.
+    #[error("{what} of a system without particles")]
+    Empty {
+        /// The quantity asked for.
+        what: &'static str,
     },
     /// An error of noether-core (dimensions, non-finite input, step size, ...).
     #[error(transparent)]
@@ -88,5 +105,18 @@ mod tests {
         let core = noether_core::Error::from(e.clone());
         assert_eq!(core.downcast_ref::<Error>(), Some(&e));
         assert_eq!(Error::from(core), e);
+    }
+}
+
+impl Error {
+    /// The error for a pair (a, b) at separation `r` whose interaction is not finite: the particles
+    /// coincide (distance 0), or the law is not finite there.
+    pub(crate) fn pair(a: usize, b: usize, r: crate::Vec3) -> Self {
+        let distance = crate::potential::norm(r);
+        if distance == 0.0 {
+            Error::Coincident { a, b, distance }
+        } else {
+            Error::NonFiniteInteraction { a, b, distance }
+        }
     }
 }

@@ -277,11 +277,7 @@ impl<P: PairPotential> Interaction for Internal<P> {
             let (i, j) = (i as usize, j as usize);
             let r = sep64(x, i, j);
             let (u, g) = pair_gradient(&self.potential, r, &ps[i], &ps[j]);
-            (!(u.is_finite() && g.iter().all(|v| v.is_finite()))).then(|| Error::Coincident {
-                a: i,
-                b: j,
-                distance: crate::potential::norm(r),
-            })
+            (!(u.is_finite() && g.iter().all(|v| v.is_finite()))).then(|| Error::pair(i, j, r))
         })
     }
 }

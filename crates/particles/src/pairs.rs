@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::interaction::{push_pair_block, Interaction, Triplets};
 use crate::particle::{add3, sub3, Particle, Vec3};
-use crate::potential::{norm, pair_gradient, pair_hessian, sep, sep64, PairPotential};
+use crate::potential::{pair_gradient, pair_hessian, sep, sep64, PairPotential};
 use noether_core::Scalar;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -98,11 +98,7 @@ impl<P: PairPotential> Interaction for AllPairs<P> {
                 let r = sep64(x, i, j);
                 let (u, g) = pair_gradient(&self.potential, r, &ps[i], &ps[j]);
                 if !(u.is_finite() && g.iter().all(|v| v.is_finite())) {
-                    return Some(Error::Coincident {
-                        a: i,
-                        b: j,
-                        distance: norm(r),
-                    });
+                    return Some(Error::pair(i, j, r));
                 }
             }
         }
@@ -139,14 +135,15 @@ impl CellList {
             hi = [0.0; 3];
         }
         // Cells no smaller than rc, and no more cells than ~2N (a lone far-away particle must not
-        // create a huge empty grid).
+        // create a huge empty grid). Counted in f64: at extents like 1e20 the integer counts would
+        // overflow.
         let mut side = rc;
-        let cells = |s: f64| -> [usize; 3] { std::array::from_fn(|k| ((hi[k] - lo[k]) / s) as usize + 1) };
-        let mut dims = cells(side);
-        while dims.iter().product::<usize>() > 2 * n + 8 {
+        let limit = (2 * n + 8) as f64;
+        let cells = |s: f64| -> [f64; 3] { std::array::from_fn(|k| ((hi[k] - lo[k]) / s).floor() + 1.0) };
+        while cells(side).iter().product::<f64>() > limit {
             side *= 1.25;
-            dims = cells(side);
         }
+        let dims: [usize; 3] = cells(side).map(|c| c as usize);
         let ncell = dims.iter().product::<usize>();
         self.origin = lo;
         self.side = side;
@@ -376,11 +373,7 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
             s.cells.for_pairs_of_cell(c, x, self.rc * self.rc, |i, j, r| {
                 let (u, g) = self.eval_pair(i, j, r, ps);
                 if found.is_none() && !(u.is_finite() && g.iter().all(|v| v.is_finite())) {
-                    found = Some(Error::Coincident {
-                        a: i,
-                        b: j,
-                        distance: norm(r),
-                    });
+                    found = Some(Error::pair(i, j, r));
                 }
             });
         }

@@ -26,9 +26,9 @@ impl Particle {
         Particle { mass, charge }
     }
 
-    /// Checks m finite and > 0, e finite (particle number `index` for the message).
+    /// Checks m finite and > 0 with 1/m finite, e finite (particle number `index` for the message).
     pub fn validate(&self, index: usize) -> Result<()> {
-        if !(self.mass.is_finite() && self.mass > 0.0) {
+        if !(self.mass.is_finite() && self.mass > 0.0 && self.mass.recip().is_finite()) {
             return Err(Error::InvalidMass {
                 index,
                 mass: self.mass,

@@ -140,14 +140,11 @@ impl<I: Interaction> System<I> {
     }
 
     fn check(&self, x: &[f64], v: Option<&[f64]>) -> Result<()> {
-        let n = 3 * self.len();
-        check_len("positions", x, n)?;
-        check_finite("positions", x)?;
-        if let Some(v) = v {
-            check_len("velocities", v, n)?;
-            check_finite("velocities", v)?;
+        self.check_vector("positions", x)?;
+        match v {
+            Some(v) => self.check_vector("velocities", v),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     fn use_parallel(&self) -> bool {
@@ -223,42 +220,62 @@ impl<I: Interaction> System<I> {
     }
 
     /// Kinetic energy T = Σ ½ m_i |v_i|².
-    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        v.chunks_exact(3)
+    pub fn kinetic_energy(&self, v: &[f64]) -> Result<f64> {
+        self.check_vector("velocities", v)?;
+        let t = v
+            .chunks_exact(3)
             .zip(&self.particles)
             .map(|(w, p)| 0.5 * p.mass * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]))
-            .sum()
+            .sum();
+        finite("kinetic energy", t)
     }
 
-    /// Potential energy V(t, x).
+    /// Potential energy V(t, x); coincident particles under a singular law are
+    /// [`Error::Coincident`], not an infinite energy.
     pub fn potential_energy(&self, t: f64, x: &[f64]) -> Result<f64> {
         self.check(x, None)?;
-        Ok(self.interactions.energy(t, x, &self.particles))
+        let e = self.interactions.energy(t, x, &self.particles);
+        if !e.is_finite() {
+            return Err(self
+                .interactions
+                .find_singular(t, x, &self.particles)
+                .unwrap_or(Error::Core(noether_core::Error::NonFiniteResult {
+                    what: "potential energy",
+                    t,
+                })));
+        }
+        Ok(e)
     }
 
     /// Total mechanical energy T + V of a state.
     pub fn total_energy(&self, s: &State) -> Result<f64> {
-        Ok(self.kinetic_energy(s.v.as_slice()) + self.potential_energy(s.t, s.q.as_slice())?)
+        finite(
+            "total energy",
+            self.kinetic_energy(s.v.as_slice())? + self.potential_energy(s.t, s.q.as_slice())?,
+        )
     }
 
     /// Total momentum P = Σ m_i v_i.
-    pub fn momentum(&self, v: &[f64]) -> Vec3 {
+    pub fn momentum(&self, v: &[f64]) -> Result<Vec3> {
+        self.check_vector("velocities", v)?;
         let mut p = [0.0; 3];
         for (w, q) in v.chunks_exact(3).zip(&self.particles) {
             (0..3).for_each(|k| p[k] += q.mass * w[k]);
         }
-        p
+        Ok(p)
     }
 
     /// Total angular momentum about the origin, L = Σ m_i r_i × v_i.
-    pub fn angular_momentum(&self, x: &[f64], v: &[f64]) -> Vec3 {
+    pub fn angular_momentum(&self, x: &[f64], v: &[f64]) -> Result<Vec3> {
+        self.check_vector("positions", x)?;
+        self.check_vector("velocities", v)?;
         let mut l = [0.0; 3];
         for ((r, w), q) in x.chunks_exact(3).zip(v.chunks_exact(3)).zip(&self.particles) {
             l[0] += q.mass * (r[1] * w[2] - r[2] * w[1]);
             l[1] += q.mass * (r[2] * w[0] - r[0] * w[2]);
             l[2] += q.mass * (r[0] * w[1] - r[1] * w[0]);
         }
-        l
+        Ok(l)
     }
 
     /// Total mass M = Σ m_i.
@@ -266,11 +283,23 @@ impl<I: Interaction> System<I> {
         self.particles.iter().map(|p| p.mass).sum()
     }
 
-    /// Centre of mass R = Σ m_i r_i / M (also the centre-of-mass velocity when given velocities).
-    pub fn centre_of_mass(&self, x: &[f64]) -> Vec3 {
-        let p = self.momentum(x);
+    /// Centre of mass R = Σ m_i r_i / M (also the centre-of-mass velocity when given velocities);
+    /// [`Error::Empty`] for a system without particles.
+    pub fn centre_of_mass(&self, x: &[f64]) -> Result<Vec3> {
+        if self.is_empty() {
+            return Err(Error::Empty {
+                what: "centre of mass",
+            });
+        }
+        let p = self.momentum(x)?;
         let m = self.total_mass();
-        [p[0] / m, p[1] / m, p[2] / m]
+        Ok([p[0] / m, p[1] / m, p[2] / m])
+    }
+
+    /// Checks a per-particle vector (positions or velocities): length 3N, finite.
+    fn check_vector(&self, what: &'static str, x: &[f64]) -> Result<()> {
+        check_len(what, x, 3 * self.len())?;
+        Ok(check_finite(what, x)?)
     }
 
     /// The Hessian ∂²V/∂x∂x (3N × 3N), assembled term by term from 3×3 blocks (sparse).
@@ -279,6 +308,18 @@ impl<I: Interaction> System<I> {
         let mut trip = Vec::new();
         self.interactions.add_hessian(t, x, &self.particles, &mut trip);
         Ok(SparseHessian::from_triplets(x.len(), trip))
+    }
+}
+
+/// `x`, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) naming `what`.
+fn finite(what: &'static str, x: f64) -> Result<f64> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Error::Core(noether_core::Error::NonFiniteResult {
+            what,
+            t: f64::NAN,
+        }))
     }
 }
 
@@ -303,6 +344,12 @@ impl<I: Interaction> Lagrangian for System<I> {
         3 * self.particles.len()
     }
     fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        // A direct call with the wrong sizes (the equations of motion check them first) is NaN, not
+        // an index out of bounds inside an interaction.
+        let n = 3 * self.particles.len();
+        if q.len() != n || v.len() != n {
+            return D::from(f64::NAN);
+        }
         let mut kin = D::zero();
         for (w, p) in v.chunks_exact(3).zip(&self.particles) {
             kin += (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) * (0.5 * p.mass);
@@ -341,11 +388,15 @@ impl<I: Interaction> Dynamics for System<I> {
         Ok(())
     }
     fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
+        check_len("velocities", v, 3 * self.len())?;
+        check_len("dq", dq, 3 * self.len())?;
         dq.copy_from_slice(v);
         Ok(())
     }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
-        self.check(q, Some(v))?;
-        Ok(self.kinetic_energy(v) + self.interactions.energy(t, q, &self.particles))
+        Ok(finite(
+            "total energy",
+            self.kinetic_energy(v)? + self.potential_energy(t, q)?,
+        )?)
     }
 }

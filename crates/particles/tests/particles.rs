@@ -529,11 +529,100 @@ fn bad_input_coincident_particles_reported_not_nan() {
     let before = s.clone();
     assert!(sys.step(Method::VelocityVerlet, &mut s, 0.1).is_err());
     assert_eq!(s, before);
-    // Through core's Dynamics interface too.
+    // Through core's Dynamics interface too, with the indices kept (issue 15, case 10: the stepping
+    // path used to report `InvalidParameter { "|r21|", 0 }`).
     for m in [Method::Euler, Method::EulerCromer, Method::Rk4, Method::Yoshida4] {
         let mut st = noether_particles::ParticleStepper::new(&sys, m);
-        assert!(noether_core::Stepper::step(&mut st, &mut s, 0.1).is_err());
+        let e = noether_core::Stepper::step(&mut st, &mut s, 0.1).unwrap_err();
+        assert_eq!(
+            Error::from(e),
+            Error::Coincident {
+                a: 1,
+                b: 2,
+                distance: 0.0
+            },
+            "{m:?}"
+        );
         assert_eq!(s, before);
+    }
+}
+
+/// Issue 15, case 10: a law with a NaN parameter was reported as two coincident particles.
+#[test]
+fn regress_nan_parameter_is_not_a_coincidence() {
+    let sys = System::new(vec![Particle::new(1.0); 2])
+        .unwrap()
+        .with(AllPairs::new(Gravity { g: f64::NAN }))
+        .unwrap();
+    let x = [[0.0; 3], [0.0, 2.0, 0.0]].concat();
+    let mut f = vec![0.0; 6];
+    let expected = Error::NonFiniteInteraction {
+        a: 0,
+        b: 1,
+        distance: 2.0,
+    };
+    assert_eq!(sys.potential_forces(0.0, &x, &mut f), Err(expected.clone()));
+    assert_eq!(sys.potential_energy(0.0, &x), Err(expected));
+}
+
+/// Issue 15, case 10: a mass of 5e-324 was accepted (1/m = ∞) and failed later as non-finite
+/// positions; kinetic energy and momentum truncated a velocity vector of the wrong length; an empty
+/// system had a NaN centre of mass.
+#[test]
+fn regress_tiny_mass_wrong_lengths_and_empty_system() {
+    assert!(matches!(
+        System::new(vec![Particle::new(1.0), Particle::new(5e-324)]),
+        Err(Error::InvalidMass { index: 1, .. })
+    ));
+    let sys = System::new(vec![Particle::new(2.0); 2]).unwrap();
+    let dim = |r: Result<f64, Error>| {
+        assert!(
+            matches!(r, Err(Error::Core(noether_core::Error::Dimension { .. }))),
+            "{r:?}"
+        )
+    };
+    dim(sys.kinetic_energy(&[1.0; 5]));
+    dim(sys.momentum(&[1.0; 7]).map(|p| p[0]));
+    dim(sys.angular_momentum(&[1.0; 6], &[1.0; 3]).map(|l| l[0]));
+    dim(sys.centre_of_mass(&[1.0; 3]).map(|c| c[0]));
+    // T = 2 · ½ · 2 · 3 = 6 for unit velocity components: exact.
+    assert_eq!(sys.kinetic_energy(&[1.0; 6]), Ok(6.0));
+    let empty = System::new(vec![]).unwrap();
+    assert_eq!(
+        empty.centre_of_mass(&[]),
+        Err(Error::Empty {
+            what: "centre of mass"
+        })
+    );
+}
+
+/// Issue 15, case 9: the cell list panicked (integer overflow of the cell counts) with one particle
+/// far away (x = 1e20) or all at huge coordinates. Forces are now computed: only the near pair
+/// interacts, and the two forces are opposite (third law).
+#[test]
+fn regress_cell_list_far_and_huge_coordinates() {
+    let sys = System::new(vec![Particle::new(1.0); 3])
+        .unwrap()
+        .with(ShortRange::new(LennardJones::with_cutoff(1.0, 1.0, 2.5)).unwrap())
+        .unwrap();
+    for offset in [0.0, 1e20] {
+        let x = [
+            [offset, 0.0, 0.0],
+            [offset + 1.1, 0.0, 0.0],
+            [offset + 1e20, 0.0, 0.0],
+        ]
+        .concat();
+        let mut f = vec![0.0; 9];
+        let r = sys.potential_forces(0.0, &x, &mut f);
+        if offset == 0.0 {
+            r.unwrap();
+            assert!(f[0] != 0.0 && f[0] == -f[3], "{f:?}");
+            assert_eq!(&f[6..], &[0.0; 3]);
+        } else {
+            // At 1e20 the spacing 1.1 is below the coordinates' resolution (ulp 16384): the two
+            // near particles coincide in f64, which is what the error says.
+            assert!(matches!(r, Err(Error::Coincident { a: 0, b: 1, .. })), "{r:?}");
+        }
     }
 }
 

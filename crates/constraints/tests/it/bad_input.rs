@@ -156,3 +156,23 @@ fn regress_plain_integrator_from_a_state_off_the_constraints() {
     let mut run = Driver::with_step(Rk4::new(&loose), off, 1e-3).unwrap();
     assert!(run.run_until(0.01).is_ok());
 }
+
+/// Issue 15, case 9: `ConstraintForces::on_particle` with an index out of range was a panic.
+#[test]
+fn regress_constraint_force_indices() {
+    let sys = pendulum(1);
+    let f = sys.constraint_forces(0.0, &[0.0, -1.0], &[0.0, 0.0]).unwrap();
+    // Hanging at rest the rod holds the weight: the force on the bob is (0, m g), g = 9.81.
+    assert_eq!(f.on_particle(0, 2).unwrap(), &[0.0, 9.81]);
+    for (i, dim) in [(1, 2), (0, 3), (0, 0), (usize::MAX, 2)] {
+        assert!(
+            matches!(
+                f.on_particle(i, dim),
+                Err(Error::Core(CoreError::InvalidParameter { .. }))
+            ),
+            "particle {i}, dim {dim}"
+        );
+    }
+    assert!(f.of_constraint(1).is_err());
+    assert!(f.of_constraint_on_particle(0, 1, 2).is_err());
+}

@@ -34,7 +34,7 @@ fn closed_form_cartesian_pendulum_matches_angle_and_tension() {
         let expected = m * g * a.q[0].cos() + m * l * a.v[0] * a.v[0];
         worst_tension = worst_tension.max((tension - expected).abs() / (m * g));
         // The physical force on the bob is T along −r̂.
-        let fb = f.on_particle(0, 2);
+        let fb = f.on_particle(0, 2).unwrap();
         assert!((fb[0] + tension * c.q[0] / l).abs() < 1e-9 * m * g);
     }
     assert!(worst_angle < 1e-9, "angle difference {worst_angle:e}");

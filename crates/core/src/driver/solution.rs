@@ -264,7 +264,7 @@ impl<K: Partner> Solution<K> {
             });
         }
         let i = self.segments.partition_point(|s| s.t_end() < t);
-        Ok(self.segments[i.min(self.segments.len() - 1)].state_at(t))
+        self.segments[i.min(self.segments.len() - 1)].state_at(t)
     }
 
     /// Appends `other`, a later run of the same model (for runs continued after a stop).

@@ -90,7 +90,8 @@ impl EmbeddedPair for Dp5 {
             let sk = error_scale(atol, rtol, y0[i], y1[i]);
             sum += (e / sk) * (e / sk);
         }
-        (sum / n as f64).sqrt()
+        // No components (a system of 0 degrees of freedom): no error, not 0/0.
+        (sum / n.max(1) as f64).sqrt()
     }
 
     /// r₁ = y₁ − y₀, r₂ = h k₁ − r₁, r₃ = r₁ − h k₇ − r₂, r₄ = h Σ d_i k_i.

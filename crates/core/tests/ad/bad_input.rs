@@ -173,3 +173,98 @@ fn bad_input_model_returns_nan() {
     assert!(matches!(r, Err(Error::NonFiniteResult { .. })), "{r:?}");
     assert_eq!(a, [0.0; 3]);
 }
+
+/// L = ½ q̇² − √q: defined for q ≥ 0 only.
+struct RootPotential;
+impl Lagrangian for RootPotential {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        v[0] * v[0] * 0.5 - q[0].sqrt()
+    }
+}
+
+/// Issue 15, case 7: outside the model's domain (√ of a negative number) the value-based evaluations
+/// used to return Ok with NaN entries, while `accelerations` erred. Each now names the quantity that
+/// came out non-finite, and leaves its output untouched; what does not involve √q (p = q̇, M = 1) is
+/// still defined there and returned.
+#[test]
+fn regress_ok_nan_from_every_evaluation() {
+    let el = EulerLagrange::new(RootPotential);
+    let (q, v) = ([-1.0], [1.0]);
+    let non_finite = |r: Result<(), Error>, name: &str| match r {
+        Err(Error::NonFiniteResult { what, t }) => assert!(what == name && t == 0.5, "{what} at {t}"),
+        other => panic!("{name}: {other:?}"),
+    };
+    non_finite(el.energy(0.5, &q, &v).map(drop), "energy");
+    non_finite(el.value(0.5, &q, &v).map(drop), "Lagrangian");
+    let mut out = [7.0];
+    non_finite(el.gradient_q(0.5, &q, &v, &mut out), "∂L/∂q");
+    assert_eq!(out, [7.0], "nothing written on error");
+    el.momenta(0.5, &q, &v, &mut out).unwrap();
+    assert_eq!(out, [1.0]);
+    assert_eq!(el.mass_matrix(0.5, &q, &v).unwrap()[(0, 0)], 1.0);
+    // Inside the domain the same calls succeed: h = ½ q̇² + √q = 0.5 + 2 at q = 4.
+    assert_eq!(el.energy(0.5, &[4.0], &v), Ok(2.5));
+}
+
+/// Issue 15, case 8: at q = 0, where √q has an infinite derivative, the energy h = ½ q̇² + √q = ½
+/// needs no q-derivative and must not be poisoned by one (0·∞ = NaN in a tangent that is zero).
+#[test]
+fn regress_energy_not_poisoned_by_an_unused_derivative() {
+    let el = EulerLagrange::new(RootPotential);
+    assert_eq!(el.energy(0.0, &[0.0], &[1.0]), Ok(0.5));
+    let mut p = [0.0];
+    el.momenta(0.0, &[0.0], &[1.0], &mut p).unwrap();
+    assert_eq!(p, [1.0]);
+}
+
+/// Issue 15, case 9: `EulerLagrange::value` with an empty q indexed out of bounds inside the model.
+#[test]
+fn regress_value_checks_its_input() {
+    let el = EulerLagrange::new(RootPotential);
+    assert!(matches!(el.value(0.0, &[], &[1.0]), Err(Error::Dimension { .. })));
+    assert!(matches!(
+        el.value(f64::NAN, &[1.0], &[1.0]),
+        Err(Error::NonFinite { .. })
+    ));
+}
+
+/// V(q) = √q₀ + q₁²: the natural system checks its input and output like the Lagrangian one.
+struct RootPotentialField;
+impl noether_core::Potential for RootPotentialField {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        q[0].sqrt() + q[1] * q[1]
+    }
+}
+
+/// Issue 15, cases 7 and 9: `Natural::energy`, `momenta` and `potential_energy` indexed out of bounds
+/// on wrong lengths and returned NaN outside the potential's domain.
+#[test]
+fn regress_natural_sizes_and_domain() {
+    let nat = noether_core::Natural::unit(RootPotentialField);
+    let dim = |r: Result<f64, Error>| assert!(matches!(r, Err(Error::Dimension { .. })), "{r:?}");
+    dim(nat.energy(&[1.0], &[0.0, 0.0]));
+    dim(nat.energy(&[1.0, 0.0], &[0.0]));
+    dim(nat.potential_energy(&[]));
+    dim(nat.kinetic_energy(&[1.0, 2.0, 3.0]));
+    let mut p = [0.0; 3];
+    assert!(matches!(
+        nat.momenta(&[1.0, 2.0], &mut p),
+        Err(Error::Dimension { .. })
+    ));
+    assert!(matches!(nat.solve_mass(&mut p), Err(Error::Dimension { .. })));
+    assert!(matches!(
+        nat.potential_energy(&[-1.0, 0.0]),
+        Err(Error::NonFiniteResult {
+            what: "potential energy",
+            ..
+        })
+    ));
+    // V(4, 1) = 2 + 1, T = ½ (1 + 4): exact in binary.
+    assert_eq!(nat.energy(&[4.0, 1.0], &[1.0, 2.0]), Ok(5.5));
+}

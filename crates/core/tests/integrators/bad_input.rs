@@ -300,3 +300,32 @@ fn bad_input_adaptive_parameters() {
     ));
     assert_eq!(d.state(), &state);
 }
+
+/// A system with no degrees of freedom (an empty model).
+struct Nothing;
+impl Lagrangian for Nothing {
+    fn dof(&self) -> usize {
+        0
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D]) -> D {
+        D::zero()
+    }
+}
+
+/// Issue 15, case 10: DOPRI5 on a system of 0 degrees of freedom reported `StepSizeUnderflow` (its
+/// error norm divided 0 by 0). Time alone advances, to the end exactly.
+#[test]
+fn regress_adaptive_with_no_degrees_of_freedom() {
+    let el = EulerLagrange::new(Nothing);
+    let start = || State::new(0.0, Vec::<f64>::new(), Vec::<f64>::new());
+    let end = Driver::new(Dopri5::new(&el), start())
+        .unwrap()
+        .run_until(2.0)
+        .unwrap();
+    assert_eq!(end.last().t, 2.0);
+    let end = Driver::new(Dop853::new(&el), start())
+        .unwrap()
+        .run_until(2.0)
+        .unwrap();
+    assert_eq!(end.last().t, 2.0);
+}
