@@ -20,6 +20,7 @@ use crate::dynamics::{max_abs, rank_error, within};
 use crate::set::ConstraintSet;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
+use noether_core::error::check_positive;
 use noether_core::linalg::DenseFactor;
 use noether_core::newton::{DenseProblem, Newton};
 use noether_core::{Error as CoreError, State, StepInfo, Stepper, Velocities};
@@ -44,6 +45,24 @@ impl Default for Projection {
             max_iterations: 20,
             violation: 1e-8,
         }
+    }
+}
+
+impl Projection {
+    /// An error unless the tolerances are finite and positive and at least one iteration is allowed
+    /// (the fields are public: [`project`] checks them again).
+    pub fn validate(&self) -> Result<()> {
+        check_positive("projection tolerance", self.tol)?;
+        check_positive("violation tolerance", self.violation)?;
+        if self.max_iterations == 0 {
+            return Err(CoreError::InvalidParameter {
+                name: "max_iterations",
+                value: 0.0,
+                reason: "at least one Newton iteration is needed",
+            }
+            .into());
+        }
+        Ok(())
     }
 }
 
@@ -103,6 +122,7 @@ impl<K: ConstraintSet> DenseProblem for PositionProblem<'_, K> {
 /// Projects `state` (a Lagrangian state, v = q̇) onto the constraints of `set` in place and reports
 /// the correction. On error the state is unchanged.
 pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) -> Result<ProjectionReport> {
+    opts.validate()?;
     let (n, m) = (set.dof(), set.count());
     state.validate(n)?;
     let t = state.t;
@@ -194,10 +214,11 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Projected<S, K> {
         }
     }
 
-    /// Sets the projection options.
-    pub fn options(mut self, options: Projection) -> Self {
+    /// Sets the projection options (checked: tolerances finite and positive, at least one iteration).
+    pub fn options(mut self, options: Projection) -> Result<Self> {
+        options.validate()?;
         self.options = options;
-        self
+        Ok(self)
     }
 
     /// The wrapped stepper.

@@ -98,7 +98,8 @@ pub enum Error {
     NonFiniteResult {
         /// The quantity that came out non-finite ("accelerations", "energy", "state after the step", ...).
         what: &'static str,
-        /// Time of the evaluation (the start of the step).
+        /// Time of the evaluation (the start of the step); NaN for a quantity computed without a time
+        /// (a kinetic or potential energy of a model that does not depend on t).
         t: f64,
     },
     /// A run produced NaN or infinity: [`NonFiniteResult`](Self::NonFiniteResult) with the step index

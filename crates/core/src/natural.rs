@@ -194,7 +194,7 @@ impl<P: Potential> Natural<P> {
         if f.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteResult {
                 what: "potential forces",
-                t: 0.0,
+                t: f64::NAN,
             });
         }
         Ok(())
@@ -302,7 +302,7 @@ impl<P: Potential> Natural<P> {
         if out.iter().any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteResult {
                 what: "potential Hessian",
-                t: 0.0,
+                t: f64::NAN,
             });
         }
         Ok(())
@@ -426,6 +426,7 @@ fn finite_value(what: &'static str, x: f64) -> Result<f64> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(Error::NonFiniteResult { what, t: 0.0 })
+        // A natural system does not depend on t: no time to name.
+        Err(Error::NonFiniteResult { what, t: f64::NAN })
     }
 }

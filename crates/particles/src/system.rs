@@ -227,7 +227,7 @@ impl<I: Interaction> System<I> {
             .zip(&self.particles)
             .map(|(w, p)| 0.5 * p.mass * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]))
             .sum();
-        finite("kinetic energy", t)
+        finite("kinetic energy", f64::NAN, t)
     }
 
     /// Potential energy V(t, x); coincident particles under a singular law are
@@ -251,6 +251,7 @@ impl<I: Interaction> System<I> {
     pub fn total_energy(&self, s: &State) -> Result<f64> {
         finite(
             "total energy",
+            s.t,
             self.kinetic_energy(s.v.as_slice())? + self.potential_energy(s.t, s.q.as_slice())?,
         )
     }
@@ -311,15 +312,12 @@ impl<I: Interaction> System<I> {
     }
 }
 
-/// `x`, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) naming `what`.
-fn finite(what: &'static str, x: f64) -> Result<f64> {
+/// `x`, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) naming `what` at `t`.
+fn finite(what: &'static str, t: f64, x: f64) -> Result<f64> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(Error::Core(noether_core::Error::NonFiniteResult {
-            what,
-            t: f64::NAN,
-        }))
+        Err(Error::Core(noether_core::Error::NonFiniteResult { what, t }))
     }
 }
 
@@ -396,6 +394,7 @@ impl<I: Interaction> Dynamics for System<I> {
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         Ok(finite(
             "total energy",
+            t,
             self.kinetic_energy(v)? + self.potential_energy(t, q)?,
         )?)
     }

@@ -7,3 +7,4 @@ mod conserves;
 mod implicit;
 mod order;
 mod problems;
+mod soak;
