@@ -213,3 +213,16 @@ pub fn check_step(h: f64) -> Result<()> {
         Err(Error::InvalidStep { h })
     }
 }
+
+/// Checks that a setting (a tolerance, a scale) is finite and positive; returns it.
+pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            reason: "must be finite and positive",
+        })
+    }
+}
