@@ -6,8 +6,7 @@
 //! [`linalg`](crate::linalg), which also rejects a near-singular Jacobian). A factored
 //! Jacobian is reused (modified Newton) while the residual keeps contracting and is refreshed when it
 //! does not. The stopping rule is round-off aware (see [`Newton`]): at least one correction, then the
-//! residual or step tolerance, the contraction estimate of the remaining error, or increments that have
-//! stopped decreasing at the rounding level.
+//! residual or step tolerance, or increments that have stopped decreasing at the rounding level.
 
 use crate::error::check_positive;
 use crate::linalg::{solve_with, DenseFactor};
@@ -81,15 +80,14 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// again at the start of every solve: a NaN, zero or negative tolerance, a contraction outside (0, 1) or
 /// an iteration cap of 0 is [`Error::InvalidParameter`]).
 ///
-/// **Stopping rule** (round-off aware, after Hairer-Wanner's RADAU5, *Solving ODEs II* IV.8). At least
-/// one correction Δₖ = J⁻¹F(xₖ₋₁) is always made (unless F(x₀) is exactly zero): a guess that already
-/// meets the tolerance is still corrected, so the unconverged remainder of a good predictor does not
-/// pile up over many solves. After correction k the iterate is converged when
+/// **Stopping rule** (round-off aware, after Hairer-Wanner's RADAU5, *Solving ODEs II* IV.8, and
+/// GeometricIntegrators.jl). At least one correction Δₖ = J⁻¹F(xₖ₋₁) is always made (unless F(x₀)
+/// is exactly zero): a guess that already meets the tolerance is still corrected, so the unconverged
+/// remainder of a good predictor does not pile up over many solves. After correction k the iterate is
+/// converged when
 /// 1. ‖F(xₖ)‖∞ ≤ `tol_residual`; or
 /// 2. ‖Δₖ‖∞ ≤ `tol_step`·(1 + ‖xₖ‖∞) (and ‖F(xₖ)‖∞ ≤ √`tol_residual`); or
-/// 3. the increments contract, θ = ‖Δₖ‖/‖Δₖ₋₁‖ < 1, and the estimated distance to the root
-///    θ/(1 − θ)·‖Δₖ‖∞ is at most `tol_step`·(1 + ‖xₖ‖∞) (and ‖F(xₖ)‖∞ ≤ √`tol_residual`); or
-/// 4. the increments have stopped decreasing (θ ≥ 1) under a Jacobian factored at the previous
+/// 3. the increments have stopped decreasing (θ ≥ 1) under a Jacobian factored at the previous
 ///    iterate, at the rounding level: ‖Δₖ‖∞ ≤ √`tol_step`·(1 + ‖xₖ‖∞) and ‖F(xₖ)‖∞ ≤ √`tol_residual`.
 ///    Newton with an exact Jacobian cannot improve such an iterate further: the residual is at the
 ///    rounding floor of its evaluation, above a tolerance set below what rounding allows, and that is
@@ -97,6 +95,11 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 ///
 /// A kept Jacobian factor is used while the residual contracts by `contraction` per correction and
 /// refreshed at the current iterate as soon as it does not, so a stale factor never causes a failure.
+/// RADAU5's contraction estimate θ/(1 − θ)‖Δₖ‖ (θ = ‖Δₖ‖/‖Δₖ₋₁‖) is deliberately not a stopping test:
+/// even with its bound at ε·(1 + ‖x‖) it ends solves one correction early with a remainder of the
+/// same sign step after step (measured: the variational midpoint's angular momentum on Kepler drifted
+/// 1.6e-12 in 10⁵ steps, against 3.3e-14 without it).
+///
 /// The solve fails ([`Error::NewtonDiverged`]) only when the residual becomes non-finite or the cap
 /// `max_iterations` is reached.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -258,11 +261,7 @@ impl Newton {
             }
             if let Some(previous) = last_step {
                 let theta = step / previous;
-                // 3. Contraction estimate of the remaining error.
-                if theta < 1.0 && small_residual && theta / (1.0 - theta) * step <= self.tol_step * scale {
-                    return Ok(info);
-                }
-                // 4. Stalled at the rounding floor under an exact Jacobian.
+                // 3. Stalled at the rounding floor under an exact Jacobian.
                 if theta >= 1.0 && exact && small_residual && step <= self.tol_step.sqrt() * scale {
                     return Ok(info);
                 }

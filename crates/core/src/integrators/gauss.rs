@@ -277,11 +277,12 @@ impl<S: LinearizedDynamics> Gauss<S> {
 /// 4.5 ε: the stage values are solved to rounding, so that the quadratic invariants are kept to
 /// rounding at every step size), at most 20 iterations.
 fn default_newton() -> Newton {
-    let mut newton = Newton::default();
-    newton.tol_residual = 1e-15;
-    newton.tol_step = 1e-15;
-    newton.max_iterations = 20;
-    newton
+    Newton {
+        tol_residual: 1e-15,
+        tol_step: 1e-15,
+        max_iterations: 20,
+        ..Newton::default()
+    }
 }
 
 /// The stage equations of one step as a Newton problem in Z.
