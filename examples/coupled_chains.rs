@@ -65,7 +65,7 @@ pub fn paper_run(k2: f64, q0: &[f64], q1: &[f64], steps: usize) -> Result<Soluti
     p0.iter_mut()
         .zip(q0.iter().zip(q1))
         .for_each(|(p, (a, b))| *p = (b - a) / h + 0.5 * h * *p);
-    let newton = Newton::default().tol_residual(h * PAPER_NEWTON_TOL);
+    let newton = Newton::default().tol_residual(h * PAPER_NEWTON_TOL)?;
     let vi = MechanicalMidpoint::new(sys).with_newton(newton);
     Ok(Driver::with_step(vi, State::new(0.0, q0.to_vec(), p0), h)?
         .save(Save::Steps)?

@@ -232,7 +232,8 @@ impl EquilibriumFinder {
         if g.amax().is_nan() || g.amax() > coarse {
             return Err(not_converged(g.amax()));
         }
-        let (q, info) = newton_root(&self.newton(tol), pot, q.as_slice(), self.zero_tolerance)
+        let newton = self.newton(tol)?;
+        let (q, info) = newton_root(&newton, pot, q.as_slice(), self.zero_tolerance)
             .map_err(|_| not_converged(g.amax()))?;
         let mut eq = classify(pot, q.as_slice(), self.zero_tolerance)?;
         if matches!(eq.kind, Kind::Saddle | Kind::Maximum) {
@@ -245,9 +246,9 @@ impl EquilibriumFinder {
         Ok(eq)
     }
 
-    fn newton(&self, tol: f64) -> Newton {
+    fn newton(&self, tol: f64) -> noether_core::Result<Newton> {
         Newton::default()
-            .tol_residual(tol)
+            .tol_residual(tol)?
             .max_iterations(self.max_iterations as usize)
     }
 
@@ -257,7 +258,7 @@ impl EquilibriumFinder {
     pub fn stationary_point<P: Potential + ?Sized>(&self, pot: &P, q0: &[f64]) -> Result<Equilibrium> {
         check_point(q0, pot.dof())?;
         let tol = self.tolerance(pot, q0)?;
-        let (q, info) = newton_root(&self.newton(tol), pot, q0, self.zero_tolerance)?;
+        let (q, info) = newton_root(&self.newton(tol)?, pot, q0, self.zero_tolerance)?;
         let mut eq = classify(pot, q.as_slice(), self.zero_tolerance)?;
         eq.iterations = info.iterations as u64;
         Ok(eq)

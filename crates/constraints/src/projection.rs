@@ -143,9 +143,9 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
         };
         let mut mu = vec![0.0; m];
         let newton = Newton::default()
-            .tol_residual(opts.tol)
-            .tol_step(1e-15)
-            .max_iterations(opts.max_iterations);
+            .tol_residual(opts.tol)?
+            .tol_step(1e-15)?
+            .max_iterations(opts.max_iterations)?;
         let mut sys = noether_core::newton::Dense::new(prob);
         let info = newton.solve(&mut sys, &mut mu).map_err(|e| match e {
             CoreError::SingularMatrix { .. } => rank_error(&a, t).unwrap_or(e.into()),

@@ -136,7 +136,7 @@ where
         Ok(Rattle {
             ld,
             constraints,
-            newton: Newton::default().tol_residual(DEFAULT_TOL).tol_step(1e-15),
+            newton: Newton::default().tol_residual(DEFAULT_TOL)?.tol_step(1e-15)?,
             violation: 1e-9,
             last: RattleInfo::default(),
             worst: (0.0, 0.0),
@@ -244,7 +244,9 @@ where
     /// rounding floor ε·scale when the requested one is below it.
     fn newton_for(&self, scale: f64) -> Newton {
         let floor = 0.0 * scale;
-        self.newton.tol_residual(self.newton.tol_residual.max(floor))
+        let mut newton = self.newton;
+        newton.tol_residual = newton.tol_residual.max(floor);
+        newton
     }
 
     /// The size of the largest mass-matrix entry (computed at the first step and kept: it only scales

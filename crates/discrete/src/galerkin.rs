@@ -126,7 +126,7 @@ impl<L: Lagrangian> Galerkin<L> {
             weights: w,
             basis,
             dbasis,
-            newton: Newton::default().tol_residual(DEFAULT_TOL),
+            newton: Newton::default().tol_residual(DEFAULT_TOL)?,
             last: NewtonInfo::default(),
         })
     }

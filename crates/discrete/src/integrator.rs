@@ -58,7 +58,16 @@ pub(crate) const DEFAULT_TOL: f64 = 1e-16;
 /// 2ε‖p‖∞ when the requested one is below it.
 pub(crate) fn effective_newton(newton: &Newton, p: &[f64]) -> Newton {
     let floor = 2.0 * f64::EPSILON * noether_core::newton::max_norm(p);
-    newton.tol_residual(newton.tol_residual.max(floor))
+    let mut newton = *newton;
+    newton.tol_residual = newton.tol_residual.max(floor);
+    newton
+}
+
+/// `Newton::default()` with the residual tolerance [`DEFAULT_TOL`].
+pub(crate) fn default_newton() -> Newton {
+    let mut newton = Newton::default();
+    newton.tol_residual = DEFAULT_TOL;
+    newton
 }
 
 /// The discrete Euler-Lagrange equation of one step as a Newton system in the increment
@@ -142,7 +151,7 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
         let n = ld.dof();
         VariationalIntegrator {
             ld,
-            newton: Newton::default().tol_residual(DEFAULT_TOL),
+            newton: default_newton(),
             predictor: Predictor::default(),
             d: vec![0.0; n],
             q1: vec![0.0; n],

@@ -23,7 +23,7 @@
 //! small against N, dense (LU) otherwise.
 
 use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow, Predictor};
-use crate::integrator::{effective_newton, DEFAULT_TOL};
+use crate::integrator::{default_newton, effective_newton};
 use crate::mechanical::{LocalPotential, Mechanical};
 use nalgebra::DMatrix;
 use noether_core::linalg::{solve_with, Banded, BandedLu, DenseFactor};
@@ -163,7 +163,7 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
         };
         MechanicalMidpoint {
             sys,
-            newton: Newton::default().tol_residual(DEFAULT_TOL),
+            newton: default_newton(),
             predictor: Predictor::default(),
             jac,
             d: vec![0.0; n],
@@ -175,7 +175,7 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
         }
     }
 
-    /// Replaces the Newton settings (the paper: `Newton::default().tol_residual(1e-8)`).
+    /// Replaces the Newton settings (the paper: `Newton::default().tol_residual(1e-8)?`).
     pub fn with_newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self

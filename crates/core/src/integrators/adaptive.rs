@@ -302,6 +302,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         state.validate(self.n)?;
         let n2 = 2 * self.n;
         self.load(state);
+        self.fsal = None;
         if !self.eval(0, state.t, false)? {
             return Err(Error::NonFiniteResult {
                 what: "rates",
@@ -334,7 +335,12 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             (0.01 / der12).powf(1.0 / (M::ORDER as f64))
         };
         h = (100.0 * h).min(h1);
-        self.fsal = None;
+        // F(t, y₀) is the first stage of the first step (as in Hairer's codes, which evaluate it
+        // once): keep it where a step looks for the FSAL stage.
+        let s = M::C.len();
+        self.k[s].copy_from_slice(&k0);
+        self.y1.copy_from_slice(&self.y0);
+        self.fsal = Some(state.t);
         Ok(h)
     }
 
@@ -409,8 +415,9 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             }
             rejected += 1;
             last_err = err;
+            // Hairer's codes shrink by err^α (α = 1/q − 0.75β, the accepted step's exponent).
             let shrink = if err.is_finite() {
-                (err.powf(1.0 / M::CONTROL_ORDER) / c.safety).min(1.0 / c.fac_min)
+                (err.powf(alpha) / c.safety).min(1.0 / c.fac_min)
             } else {
                 1.0 / c.fac_min
             };

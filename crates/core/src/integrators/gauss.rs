@@ -12,8 +12,10 @@
 //! J = Ω ∇²H with the Hessian by dual numbers). The LU factor is reused across iterations while the
 //! residual contracts well (modified Newton). The starting guess extrapolates the collocation
 //! polynomial of the previous step (Hairer-Lubich-Wanner VIII.6.1) when the step continues from where
-//! the last one ended, and is Z_i = c_i h F(y₀) otherwise. The residual tolerance of the solver is
-//! relative: ‖residual‖∞ ≤ tol_residual · (1 + ‖y₀‖∞).
+//! the last one ended, and is Z_i = c_i h F(y₀) otherwise. The tolerances of the solver are relative:
+//! ‖residual‖∞ ≤ tol_residual · (1 + ‖y₀‖∞), and the step tolerance likewise; by default both are
+//! 1e-15, a solve to rounding (Newton's round-off-aware stopping rule ends it when the increments stop
+//! decreasing), so that quadratic invariants are kept to rounding at every step size.
 //!
 //! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`] on (q, p), a
 //! `SeparableHamiltonian` on (q, p) and a [`Natural`] system on (q, q̇). A general Lagrangian is
@@ -199,10 +201,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
             a,
             c,
             d,
-            newton: Newton::default()
-                .tol_residual(1e-14)
-                .tol_step(1e-15)
-                .max_iterations(20),
+            newton: default_newton(),
             last: None,
         })
     }
@@ -220,7 +219,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
         Self::new(system, 3).expect("three stages are supported")
     }
 
-    /// Sets the Newton solver (its `tol_residual` is relative to 1 + ‖y₀‖∞).
+    /// Sets the Newton solver (its `tol_residual` and `tol_step` are relative to 1 + ‖y₀‖∞).
     pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
@@ -271,6 +270,18 @@ impl<S: LinearizedDynamics> Gauss<S> {
             }
         }
         Ok(())
+    }
+}
+
+/// The default solver of [`Gauss`]: residual and step tolerances 1e-15 (relative to 1 + ‖y₀‖∞, about
+/// 4.5 ε: the stage values are solved to rounding, so that the quadratic invariants are kept to
+/// rounding at every step size), at most 20 iterations.
+fn default_newton() -> Newton {
+    Newton {
+        tol_residual: 1e-15,
+        tol_step: 1e-15,
+        max_iterations: 20,
+        ..Newton::default()
     }
 }
 
@@ -352,9 +363,11 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
         y0.extend_from_slice(state.v.as_slice());
         let mut z = vec![0.0; s * m];
         self.guess(t, &y0, h, &mut z)?;
-        let newton = self
-            .newton
-            .tol_residual(self.newton.tol_residual * (1.0 + max_norm(&y0)));
+        // Both tolerances relative to 1 + ‖y₀‖∞ (Z is an increment of y₀).
+        let mut newton = self.newton;
+        let scale = 1.0 + max_norm(&y0);
+        newton.tol_residual *= scale;
+        newton.tol_step *= scale;
         let mut sys = Dense::new(Stages {
             system: &self.system,
             t,

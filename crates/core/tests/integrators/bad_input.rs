@@ -329,3 +329,68 @@ fn regress_adaptive_with_no_degrees_of_freedom() {
         .unwrap();
     assert_eq!(end.last().t, 2.0);
 }
+
+/// Issue 13.5 / 15.10: a NaN, zero, negative or infinite tolerance, a contraction outside (0, 1) or an
+/// iteration cap of 0 is `InvalidParameter` naming the setting, from the setters and from `solve`
+/// (the fields are public), never `NewtonDiverged`; the guess is left untouched.
+#[test]
+fn bad_input_newton_nan_tolerance() {
+    use noether_core::newton::{solve_dense, DenseProblem};
+    use noether_core::Newton;
+    struct Line;
+    impl DenseProblem for Line {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+            r[0] = x[0] - 1.0;
+            Ok(())
+        }
+        fn jacobian(&mut self, _x: &[f64], j: &mut nalgebra::DMatrix<f64>) -> Result<()> {
+            j[(0, 0)] = 1.0;
+            Ok(())
+        }
+    }
+    let invalid = |r: Result<Newton>, name: &str| match r {
+        Err(Error::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+        other => panic!("{name}: expected InvalidParameter, got {other:?}"),
+    };
+    for bad in [f64::NAN, 0.0, -1e-12, f64::INFINITY] {
+        invalid(Newton::default().tol_residual(bad), "Newton tol_residual");
+        invalid(Newton::default().tol_step(bad), "Newton tol_step");
+    }
+    for bad in [f64::NAN, 0.0, 1.0, -0.5] {
+        invalid(Newton::default().contraction(bad), "Newton contraction");
+    }
+    invalid(Newton::default().max_iterations(0), "Newton max_iterations");
+    // Written directly into the public fields: caught by solve.
+    let mut newton = Newton::default();
+    newton.tol_residual = f64::NAN;
+    match solve_dense(&newton, Line, &[3.0]) {
+        Err(Error::InvalidParameter { name, value, .. }) => {
+            assert_eq!(name, "Newton tol_residual");
+            assert!(value.is_nan());
+        }
+        other => panic!("expected InvalidParameter, got {other:?}"),
+    }
+    let mut newton = Newton::default();
+    newton.max_iterations = 0;
+    let mut sys = noether_core::newton::Dense::new(Line);
+    let mut x = [3.0];
+    assert!(matches!(
+        newton.solve(&mut sys, &mut x),
+        Err(Error::InvalidParameter {
+            name: "Newton max_iterations",
+            ..
+        })
+    ));
+    assert_eq!(x, [3.0]);
+    // Valid settings solve it.
+    let ok = Newton::default()
+        .tol_residual(1e-14)
+        .unwrap()
+        .tol_step(1e-15)
+        .unwrap();
+    let (x, _) = solve_dense(&ok.contraction(0.5).unwrap(), Line, &[3.0]).unwrap();
+    assert_eq!(x[0], 1.0);
+}

@@ -1,10 +1,13 @@
 //! Integration tests of the continuous integrators: observed convergence orders (`order_*`), long-run
-//! energy behaviour (`conserves_*`) and bad input (`bad_input_*`). One test binary, one module each.
+//! energy behaviour (`conserves_*`), bad input (`bad_input_*`), regressions (`regress_*`) and the
+//! adaptive methods pinned to Hairer's codes (`pin_*`). One test binary, one module each.
 
 mod adaptive;
 mod bad_input;
 mod conserves;
 mod implicit;
 mod order;
+mod pin;
 mod problems;
+mod regress;
 mod soak;

@@ -48,8 +48,8 @@ fn bad_input_dimensions_and_nan() {
 /// before the failed step is kept intact.
 #[test]
 fn bad_input_newton_not_converging_keeps_state() {
-    let mut vi =
-        VariationalIntegrator::new(Midpoint::new(Kepler)).with_newton(Newton::default().max_iterations(5));
+    let mut vi = VariationalIntegrator::new(Midpoint::new(Kepler))
+        .with_newton(Newton::default().max_iterations(5).unwrap());
     let mut s = vi.state_from_velocities(0.0, &[0.1, 0.0], &[0.0, 4.2]).unwrap();
     let before = s.clone();
     match vi.step(&mut s, 50.0) {
@@ -78,7 +78,7 @@ fn bad_input_newton_not_converging_keeps_state() {
 fn bad_input_galerkin() {
     let mut g = Galerkin::order6(Kepler)
         .unwrap()
-        .with_newton(Newton::default().max_iterations(1));
+        .with_newton(Newton::default().max_iterations(1).unwrap());
     let mut s = State::new(0.0, [0.1, 0.0], [0.0, 4.2]);
     let before = s.clone();
     for h in [0.0, -0.1, f64::NAN] {

@@ -103,7 +103,7 @@ fn conserves_chains_total_momentum() {
     let h = chains.paper_step();
     let mut s = paper_state(&chains, 0.1);
     let mut vi = MechanicalMidpoint::new(unit_mass(chains))
-        .with_newton(noether_core::Newton::default().tol_residual(1e-8));
+        .with_newton(noether_core::Newton::default().tol_residual(1e-8).unwrap());
     let p0: f64 = s.v.iter().sum();
     let mut worst = 0.0_f64;
     for _ in 0..100_000 {
@@ -299,7 +299,7 @@ fn bad_input_mechanical_newton_failure_keeps_state() {
         b: 50.0,
     };
     let mut vi = MechanicalMidpoint::new(unit_mass(chain))
-        .with_newton(noether_core::Newton::default().max_iterations(3));
+        .with_newton(noether_core::Newton::default().max_iterations(3).unwrap());
     let mut s = State::new(0.0, vec![1.0; 10], vec![5.0; 10]);
     let before = s.clone();
     match vi.step(&mut s, 20.0) {
