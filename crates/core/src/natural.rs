@@ -210,8 +210,9 @@ impl<P: Potential> Natural<P> {
     /// Overwrites `b` with M⁻¹ b (using the factor computed once).
     pub fn solve_mass(&self, b: &mut [f64]) -> Result<()> {
         check_len("b", b, self.dof())?;
+        check_finite("b", b)?;
         self.apply_inverse_mass(b);
-        Ok(())
+        finite_slice("M⁻¹ b", b)
     }
 
     /// M⁻¹ b in place, for `b` of length n.
@@ -229,8 +230,9 @@ impl<P: Potential> Natural<P> {
     pub fn momenta(&self, v: &[f64], p: &mut [f64]) -> Result<()> {
         check_len("q̇", v, self.dof())?;
         check_len("p (output)", p, self.dof())?;
+        check_finite("q̇", v)?;
         self.apply_mass(v, p);
-        Ok(())
+        finite_slice("momenta", p)
     }
 
     /// M v into `p` (both of length n).
@@ -253,9 +255,10 @@ impl<P: Potential> Natural<P> {
     pub fn velocities(&self, p: &[f64], v: &mut [f64]) -> Result<()> {
         check_len("p", p, self.dof())?;
         check_len("q̇ (output)", v, self.dof())?;
+        check_finite("p", p)?;
         v.copy_from_slice(p);
         self.apply_inverse_mass(v);
-        Ok(())
+        finite_slice("velocities", v)
     }
 
     /// The state in momenta, (t, q, q̇) ↦ (t, q, M q̇).
@@ -429,4 +432,9 @@ fn finite_value(what: &'static str, x: f64) -> Result<f64> {
         // A natural system does not depend on t: no time to name.
         Err(Error::NonFiniteResult { what, t: f64::NAN })
     }
+}
+
+/// Ok when every entry of a computed `x` is finite, else [`Error::NonFiniteResult`] naming `what`.
+fn finite_slice(what: &'static str, x: &[f64]) -> Result<()> {
+    x.iter().try_for_each(|&c| finite_value(what, c).map(drop))
 }

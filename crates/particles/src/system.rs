@@ -263,7 +263,7 @@ impl<I: Interaction> System<I> {
         for (w, q) in v.chunks_exact(3).zip(&self.particles) {
             (0..3).for_each(|k| p[k] += q.mass * w[k]);
         }
-        Ok(p)
+        finite3("momentum", p)
     }
 
     /// Total angular momentum about the origin, L = Σ m_i r_i × v_i.
@@ -276,7 +276,7 @@ impl<I: Interaction> System<I> {
             l[1] += q.mass * (r[2] * w[0] - r[0] * w[2]);
             l[2] += q.mass * (r[0] * w[1] - r[1] * w[0]);
         }
-        Ok(l)
+        finite3("angular momentum", l)
     }
 
     /// Total mass M = Σ m_i.
@@ -294,7 +294,7 @@ impl<I: Interaction> System<I> {
         }
         let p = self.momentum(x)?;
         let m = self.total_mass();
-        Ok([p[0] / m, p[1] / m, p[2] / m])
+        finite3("centre of mass", [p[0] / m, p[1] / m, p[2] / m])
     }
 
     /// Checks a per-particle vector (positions or velocities): length 3N, finite.
@@ -319,6 +319,15 @@ fn finite(what: &'static str, t: f64, x: f64) -> Result<f64> {
     } else {
         Err(Error::Core(noether_core::Error::NonFiniteResult { what, t }))
     }
+}
+
+/// A finite vector, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) (a sum
+/// that overflowed) naming `what`.
+fn finite3(what: &'static str, v: Vec3) -> Result<Vec3> {
+    for c in v {
+        finite(what, f64::NAN, c)?;
+    }
+    Ok(v)
 }
 
 /// `true` when every entry is finite, branch-free in 8 lanes (x·0 is 0 for finite x, NaN otherwise).

@@ -3,6 +3,7 @@
 //! returns Ok with finite values or a typed error, never panics, and a failed step leaves the state
 //! as it was.
 
+use noether_core::State;
 use noether_particles::prelude::*;
 use noether_particles::Interaction;
 use proptest::prelude::*;
