@@ -89,10 +89,16 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     report
         .checks
         .push(Check::abs(NAME, "max |R_cm| / a", worst_cm / a, 0.0, 1e-14));
+    // Yoshida's energy error oscillates with the orbit's phase (symplectic: no drift) and is back near
+    // its start after whole periods (measured 4.9e-15): 2e-14.
     let drift = (sys.total_energy(sol.last())? - e0) / e0.abs();
-    report
-        .checks
-        .push(Check::abs(NAME, "energy error after 2 periods", drift, 0.0, 1e-9));
+    report.checks.push(Check::abs(
+        NAME,
+        "energy error after 2 periods",
+        drift,
+        0.0,
+        2e-14,
+    ));
     Ok(report)
 }
 

@@ -149,10 +149,9 @@ const STEPS_PER_PERIOD: f64 = 100.0;
 /// (3!)²/(6!·7!) (ωh)⁷ ≈ 1e-5 (ωh)⁷, a relative frequency error ≈ 1e-5 (ωh)⁶ = 6e-13 (measured
 /// 6.3e-13; RK4 at h = T/1000 had 1.3e-11). The drift, a displacement over 20 periods, inherits the phase
 /// error (measured 6.1e-13 along E×B, 2.4e-12 of v_d across). Tolerances, tightened from RK4's 1e-10:
-/// 1e-11 on what depends on the phase (16x and 4x the measurements), 1e-12 on what collocation
-/// conserves (the quadratic invariants |v|² and ½m|v|² − eE·r, the radius: measured ≤ 7.1e-15; the
-/// tolerance covers the collocation's Newton residual, 1e-14 per step, adding up over the 2000 steps
-/// like a random walk to sqrt(2000)·1e-14 ≈ 4.5e-13).
+/// 1e-11 on what depends on the phase (16x and 4x the measurements); what collocation conserves up to
+/// rounding and its Newton residual is held near its measured error: ½m|v|² (measured 2.4e-15: 1e-14),
+/// ½m|v|² − eE·r (measured 7.1e-15: 2e-14), the radius (measured 2.2e-16, one rounding: 1e-15).
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let ex = "charged_particle";
     let mut report = Report::default();
@@ -196,18 +195,17 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let radius = magnetic.m * v_perp / (magnetic.e.abs() * norm(magnetic.b));
     report
         .checks
-        .push(Check::rel(ex, "cyclotron radius", rms, radius, 1e-12));
+        .push(Check::rel(ex, "cyclotron radius", rms, radius, 1e-15));
     // Uniform motion along B: z(t) = v∥ t, exact for any Runge-Kutta method up to rounding in the 2000
     // additions of z and the Newton tolerance (≤ N ε ≈ 2e-13; measured 2.2e-14, the driver's clock
-    // t₀ + k h adds no rounding of its own); tolerance 2e-12 (was 2e-11 with the
-    // 2·10⁴ steps of RK4).
+    // t₀ + k h adds no rounding of its own): 1e-13.
     let z_end = run.r.last().ok_or("empty run")?[2];
     report.checks.push(Check::rel(
         ex,
         "z(20T) = v∥ t (free along B)",
         z_end,
         v_par * t_end,
-        2e-12,
+        1e-13,
     ));
     // The magnetic force does no work: ½ m |v|² constant (a quadratic invariant, kept by collocation).
     let v_end = *run.v.last().ok_or("empty run")?;
@@ -217,7 +215,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         "kinetic energy (B only)",
         ke(v_end),
         ke(run.v[0]),
-        1e-12,
+        1e-14,
     ));
 
     // Add E ⊥ B: the guiding centre drifts at E × B / B² = (E_y/B) x̂ here.
@@ -252,7 +250,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         "energy ½mv² − eE·r (E and B)",
         el.energy(t_end_e, &r_end, run_e.v.last().ok_or("empty run")?)?,
         el.energy(0.0, &r0, &v0)?,
-        1e-12,
+        2e-14,
     ));
 
     let xy = |run: &Run, periods: f64| -> Vec<(f64, f64)> {
