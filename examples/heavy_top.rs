@@ -7,16 +7,17 @@
 //! and noether derives the equations of motion. The checks follow the textbook analysis:
 //! - φ and ψ are cyclic, so p_φ = I₁ φ̇ sin²θ + p_ψ cos θ and p_ψ = I₃ (ψ̇ + φ̇ cos θ) are conserved, and
 //!   so is the energy (L has no explicit t);
-//! - with u = cos θ the three constants give u̇² = f(u) = (1 − u²)(2E′ − 2Mgℓu)/I₁ − ((p_φ − p_ψ u)/I₁)²,
-//!   E′ = E − p_ψ²/(2I₃), a cubic with two roots u₁ < u₂ in [−1, 1]: θ nutates between acos u₂ and acos u₁;
-//! - the precession rate is φ̇ = (p_φ − p_ψ cos θ)/(I₁ sin²θ) all along the run;
-//! - θ nutates between the roots, with the period the quadrature of the cubic gives.
+//! - the precession rate is φ̇ = (p_φ − p_ψ cos θ)/(I₁ sin²θ) all along the run.
 //!
-//! The fast top released at rest, whose slow precession is the gyroscope's, is the example `fast_top`;
+//! With u = cos θ the three constants give u̇² = f(u) = (1 − u²)(2E′ − 2Mgℓu)/I₁ − ((p_φ − p_ψ u)/I₁)²,
+//! E′ = E − p_ψ²/(2I₃), a cubic whose roots bound the nutation: the closed forms for it are here
+//! ([`nutation_cubic`], [`cubic_roots`], [`nutation_quadrature`]) and the checks are the example
+//! `top_nutation`. The fast top released at rest, whose slow precession is the gyroscope's, is the
+//! example `fast_top`; the sleeping top, which sits exactly at θ = 0, and a run into the pole are the
+//! example `sleeping_top`. All use this model.
+//!
 //! Euler angles are singular at θ = 0, π (det ∂²L/∂q̇² = I₁² I₃ sin²θ). Every Euler-angle run is
 //! wrapped in a [`ChartGuard`] that stops with `Error::CoordinateSingularity` within sin θ < 10⁻².
-//! The sleeping top, which sits exactly at θ = 0, and a run into the pole are the example
-//! `sleeping_top`. Both use this model and its closed forms.
 //!
 //! Integrators: the nutating and the fast top run DOP853 (adaptive, tolerances 1e-14) on the Lagrangian's
 //! equations; the driver observes the constants at every accepted step, and the turning points of θ are
@@ -25,14 +26,12 @@
 //! samples.
 //!
 //! The file reads top-down: the model, the closed forms (constants, the nutation cubic and its
-//! quadrature), the Euler-angle run, the experiment, and [`run`].
+//! quadrature, used by `top_nutation` and `fast_top`), the Euler-angle run, the experiment, and [`run`].
 //!
-//! Run: `cargo run --release --example heavy_top` (the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --example heavy_top`.
 
 use noether::core::ChartGuard;
-use noether::plot::Figure;
 use noether::prelude::*;
-use noether_gallery::measure::mean_period;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;
@@ -193,14 +192,17 @@ fn max_deviation(sol: &Solution, name: &str) -> Result<f64, BoxError> {
     Ok(x.iter().fold(0.0_f64, |m, v| m.max((v - x[0]).abs())))
 }
 
-/// Experiment 1, a generic nutating top: θ₀ = 0.8, θ̇₀ = 0, φ̇₀ = 0.5, ψ̇₀ = 8; 12 time units. Constants, the
-/// precession formula, the turning points and the nutation period against the cubic; two pictures.
-fn nutating_top(top: HeavyTop, report: &mut Report, opts: &Options) -> Result<(), BoxError> {
+/// The nutating top of this example and of `top_nutation`: θ₀ = 0.8, θ̇₀ = 0, φ̇₀ = 0.5, ψ̇₀ = 8.
+pub fn nutating_start() -> State {
+    State::new(0.0, [0.8, 0.0, 0.0], [0.0, 0.5, 8.0])
+}
+
+/// The nutating top over 12 time units: the constants and the precession formula along the run.
+fn nutating_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
     let el = EulerLagrange::new(top);
-    let start = State::new(0.0, [0.8, 0.0, 0.0], [0.0, 0.5, 8.0]);
+    let start = nutating_start();
     let (pf, pp, e) = constants(&el, &start)?;
-    let t_end = 12.0;
-    let run = run_euler(top, start, t_end)?;
+    let run = run_euler(top, start, 12.0)?;
     // DOP853 at tolerances 1e-14 keeps the constants near the rounding level (measured 3.2e-15 for p_φ,
     // 4.7e-15 for p_ψ, 1.0e-14 for E; RK4 at h = 10⁻³ had ~2e-14): 3e-14, which fails for any error in
     // the derived equations.
@@ -224,115 +226,20 @@ fn nutating_top(top: HeavyTop, report: &mut Report, opts: &Options) -> Result<()
         0.0,
         1e-13,
     ));
-    // Turning points of θ against the roots u₁ < u₂ of the cubic: events θ̇ = 0 located on the dense
-    // output (7th order), so θ there carries only the run's own error (measured 3.7e-14 for θ_min,
-    // 9.3e-14 for θ_max), where the parabola through three fixed-step samples had an O(h³ θ⃛) error
-    // (≈ 1e-9 rad at h = 10⁻³); 3e-13 relative.
-    let cubic = nutation_cubic(&top, pf, pp, e);
-    let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
-    let (theta_min, theta_max) = (roots[1].acos(), roots[0].acos());
-    let thetas = |name: &str| -> Vec<f64> { run.events_named(name).map(|r| r.state.q[0]).collect() };
-    let (maxima, minima) = (thetas(THETA_MAX), thetas(THETA_MIN));
-    if maxima.len() < 3 || minima.len() < 3 {
-        return Err(format!(
-            "expected several nutations in the run, saw {} minima and {} maxima",
-            minima.len(),
-            maxima.len()
-        )
-        .into());
-    }
-    // The observed value farthest from the closed form.
-    let worst = |xs: &[f64], exact: f64| {
-        let off = |x: &f64| (x - exact).abs();
-        xs.iter()
-            .copied()
-            .max_by(|a, b| off(a).total_cmp(&off(b)))
-            .unwrap_or(f64::NAN)
-    };
-    report.checks.push(Check::rel(
-        NAME,
-        "θ_min (worst of the nutations) vs acos u₂",
-        worst(&minima, theta_min),
-        theta_min,
-        3e-13,
-    ));
-    report.checks.push(Check::rel(
-        NAME,
-        "θ_max (worst of the nutations) vs acos u₁",
-        worst(&maxima, theta_max),
-        theta_max,
-        3e-13,
-    ));
-    // The third root lies above 1 (unphysical), the two physical ones in [−1, 1].
-    report.checks.push(Check::abs(
-        NAME,
-        "u₃ > 1 (unphysical root)",
-        (roots[2] > 1.0) as u8 as f64,
-        1.0,
-        0.0,
-    ));
-    // Nutation period: the mean time between successive θ maxima (events) vs the quadrature of
-    // dt = du/sqrt(f(u)); the quadrature converges geometrically, the events are located to ~1e-14
-    // (measured 6.5e-14; RK4 samples with a parabola: 2.4e-11); 2e-13.
-    let (period, _) = nutation_quadrature(&top, cubic, roots, pf, pp);
-    let observed = mean_period(&run.event_times(THETA_MAX)).ok_or("fewer than two maxima of θ")?;
-    report.checks.push(Check::rel(
-        NAME,
-        "nutation period vs quadrature of the cubic",
-        observed,
-        period,
-        2e-13,
-    ));
-
-    if opts.out_dir.is_none() {
-        return Ok(());
-    }
-    // Pictures, sampled every 10⁻² on the dense output: the apex of the axis seen from above,
-    // (sin θ cos φ, sin θ sin φ), looping between the two nutation circles; and θ(t) between the roots
-    // of the cubic.
-    let samples = (0..=(t_end / 1e-2).round() as usize)
-        .map(|k| run.at(k as f64 * 1e-2))
-        .collect::<Result<Vec<State>>>()?;
-    let apex = samples
-        .iter()
-        .map(|s| (s.q[0].sin() * s.q[1].cos(), s.q[0].sin() * s.q[1].sin()))
-        .collect();
-    let circle = |th: f64| -> Vec<(f64, f64)> {
-        (0..=200)
-            .map(|k| 2.0 * PI * k as f64 / 200.0)
-            .map(|a| (th.sin() * a.cos(), th.sin() * a.sin()))
-            .collect()
-    };
-    let fig = Figure::new("Heavy top: the apex of the axis seen from above (θ₀ = 0.8, φ̇₀ = 0.5, ψ̇₀ = 8)")
-        .x_label("sin θ cos φ")
-        .y_label("sin θ sin φ")
-        .equal_aspect()
-        .series("apex path (DOP853, 12 time units)", apex)
-        .series("θ = acos u₁ (cubic root)", circle(theta_max))
-        .series("θ = acos u₂ (cubic root)", circle(theta_min));
-    report.save(opts, &fig, "heavy_top_apex.svg")?;
-    let flat = |th: f64| vec![(0.0, th), (t_end, th)];
-    let fig = Figure::new("Heavy top: nutation of θ between the roots of the cubic in cos θ")
-        .x_label("t")
-        .y_label("θ")
-        .series("θ(t)", samples.iter().map(|s| (s.t, s.q[0])).collect())
-        .series("acos u₁", flat(theta_max))
-        .series("acos u₂", flat(theta_min));
-    report.save(opts, &fig, "heavy_top_nutation.svg")?;
     Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------------
 
 /// Runs the heavy-top checks on the nutating top.
-pub fn run(opts: &Options) -> Result<Report, BoxError> {
+pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let top = HeavyTop {
         i1: 1.0,
         i3: 0.5,
         mgl: 1.0,
     };
     let mut report = Report::default();
-    nutating_top(top, &mut report, opts)?;
+    nutating_top(top, &mut report)?;
     Ok(report)
 }
 

@@ -99,6 +99,11 @@ fn closed_form_heavy_top() {
 }
 
 #[test]
+fn closed_form_top_nutation() {
+    assert_example_passes("top_nutation");
+}
+
+#[test]
 fn closed_form_fast_top() {
     assert_example_passes("fast_top");
 }
