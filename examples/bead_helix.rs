@@ -99,12 +99,14 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         0.0,
         1e-9,
     ));
+    // The force is algebraic in the state and the speed along the wire is exact to rounding
+    // (z is quadratic in t, which RK4 integrates exactly): measured 2.9e-15, 1e-14.
     checks.push(Check::abs(
         NAME,
         "max| |N| − sqrt((m b φ̇²)² + (m g b)²/(a²+b²)) |/(m g)",
         dn,
         0.0,
-        1e-9,
+        1e-14,
     ));
     Ok(Report {
         checks,

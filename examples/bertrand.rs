@@ -111,7 +111,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     // Eccentric orbits (e ≈ 0.69 for Kepler, axis ratio 1.5 for the oscillator): closed.
     // Yoshida 4 at h = 1e-3 on periods of 7–36 time units, the end located on the cubic Hermite
     // interpolant (O(h⁴)): angle errors measured 1.7e-12 (Kepler, whose fast periapsis passage sets
-    // it) and 1.6e-14 (harmonic). Tolerance 1e-11 absolute, 6x the larger. Energy: Yoshida 4 keeps it
+    // it) and 1.6e-14 (harmonic). Tolerances 1e-11 and 5e-14 absolute. Energy: Yoshida 4 keeps it
     // within O(h⁴) of E₀, measured 5.9e-13; tolerance 3e-12, 5x that.
     let (dphi, e_err) = radial_period(kepler, 1.3, h)?;
     checks.push(Check::abs(
@@ -134,7 +134,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         "harmonic r², axis ratio 1.5: advance per radial period − π (closes)",
         dphi - PI,
         0.0,
-        1e-11,
+        5e-14,
     ));
     // V ∝ −r^(−1.1), eccentric: the orbit does not close (the advance differs from 2π by ~0.3 rad).
     let (dphi, _) = radial_period(steep, 1.2, h)?;

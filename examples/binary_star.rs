@@ -9,24 +9,12 @@
 
 use noether::particles::laws::Gravity;
 use noether::prelude::*;
+use noether_gallery::closed_form::kepler_eccentric_anomaly;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
 const NAME: &str = "binary_star";
-
-/// Eccentric anomaly E from the mean anomaly M (Kepler's equation by Newton's method).
-fn eccentric_anomaly(mean: f64, e: f64) -> f64 {
-    let mut ea = if e > 0.8 { PI } else { mean };
-    for _ in 0..50 {
-        let d = (ea - e * ea.sin() - mean) / (1.0 - e * ea.cos());
-        ea -= d;
-        if d.abs() < 1e-15 {
-            break;
-        }
-    }
-    ea
-}
 
 /// Runs the binary-star checks.
 pub fn run(_opts: &Options) -> Result<Report, BoxError> {
@@ -80,7 +68,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     // The relative vector against Kepler's ellipse every 250 steps.
     let worst_r = (250..sol.len()).step_by(250).fold(0.0_f64, |worst, i| {
         let (x, t) = (sol.q(i), sol.times()[i]);
-        let ea = eccentric_anomaly(2.0 * PI * t / period, e);
+        let ea = kepler_eccentric_anomaly(2.0 * PI * t / period, e);
         let exact = [a * (ea.cos() - e), a * (1.0 - e * e).sqrt() * ea.sin()];
         let rel = [x[3] - x[0], x[4] - x[1]];
         worst.max((rel[0] - exact[0]).abs().max((rel[1] - exact[1]).abs()))
@@ -101,10 +89,16 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     report
         .checks
         .push(Check::abs(NAME, "max |R_cm| / a", worst_cm / a, 0.0, 1e-14));
+    // Yoshida's energy error oscillates with the orbit's phase (symplectic: no drift) and is back near
+    // its start after whole periods (measured 4.9e-15): 2e-14.
     let drift = (sys.total_energy(sol.last())? - e0) / e0.abs();
-    report
-        .checks
-        .push(Check::abs(NAME, "energy error after 2 periods", drift, 0.0, 1e-9));
+    report.checks.push(Check::abs(
+        NAME,
+        "energy error after 2 periods",
+        drift,
+        0.0,
+        2e-14,
+    ));
     Ok(report)
 }
 

@@ -8,8 +8,11 @@
 //! has ω h = 0.024.
 //!
 //! Checks: max |E − E0| / |E0| over the run, bounded by the modified-energy estimate of Verlet
-//! (~ (ω h)² × kinetic energy / |E0| ≈ 1e-5, we allow 1e-4); the drift, mean of E over the last tenth
-//! minus the first tenth, is far smaller (allowed 1e-5 of |E0|); momentum changes only by rounding.
+//! (~ (ω h)² × kinetic energy / |E0| ≈ 1e-5; measured 1.2e-6 over 10⁵ steps and 1.9e-6 over the
+//! test's 2·10⁴, sampled at other steps: 5e-6); the drift, mean of E over the last tenth minus the
+//! first tenth, is far smaller (measured 1.1e-7 and 2.6e-7, the shorter run averaging over shorter
+//! tenths: 6e-7 of |E0|); momentum changes only by rounding (measured 1.7e-15 and 5.6e-16 of
+//! Σ m|v|: 5e-15).
 //! The energy is an observer of the driver, recorded at 1000 evenly spaced steps.
 //!
 //! Run: `cargo run --release --example lj_cluster` (10⁵ steps, ~4 s on an idle core; the test suite
@@ -92,15 +95,15 @@ pub fn run_steps(steps: usize) -> Result<Report, BoxError> {
     let label = format!("{steps} steps");
     Ok(Report {
         checks: vec![
-            Check::abs(NAME, format!("max |E - E0| / |E0| ({label})"), worst, 0.0, 1e-4),
+            Check::abs(NAME, format!("max |E - E0| / |E0| ({label})"), worst, 0.0, 5e-6),
             Check::abs(
                 NAME,
                 format!("energy drift last-first tenth / |E0| ({label})"),
                 drift,
                 0.0,
-                1e-5,
+                6e-7,
             ),
-            Check::abs(NAME, format!("|dP| / sum m|v| ({label})"), dp / scale, 0.0, 1e-12),
+            Check::abs(NAME, format!("|dP| / sum m|v| ({label})"), dp / scale, 0.0, 5e-15),
         ],
         figures: vec![],
     })

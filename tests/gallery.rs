@@ -99,6 +99,16 @@ fn closed_form_heavy_top() {
 }
 
 #[test]
+fn closed_form_top_nutation() {
+    assert_example_passes("top_nutation");
+}
+
+#[test]
+fn closed_form_fast_top() {
+    assert_example_passes("fast_top");
+}
+
+#[test]
 fn closed_form_sleeping_top() {
     assert_example_passes("sleeping_top");
 }
@@ -124,8 +134,18 @@ fn closed_form_charged_particle() {
 }
 
 #[test]
+fn closed_form_exb_drift() {
+    assert_example_passes("exb_drift");
+}
+
+#[test]
 fn closed_form_three_body() {
     assert_example_passes("three_body");
+}
+
+#[test]
+fn closed_form_trojan_orbits() {
+    assert_example_passes("trojan_orbits");
 }
 
 #[test]
@@ -151,6 +171,11 @@ fn closed_form_pendulum_cartesian() {
 #[test]
 fn closed_form_bead_rotating_hoop() {
     assert_example_passes("bead_rotating_hoop");
+}
+
+#[test]
+fn closed_form_hoop_equilibria() {
+    assert_example_passes("hoop_equilibria");
 }
 
 #[test]
