@@ -24,7 +24,7 @@
 //! [`Error::SingularMassMatrix`].
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len};
+use crate::error::{check_finite, check_len, check_phase_point};
 use crate::linalg::{self, DenseFactor};
 use crate::newton::{DenseProblem, Newton};
 use crate::{Error, Lagrangian, Momenta, Result, Scalar, State, Velocities};
@@ -271,10 +271,16 @@ impl<L: Lagrangian> EulerLagrange<L> {
         self.check(t, q, v)?;
         check_len("p (output)", p, self.dof())?;
         let mut out = vec![0.0; self.dof()];
-        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, &mut out);
+        self.momenta_unchecked(t, q, v, &mut out);
         all_finite("momenta", t, &out)?;
         p.copy_from_slice(&out);
         Ok(())
+    }
+
+    /// ∂L/∂q̇ into `p` (lengths right), NaN where q̇ lies outside the model's domain: the inverse
+    /// Legendre map's Newton uses that to pull its iterate back in.
+    fn momenta_unchecked(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) {
+        ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, p);
     }
 
     /// The energy function h = q̇·∂L/∂q̇ − L (conserved when L does not depend on t explicitly and Q = 0).
@@ -336,7 +342,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         // Pull the start back into the model's domain if it lies outside (p/m may exceed c).
         let mut r = vec![0.0; n];
         for _ in 0..60 {
-            self.momenta(t, q, &v0, &mut r)?;
+            self.momenta_unchecked(t, q, &v0, &mut r);
             if r.iter().all(|x| x.is_finite()) {
                 break;
             }
@@ -348,8 +354,8 @@ impl<L: Lagrangian> EulerLagrange<L> {
     /// Newton's method for ∂L/∂q̇(t, q, q̇) = p from the start `v0` (residual tolerance
     /// 1e-13·(1 + ‖p‖∞)).
     pub(crate) fn velocities_from(&self, t: f64, q: &[f64], p: &[f64], v0: &[f64]) -> Result<DVector<f64>> {
-        check_len("p", p, self.dof())?;
-        check_finite("p", p)?;
+        check_phase_point(self.dof(), t, q, p, "p")?;
+        check_len("q̇ (start)", v0, self.dof())?;
         struct InverseLegendre<'a, L> {
             el: &'a EulerLagrange<L>,
             t: f64,
@@ -361,7 +367,8 @@ impl<L: Lagrangian> EulerLagrange<L> {
                 self.p.len()
             }
             fn residual(&mut self, v: &[f64], r: &mut [f64]) -> Result<()> {
-                self.el.momenta(self.t, self.q, v, r)?;
+                // Non-finite outside the model's domain: Newton halves its step back in.
+                self.el.momenta_unchecked(self.t, self.q, v, r);
                 r.iter_mut().zip(self.p).for_each(|(ri, pi)| *ri -= pi);
                 Ok(())
             }
