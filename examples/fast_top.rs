@@ -12,7 +12,7 @@
 
 use noether::prelude::*;
 use noether_gallery::examples::heavy_top::{
-    constants, cubic_roots, nutation_cubic, nutation_quadrature, run_euler, HeavyTop, THETA_MIN,
+    constants, cubic_roots, nutation_cubic, nutation_quadrature, run_euler, HeavyTop, GALLERY_TOP, THETA_MIN,
 };
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
@@ -64,11 +64,7 @@ fn fast_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
 
 /// Runs the fast-top checks.
 pub fn run(_opts: &Options) -> Result<Report, BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let mut report = Report::default();
     fast_top(top, &mut report)?;
     Ok(report)

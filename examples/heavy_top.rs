@@ -52,6 +52,13 @@ pub struct HeavyTop {
     pub mgl: f64,
 }
 
+/// The top of the gallery's heavy-top examples: I₁ = 1, I₃ = 1/2, M g ℓ = 1.
+pub const GALLERY_TOP: HeavyTop = HeavyTop {
+    i1: 1.0,
+    i3: 0.5,
+    mgl: 1.0,
+};
+
 impl Lagrangian for HeavyTop {
     fn dof(&self) -> usize {
         3
@@ -233,11 +240,7 @@ fn nutating_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
 
 /// Runs the heavy-top checks on the nutating top.
 pub fn run(_opts: &Options) -> Result<Report, BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let mut report = Report::default();
     nutating_top(top, &mut report)?;
     Ok(report)

@@ -19,7 +19,7 @@
 
 use noether::core::ChartGuard;
 use noether::prelude::*;
-use noether_gallery::examples::heavy_top::{constants, euler_angle_stepper, nutation_cubic, HeavyTop};
+use noether_gallery::examples::heavy_top::{constants, euler_angle_stepper, nutation_cubic, HeavyTop, GALLERY_TOP};
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;
@@ -186,11 +186,7 @@ fn pole_approach(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
 
 /// Runs the checks: the sleeping top, then the run into the pole.
 pub fn run(_opts: &Options) -> Result<Report, BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let mut report = Report::default();
     sleeping_top(top, &mut report)?;
     pole_approach(top, &mut report)?;

@@ -15,7 +15,7 @@
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::examples::heavy_top::{
-    constants, cubic_roots, nutating_start, nutation_cubic, nutation_quadrature, run_euler, HeavyTop,
+    constants, cubic_roots, nutating_start, nutation_cubic, nutation_quadrature, run_euler, HeavyTop, GALLERY_TOP,
     THETA_MAX, THETA_MIN,
 };
 use noether_gallery::measure::mean_period;
@@ -27,11 +27,7 @@ const NAME: &str = "top_nutation";
 
 /// Runs the checks and draws the pictures.
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let mut report = Report::default();
     let start = nutating_start();
     let (pf, pp, e) = constants(&EulerLagrange::new(top), &start)?;

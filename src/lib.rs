@@ -143,7 +143,8 @@ examples! {
     rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
     bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
     cyclotron: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
-    coupled_chains: "coupled mass-spring chains (midpoint variational): the paper's energy ratio, momentum, symmetry",
+    coupled_chains: "coupled mass-spring chains (midpoint variational): the paper's collision and its energy ratio",
+    coupled_chains_momentum: "coupled chains: momentum to rounding, the mirror symmetry of the two chains (Figs. 5-7)",
     coupled_chains_transfer: "coupled chains: momentum transferred in a collision against v0 (the paper's Fig. 8)",
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
 }

@@ -84,6 +84,11 @@ fn closed_form_coupled_chains() {
 }
 
 #[test]
+fn closed_form_coupled_chains_momentum() {
+    assert_example_passes("coupled_chains_momentum");
+}
+
+#[test]
 fn closed_form_coupled_chains_transfer() {
     assert_example_passes("coupled_chains_transfer");
 }

@@ -64,23 +64,4 @@ pub enum Error {
     },
 }
 
-impl From<noether_core::Error> for Error {
-    /// Core's error, or this crate's own when it comes back through core's interfaces.
-    fn from(e: noether_core::Error) -> Self {
-        match e.downcast_ref::<Error>() {
-            Some(own) => own.clone(),
-            None => Error::Core(e),
-        }
-    }
-}
-
-impl From<Error> for noether_core::Error {
-    /// This crate's errors seen through core's interfaces (a Newton solve on a potential): core's
-    /// pass through, the others travel as [`noether_core::Error::Model`] with their data.
-    fn from(e: Error) -> Self {
-        match e {
-            Error::Core(c) => c,
-            own => noether_core::Error::model(own),
-        }
-    }
-}
+noether_core::crate_error_conversions!(Error);

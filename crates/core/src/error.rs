@@ -194,6 +194,50 @@ impl Error {
     }
 }
 
+/// The two conversions between core's [`Error`] and the error enum of a crate built on core, which
+/// must be `Clone + std::error::Error + Send + Sync + 'static` and have a variant `Core(noether_core::Error)`:
+/// into core's, the crate's own errors travel as [`Error::Model`] and core's pass through; back from
+/// core's, the crate's own come out whole (by [`Error::downcast_ref`]) and the others as `Core`.
+///
+/// ```
+/// #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// enum Error {
+///     #[error("rod {0} broke")]
+///     Broken(usize),
+///     #[error(transparent)]
+///     Core(noether_core::Error),
+/// }
+/// noether_core::crate_error_conversions!(Error);
+///
+/// let through_core = noether_core::Error::from(Error::Broken(3));
+/// assert_eq!(Error::from(through_core), Error::Broken(3));
+/// ```
+#[macro_export]
+macro_rules! crate_error_conversions {
+    ($error:ident) => {
+        impl From<$crate::Error> for $error {
+            /// Core's error, or this crate's own when it comes back through core's interfaces.
+            fn from(e: $crate::Error) -> Self {
+                match e.downcast_ref::<$error>() {
+                    Some(own) => own.clone(),
+                    None => $error::Core(e),
+                }
+            }
+        }
+
+        impl From<$error> for $crate::Error {
+            /// This crate's errors seen through core's interfaces: core's pass through, the others
+            /// travel as [`Error::Model`](noether_core::Error::Model) with their data.
+            fn from(e: $error) -> Self {
+                match e {
+                    $error::Core(c) => c,
+                    own => $crate::Error::model(own),
+                }
+            }
+        }
+    };
+}
+
 /// The error of a crate built on core inside [`Error::Model`]: shared, so that [`Error`] stays
 /// `Clone`; two are equal when they are the same error or print the same.
 #[derive(Debug, Clone)]

@@ -67,28 +67,7 @@ pub enum Error {
     Core(noether_core::Error),
 }
 
-impl From<noether_core::Error> for Error {
-    /// Core's error, or this crate's own when it comes back through core's interfaces (a particle
-    /// system stepped by a core integrator or a driver).
-    fn from(e: noether_core::Error) -> Self {
-        match e.downcast_ref::<Error>() {
-            Some(own) => own.clone(),
-            None => Error::Core(e),
-        }
-    }
-}
-
-impl From<Error> for noether_core::Error {
-    /// Particle errors seen through core's [`Dynamics`](noether_core::Dynamics) interface: core's
-    /// pass through, the others travel as [`noether_core::Error::Model`] with their particle indices
-    /// (`noether_particles::Error::from` gives them back).
-    fn from(e: Error) -> Self {
-        match e {
-            Error::Core(c) => c,
-            own => noether_core::Error::model(own),
-        }
-    }
-}
+noether_core::crate_error_conversions!(Error);
 
 #[cfg(test)]
 mod tests {

@@ -48,15 +48,26 @@ struct Run {
     nrejct: usize,
 }
 
-/// Runs `stepper` over one period with Hairer's driver loop.
-fn hairer_run<S: Stepper<Partner = Velocities>>(mut stepper: S, evaluations: impl Fn(&S) -> usize) -> Run {
-    let mut st = State::new(0.0, [0.994, 0.0], [0.0, V0]);
-    let mut h = stepper.initial_step(&st).unwrap().unwrap();
+/// Runs `stepper` over one period of the Arenstorf orbit with Hairer's driver loop.
+fn hairer_run<S: Stepper<Partner = Velocities>>(stepper: S, evaluations: impl Fn(&S) -> usize) -> Run {
+    let start = State::new(0.0, [0.994, 0.0], [0.0, V0]);
+    hairer_loop(stepper, start, None, X_END, evaluations)
+}
+
+/// Hairer's driver loop from `start` to `x_end`, from the initial step `h0` (by `hinit` when `None`).
+fn hairer_loop<S: Stepper<Partner = Velocities>>(
+    mut stepper: S,
+    mut st: State<Velocities>,
+    h0: Option<f64>,
+    x_end: f64,
+    evaluations: impl Fn(&S) -> usize,
+) -> Run {
+    let mut h = h0.unwrap_or_else(|| stepper.initial_step(&st).unwrap().unwrap());
     let (mut nstep, mut naccpt, mut nrejct) = (0, 0, 0);
     loop {
         let mut last = false;
-        if st.t + 1.01 * h - X_END > 0.0 {
-            h = X_END - st.t;
+        if st.t + 1.01 * h - x_end > 0.0 {
+            h = x_end - st.t;
             last = true;
         }
         let info = stepper.step(&mut st, h).unwrap();
@@ -121,4 +132,41 @@ fn pin_dop853_arenstorf() {
     let dv = distance(&r.end, r.end.q.as_slice(), &[0.0, V0]);
     assert!(dq < 5e-6 && dv < 1e-3, "{dq:e} {dv:e}");
     assert_eq!((r.nfcn, r.nstep, r.naccpt, r.nrejct), (1394, 116, 83, 32));
+}
+
+/// Van der Pol's equation y₁′ = y₂, y₂′ = ((1 − y₁²) y₂ − y₁)/ε with ε = 1e-3 (Hairer's `FVPOL`).
+struct VanDerPol;
+impl Dynamics for VanDerPol {
+    type Partner = Velocities;
+    fn dof(&self) -> usize {
+        1
+    }
+    fn rates(&self, _t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+        dq[0] = v[0];
+        dv[0] = ((1.0 - q[0] * q[0]) * v[0] - q[0]) / 1e-3;
+        Ok(())
+    }
+    fn energy(&self, _t: f64, _q: &[f64], _v: &[f64]) -> Result<f64> {
+        Err(Error::Unsupported("no energy for the pin"))
+    }
+}
+
+#[test]
+fn pin_dop853_van_der_pol() {
+    // Hairer's dop853.f on Van der Pol (ε = 1e-3, y₀ = (2, 0), x ∈ [0, 2], rtol = atol = 1e-9, initial
+    // step 1e-6), as run and recorded in the russell_ode crate's tests (tests/test_dopri8_van_der_pol.rs):
+    //   y(2) = (1.763234540172087, −0.8356886819301910), nstep 1469, naccpt 1348, nrejct 121.
+    let dp = Dop853::new(VanDerPol)
+        .tolerances(1e-9, 1e-9)
+        .unwrap()
+        .with_dense_output(false);
+    let r = hairer_loop(dp, State::new(0.0, [2.0], [0.0]), Some(1e-6), 2.0, |s| s.evaluations());
+    eprintln!(
+        "DOP853 Van der Pol: y = {:?} {:?}, fcn {} step {} accpt {} rejct {}",
+        r.end.q, r.end.v, r.nfcn, r.nstep, r.naccpt, r.nrejct
+    );
+    assert_eq!(r.end.t, 2.0);
+    assert_eq!((r.nstep, r.naccpt, r.nrejct), (1469, 1348, 121));
+    assert!((r.end.q[0] - 1.763_234_540_172_087).abs() < 1e-12, "{}", r.end.q[0]);
+    assert!((r.end.v[0] + 0.835_688_681_930_191).abs() < 1e-11, "{}", r.end.v[0]);
 }
