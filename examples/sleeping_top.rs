@@ -19,7 +19,9 @@
 
 use noether::core::ChartGuard;
 use noether::prelude::*;
-use noether_gallery::examples::heavy_top::{constants, euler_angle_stepper, nutation_cubic, HeavyTop, GALLERY_TOP};
+use noether_gallery::examples::heavy_top::{
+    constants, euler_angle_stepper, nutation_cubic, HeavyTop, GALLERY_TOP,
+};
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;

@@ -15,7 +15,7 @@
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::examples::heavy_top::{
-    constants, cubic_roots, nutating_start, nutation_cubic, nutation_quadrature, run_euler, HeavyTop, GALLERY_TOP,
+    constants, cubic_roots, nutating_start, nutation_cubic, nutation_quadrature, run_euler, GALLERY_TOP,
     THETA_MAX, THETA_MIN,
 };
 use noether_gallery::measure::mean_period;

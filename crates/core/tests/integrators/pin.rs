@@ -160,13 +160,23 @@ fn pin_dop853_van_der_pol() {
         .tolerances(1e-9, 1e-9)
         .unwrap()
         .with_dense_output(false);
-    let r = hairer_loop(dp, State::new(0.0, [2.0], [0.0]), Some(1e-6), 2.0, |s| s.evaluations());
+    let r = hairer_loop(dp, State::new(0.0, [2.0], [0.0]), Some(1e-6), 2.0, |s| {
+        s.evaluations()
+    });
     eprintln!(
         "DOP853 Van der Pol: y = {:?} {:?}, fcn {} step {} accpt {} rejct {}",
         r.end.q, r.end.v, r.nfcn, r.nstep, r.naccpt, r.nrejct
     );
     assert_eq!(r.end.t, 2.0);
     assert_eq!((r.nstep, r.naccpt, r.nrejct), (1469, 1348, 121));
-    assert!((r.end.q[0] - 1.763_234_540_172_087).abs() < 1e-12, "{}", r.end.q[0]);
-    assert!((r.end.v[0] + 0.835_688_681_930_191).abs() < 1e-11, "{}", r.end.v[0]);
+    assert!(
+        (r.end.q[0] - 1.763_234_540_172_087).abs() < 1e-12,
+        "{}",
+        r.end.q[0]
+    );
+    assert!(
+        (r.end.v[0] + 0.835_688_681_930_191).abs() < 1e-11,
+        "{}",
+        r.end.v[0]
+    );
 }
