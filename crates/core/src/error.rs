@@ -194,7 +194,7 @@ impl Error {
     }
 }
 
-/// The two conversions between core's [`Error`] and the error enum of a crate built on core, which
+/// The two conversions between core's [`Error`](enum@Error) and the error enum of a crate built on core, which
 /// must be `Clone + std::error::Error + Send + Sync + 'static` and have a variant `Core(noether_core::Error)`:
 /// into core's, the crate's own errors travel as [`Error::Model`] and core's pass through; back from
 /// core's, the crate's own come out whole (by [`Error::downcast_ref`]) and the others as `Core`.
@@ -238,7 +238,7 @@ macro_rules! crate_error_conversions {
     };
 }
 
-/// The error of a crate built on core inside [`Error::Model`]: shared, so that [`Error`] stays
+/// The error of a crate built on core inside [`Error::Model`]: shared, so that [`Error`](enum@Error) stays
 /// `Clone`; two are equal when they are the same error or print the same.
 #[derive(Debug, Clone)]
 pub struct ModelError(Arc<dyn std::error::Error + Send + Sync + 'static>);

@@ -69,6 +69,19 @@ pub enum Error {
 
 noether_core::crate_error_conversions!(Error);
 
+impl Error {
+    /// The error for a pair (a, b) at separation `r` whose interaction is not finite: the particles
+    /// coincide (distance 0), or the law is not finite there.
+    pub(crate) fn pair(a: usize, b: usize, r: crate::Vec3) -> Self {
+        let distance = crate::potential::norm(r);
+        if distance == 0.0 {
+            Error::Coincident { a, b, distance }
+        } else {
+            Error::NonFiniteInteraction { a, b, distance }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,18 +97,5 @@ mod tests {
         let core = noether_core::Error::from(e.clone());
         assert_eq!(core.downcast_ref::<Error>(), Some(&e));
         assert_eq!(Error::from(core), e);
-    }
-}
-
-impl Error {
-    /// The error for a pair (a, b) at separation `r` whose interaction is not finite: the particles
-    /// coincide (distance 0), or the law is not finite there.
-    pub(crate) fn pair(a: usize, b: usize, r: crate::Vec3) -> Self {
-        let distance = crate::potential::norm(r);
-        if distance == 0.0 {
-            Error::Coincident { a, b, distance }
-        } else {
-            Error::NonFiniteInteraction { a, b, distance }
-        }
     }
 }

@@ -25,7 +25,7 @@
 //!     .with(Internal::new(Gravity { g: 1.0 }, [(0, 1)])).unwrap();
 //! let s0 = sys.state(0.0, &[[0.0; 3], [1.0, 0.0, 0.0]], &[[0.0, -0.01, 0.0], [0.0, 1.0, 0.0]]).unwrap();
 //! let s1 = sys.run(Method::VelocityVerlet, s0.clone(), 1e-3, 1000).unwrap();
-//! let (p0, p1) = (sys.momentum(s0.v.as_slice()), sys.momentum(s1.v.as_slice()));
+//! let (p0, p1) = (sys.momentum(s0.v.as_slice()).unwrap(), sys.momentum(s1.v.as_slice()).unwrap());
 //! assert!((p1[1] - p0[1]).abs() < 1e-15);
 //! ```
 
