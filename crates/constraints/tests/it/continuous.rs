@@ -44,20 +44,11 @@ fn closed_form_cartesian_pendulum_matches_angle_and_tension() {
 /// Projection keeps the RK4 trajectory on the circle to rounding level (the reported residual).
 #[test]
 fn conserves_constraint_with_projection() {
-    let sys = Constrained::holonomic(
-        Masses {
-            n: 1,
-            d: 2,
-            m: 1.0,
-            g: 9.81,
-        },
-        Rod {
-            d: 2,
-            l: 1.0,
-            copies: 1,
-        },
-    )
-    .unwrap();
+    let pendulum = || {
+        let (m, g, l) = (1.0, 9.81, 1.0);
+        Constrained::holonomic(Masses { n: 1, d: 2, m, g }, Rod { d: 2, l, copies: 1 }).unwrap()
+    };
+    let sys = pendulum();
     let mut run = Driver::with_step(
         Projected::new(Rk4::new(&sys), sys.constraints()),
         pendulum_state(1.0, 2.5, 0.0),
@@ -70,22 +61,7 @@ fn conserves_constraint_with_projection() {
     let rep = run.stepper().last_projection();
     assert!(rep.position_correction > 0.0 && rep.position_correction < 1e-6);
     // Without projection, RK4 drifts off the circle (the index-1 system only fixes accelerations) ...
-    let loose = Constrained::holonomic(
-        Masses {
-            n: 1,
-            d: 2,
-            m: 1.0,
-            g: 9.81,
-        },
-        Rod {
-            d: 2,
-            l: 1.0,
-            copies: 1,
-        },
-    )
-    .unwrap()
-    .with_violation_tolerance(1.0)
-    .unwrap();
+    let loose = pendulum().with_violation_tolerance(1.0).unwrap();
     let mut free = Driver::with_step(Rk4::new(&loose), pendulum_state(1.0, 2.5, 0.0), 1e-2).unwrap();
     let end = free.run_until(20.0).unwrap().last().clone();
     let drift = (end.q.norm() - 1.0).abs();
