@@ -294,6 +294,24 @@ pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
     }
 }
 
+/// The output twin of [`check_finite`]: Ok when every entry of a computed `x` is finite, else
+/// [`Error::NonFiniteResult`] naming the quantity `what` at time `t` (NaN for a quantity computed
+/// without one).
+#[inline]
+pub fn check_result(what: &'static str, t: f64, x: &[f64]) -> Result<()> {
+    if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFiniteResult { what, t })
+    }
+}
+
+/// [`check_result`] for one computed value: `x` when it is finite.
+#[inline]
+pub fn finite_result(what: &'static str, t: f64, x: f64) -> Result<f64> {
+    check_result(what, t, &[x]).map(|()| x)
+}
+
 /// Checks a phase point (t, q, v): q and v of length `dof` (q first), then t, q, v finite. `v_name`
 /// names the second half in the error ("q̇", "p", "v").
 #[inline]

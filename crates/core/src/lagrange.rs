@@ -24,7 +24,7 @@
 //! [`Error::SingularMassMatrix`].
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len, check_phase_point};
+use crate::error::{check_finite, check_len, check_phase_point, check_result, finite_result};
 use crate::linalg::{self, DenseFactor};
 use crate::newton::{DenseProblem, Newton};
 use crate::{Error, Lagrangian, Momenta, Result, Scalar, State, Velocities};
@@ -66,29 +66,10 @@ fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, 
         .map(|f| f.solve_in_place(b.as_mut_slice()))
 }
 
-/// `x`, or [`Error::NonFiniteResult`] naming `what` at `t`.
-fn finite(what: &'static str, t: f64, x: f64) -> Result<f64> {
-    all_finite(what, t, &[x]).map(|()| x)
-}
-
-/// [`Error::NonFiniteResult`] naming `what` at `t` when an entry of `x` is NaN or infinite.
-fn all_finite(what: &'static str, t: f64, x: &[f64]) -> Result<()> {
-    if x.iter().all(|v| v.is_finite()) {
-        Ok(())
-    } else {
-        Err(Error::NonFiniteResult { what, t })
-    }
-}
-
 /// Copies finite accelerations into `a`; a non-finite one is the model's failure, reported as such.
 #[inline]
 fn finish(b: &[f64], a: &mut [f64], t: f64) -> Result<()> {
-    if b.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFiniteResult {
-            what: "accelerations",
-            t,
-        });
-    }
+    check_result("accelerations", t, b)?;
     a.copy_from_slice(b);
     Ok(())
 }
@@ -130,7 +111,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
     /// The value of L.
     pub fn value(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         self.check(t, q, v)?;
-        finite("Lagrangian", t, self.lagrangian.lagrangian(t, q, v))
+        finite_result("Lagrangian", t, self.lagrangian.lagrangian(t, q, v))
     }
 
     /// Mass matrix M = ∂²L/∂q̇².
@@ -141,12 +122,12 @@ impl<L: Lagrangian> EulerLagrange<L> {
         if n > JET_MAX {
             // One taped evaluation instead of one wide Dual2 or ⌈n/8⌉² hyper-dual evaluations.
             let m = ad::lagrange_terms_taped(&f, t, q, v).hess_yy;
-            all_finite("mass matrix", t, m.as_slice())?;
+            check_result("mass matrix", t, m.as_slice())?;
             return Ok(m);
         }
         let mut m = DMatrix::zeros(n, n);
         ad::hessian(&f, t, q, v, Block::Y, Block::Y, &mut m);
-        all_finite("mass matrix", t, m.as_slice())?;
+        check_result("mass matrix", t, m.as_slice())?;
         Ok(m)
     }
 
@@ -272,7 +253,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         check_len("p (output)", p, self.dof())?;
         let mut out = vec![0.0; self.dof()];
         self.momenta_unchecked(t, q, v, &mut out);
-        all_finite("momenta", t, &out)?;
+        check_result("momenta", t, &out)?;
         p.copy_from_slice(&out);
         Ok(())
     }
@@ -288,7 +269,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         self.check(t, q, v)?;
         let mut p = vec![0.0; self.dof()];
         let l = ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::Y, &mut p);
-        finite(
+        finite_result(
             "energy",
             t,
             p.iter().zip(v).map(|(pi, vi)| pi * vi).sum::<f64>() - l,
@@ -301,7 +282,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         check_len("∂L/∂q (output)", out, self.dof())?;
         let mut g = vec![0.0; self.dof()];
         ad::gradient(&LagrangianField(&self.lagrangian), t, q, v, Block::X, &mut g);
-        all_finite("∂L/∂q", t, &g)?;
+        check_result("∂L/∂q", t, &g)?;
         out.copy_from_slice(&g);
         Ok(())
     }

@@ -26,7 +26,7 @@
 //! ```
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len};
+use crate::error::{check_finite, check_len, check_result, finite_result};
 use crate::{Dynamics, Error, Lagrangian, Result, Scalar, Separable};
 use nalgebra::{DMatrix, DVector};
 
@@ -181,7 +181,7 @@ impl<P: Potential> Natural<P> {
     pub fn potential_energy(&self, q: &[f64]) -> Result<f64> {
         check_len("q", q, self.dof())?;
         check_finite("q", q)?;
-        finite_value("potential energy", self.potential.potential(q))
+        finite_result("potential energy", f64::NAN, self.potential.potential(q))
     }
 
     /// Forces f = −∇V(q) (one gradient by dual numbers) into `f`.
@@ -191,13 +191,8 @@ impl<P: Potential> Natural<P> {
         check_len("forces (output)", f, n)?;
         ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, f);
         f.iter_mut().for_each(|x| *x = -*x);
-        if f.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteResult {
-                what: "potential forces",
-                t: f64::NAN,
-            });
-        }
-        Ok(())
+        // A natural system does not depend on t: no time to name.
+        check_result("potential forces", f64::NAN, f)
     }
 
     /// Accelerations q̈ = −M⁻¹ ∇V(q) into `a`.
@@ -212,7 +207,7 @@ impl<P: Potential> Natural<P> {
         check_len("b", b, self.dof())?;
         check_finite("b", b)?;
         self.apply_inverse_mass(b);
-        finite_slice("M⁻¹ b", b)
+        check_result("M⁻¹ b", f64::NAN, b)
     }
 
     /// M⁻¹ b in place, for `b` of length n.
@@ -232,7 +227,7 @@ impl<P: Potential> Natural<P> {
         check_len("p (output)", p, self.dof())?;
         check_finite("q̇", v)?;
         self.apply_mass(v, p);
-        finite_slice("momenta", p)
+        check_result("momenta", f64::NAN, p)
     }
 
     /// M v into `p` (both of length n).
@@ -258,7 +253,7 @@ impl<P: Potential> Natural<P> {
         check_finite("p", p)?;
         v.copy_from_slice(p);
         self.apply_inverse_mass(v);
-        finite_slice("velocities", v)
+        check_result("velocities", f64::NAN, v)
     }
 
     /// The state in momenta, (t, q, q̇) ↦ (t, q, M q̇).
@@ -281,12 +276,16 @@ impl<P: Potential> Natural<P> {
     pub fn kinetic_energy(&self, v: &[f64]) -> Result<f64> {
         check_len("q̇", v, self.dof())?;
         check_finite("q̇", v)?;
-        finite_value("kinetic energy", quadratic(&self.mass_as(false), v))
+        finite_result("kinetic energy", f64::NAN, quadratic(&self.mass_as(false), v))
     }
 
     /// The energy ½ q̇ᵀ M q̇ + V(q).
     pub fn energy(&self, q: &[f64], v: &[f64]) -> Result<f64> {
-        finite_value("energy", self.kinetic_energy(v)? + self.potential_energy(q)?)
+        finite_result(
+            "energy",
+            f64::NAN,
+            self.kinetic_energy(v)? + self.potential_energy(q)?,
+        )
     }
 
     /// Hessian ∇²V(q) (for implicit methods; explicit methods never form it) into the n × n `out`.
@@ -301,18 +300,6 @@ impl<P: Potential> Natural<P> {
                 got: out.nrows().max(out.ncols()),
             });
         }
-        self.potential_hessian_unchecked(q, out);
-        if out.iter().any(|x| !x.is_finite()) {
-            return Err(Error::NonFiniteResult {
-                what: "potential Hessian",
-                t: f64::NAN,
-            });
-        }
-        Ok(())
-    }
-
-    /// ∇²V(q) into `out` (q and `out` of the right sizes).
-    pub(crate) fn potential_hessian_unchecked(&self, q: &[f64], out: &mut DMatrix<f64>) {
         ad::hessian(
             &PotentialField(&self.potential),
             0.0,
@@ -322,6 +309,8 @@ impl<P: Potential> Natural<P> {
             Block::X,
             out,
         );
+        // A natural system does not depend on t: no time to name.
+        check_result("potential Hessian", f64::NAN, out.as_slice())
     }
 
     fn mass_as(&self, inverse: bool) -> MatRef<'_> {
@@ -422,19 +411,4 @@ impl<P: Potential> Dynamics for Natural<P> {
         dq.copy_from_slice(v);
         Ok(())
     }
-}
-
-/// `x`, or [`Error::NonFiniteResult`] naming `what` when it is NaN or infinite.
-fn finite_value(what: &'static str, x: f64) -> Result<f64> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        // A natural system does not depend on t: no time to name.
-        Err(Error::NonFiniteResult { what, t: f64::NAN })
-    }
-}
-
-/// Ok when every entry of a computed `x` is finite, else [`Error::NonFiniteResult`] naming `what`.
-fn finite_slice(what: &'static str, x: &[f64]) -> Result<()> {
-    x.iter().try_for_each(|&c| finite_value(what, c).map(drop))
 }

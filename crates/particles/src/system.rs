@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::hessian::SparseHessian;
 use crate::interaction::Interaction;
 use crate::particle::{Particle, Vec3};
-use noether_core::error::{check_finite, check_len};
+use noether_core::error::{check_finite, check_len, check_result, finite_result};
 use noether_core::{Dynamics, Lagrangian, Scalar, State};
 
 /// When force evaluations use rayon's thread pool. All choices give bit-identical results.
@@ -227,7 +227,7 @@ impl<I: Interaction> System<I> {
             .zip(&self.particles)
             .map(|(w, p)| 0.5 * p.mass * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]))
             .sum();
-        finite("kinetic energy", f64::NAN, t)
+        Ok(finite_result("kinetic energy", f64::NAN, t)?)
     }
 
     /// Potential energy V(t, x); coincident particles under a singular law are
@@ -249,11 +249,13 @@ impl<I: Interaction> System<I> {
 
     /// Total mechanical energy T + V of a state.
     pub fn total_energy(&self, s: &State) -> Result<f64> {
-        finite(
-            "total energy",
-            s.t,
-            self.kinetic_energy(s.v.as_slice())? + self.potential_energy(s.t, s.q.as_slice())?,
-        )
+        self.mechanical_energy(s.t, s.q.as_slice(), s.v.as_slice())
+    }
+
+    /// T + V at (t, x, v).
+    fn mechanical_energy(&self, t: f64, x: &[f64], v: &[f64]) -> Result<f64> {
+        let e = self.kinetic_energy(v)? + self.potential_energy(t, x)?;
+        Ok(finite_result("total energy", t, e)?)
     }
 
     /// Total momentum P = Σ m_i v_i.
@@ -263,7 +265,8 @@ impl<I: Interaction> System<I> {
         for (w, q) in v.chunks_exact(3).zip(&self.particles) {
             (0..3).for_each(|k| p[k] += q.mass * w[k]);
         }
-        finite3("momentum", p)
+        check_result("momentum", f64::NAN, &p)?;
+        Ok(p)
     }
 
     /// Total angular momentum about the origin, L = Σ m_i r_i × v_i.
@@ -276,7 +279,8 @@ impl<I: Interaction> System<I> {
             l[1] += q.mass * (r[2] * w[0] - r[0] * w[2]);
             l[2] += q.mass * (r[0] * w[1] - r[1] * w[0]);
         }
-        finite3("angular momentum", l)
+        check_result("angular momentum", f64::NAN, &l)?;
+        Ok(l)
     }
 
     /// Total mass M = Σ m_i.
@@ -294,7 +298,9 @@ impl<I: Interaction> System<I> {
         }
         let p = self.momentum(x)?;
         let m = self.total_mass();
-        finite3("centre of mass", [p[0] / m, p[1] / m, p[2] / m])
+        let c = [p[0] / m, p[1] / m, p[2] / m];
+        check_result("centre of mass", f64::NAN, &c)?;
+        Ok(c)
     }
 
     /// Checks a per-particle vector (positions or velocities): length 3N, finite.
@@ -310,24 +316,6 @@ impl<I: Interaction> System<I> {
         self.interactions.add_hessian(t, x, &self.particles, &mut trip);
         Ok(SparseHessian::from_triplets(x.len(), trip))
     }
-}
-
-/// `x`, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) naming `what` at `t`.
-fn finite(what: &'static str, t: f64, x: f64) -> Result<f64> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(Error::Core(noether_core::Error::NonFiniteResult { what, t }))
-    }
-}
-
-/// A finite vector, or a core [`NonFiniteResult`](noether_core::Error::NonFiniteResult) (a sum
-/// that overflowed) naming `what`.
-fn finite3(what: &'static str, v: Vec3) -> Result<Vec3> {
-    for c in v {
-        finite(what, f64::NAN, c)?;
-    }
-    Ok(v)
 }
 
 /// `true` when every entry is finite, branch-free in 8 lanes (x·0 is 0 for finite x, NaN otherwise).
@@ -401,10 +389,6 @@ impl<I: Interaction> Dynamics for System<I> {
         Ok(())
     }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
-        Ok(finite(
-            "total energy",
-            t,
-            self.kinetic_energy(v)? + self.potential_energy(t, q)?,
-        )?)
+        Ok(self.mechanical_energy(t, q, v)?)
     }
 }
