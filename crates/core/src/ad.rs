@@ -30,9 +30,11 @@
 //!   carrying an N×N Hessian through every operation (a 40-link chain: 38 µs, against 414 µs for the
 //!   chunked kernels above; docs/benchmarks.md).
 
+mod grad;
 mod jet;
 mod tape;
 
+pub use grad::{GradJet, GradJet64};
 pub use jet::{LagrangeJet, LagrangeJet64, Part};
 pub use tape::{
     directional_gradient_taped, gradient_taped, hessian_taped, lagrange_terms_taped, LagrangeTermsDyn,
@@ -205,17 +207,27 @@ pub fn gradient<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out
     gradient_forward(f, t, x, y, block, out)
 }
 
-/// [`gradient`] by forward duals for any block length: one `DualSVec64<W>` evaluation per chunk.
+/// [`gradient`] by forward duals for any block length: one [`GradJet64<W>`] evaluation with all
+/// arguments on the stack when both blocks have at most [`MAX_FIXED`] entries (W = the longer one),
+/// one evaluation per chunk of [`CHUNK`] variables otherwise.
 pub fn gradient_forward<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64], block: Block, out: &mut [f64]) -> f64 {
     let n = block.pick(x, y).len();
     debug_assert_eq!(out.len(), n);
     if n == 0 {
         return f.eval(t, x, y);
     }
-    with_width!(n, gradient_w::<F>(f, t, x, y, block, out))
+    let w = x.len().max(y.len());
+    if w <= MAX_FIXED {
+        return with_width!(w, gradient_once::<F>(f, t, x, y, block, out));
+    }
+    gradient_chunks::<F, CHUNK>(f, t, x, y, block, out)
 }
 
-fn gradient_w<F: Field, const W: usize>(
+/// One evaluation with both blocks (of at most W entries) lifted into arrays on the stack. Its own
+/// function for each W, kept out of the dispatch, so that the model inlines into it: together with the
+/// dense jet this took a 2-dof gradient from 36 to ~6 ns (`--bench rates`).
+#[inline(never)]
+fn gradient_once<F: Field, const W: usize>(
     f: &F,
     t: f64,
     x: &[f64],
@@ -223,16 +235,57 @@ fn gradient_w<F: Field, const W: usize>(
     block: Block,
     out: &mut [f64],
 ) -> f64 {
-    type D<const W: usize> = DualVec<f64, f64, Const<W>>;
+    type D<const W: usize> = GradJet64<W>;
+    // Each argument is written whole (value and gradient in one store each): the model reads the
+    // gradient as one vector, and a vector load of entries stored one by one stalls store forwarding.
+    let n = out.len();
+    let lift = |v: &[f64], seeded: bool| {
+        let mut a = [D::<W>::from_re(0.0); W];
+        for (i, (d, v)) in a.iter_mut().zip(v).enumerate() {
+            let unit = seeded && i < n;
+            *d = D::<W>::new(
+                *v,
+                SVector::from_fn(|k, _| if unit && k == i { 1.0 } else { 0.0 }),
+            );
+        }
+        a
+    };
+    let xs = lift(x, block == Block::X);
+    let ys = lift(y, block == Block::Y);
+    let r = f.eval(D::<W>::from_re(t), &xs[..x.len()], &ys[..y.len()]);
+    // An element loop, not `copy_from_slice`: a few entries, no call to memcpy.
+    for (o, g) in out.iter_mut().zip(r.eps.iter()) {
+        *o = *g;
+    }
+    r.re
+}
+
+/// One evaluation per chunk of W variables of `block`, the arguments on the heap.
+fn gradient_chunks<F: Field, const W: usize>(
+    f: &F,
+    t: f64,
+    x: &[f64],
+    y: &[f64],
+    block: Block,
+    out: &mut [f64],
+) -> f64 {
+    type D<const W: usize> = GradJet64<W>;
     let n = out.len();
     let mut val = 0.0;
     for c0 in (0..n).step_by(W) {
-        let (xs, ys) = seed_chunk::<W, W>(x, y, block, c0);
+        let seed = |b: Block, vals: &[f64], i: usize| {
+            if b == block && i >= c0 && i < c0 + W {
+                D::<W>::variable(vals[i], i - c0)
+            } else {
+                D::<W>::from_re(vals[i])
+            }
+        };
+        let xs: Vec<D<W>> = (0..x.len()).map(|i| seed(Block::X, x, i)).collect();
+        let ys: Vec<D<W>> = (0..y.len()).map(|i| seed(Block::Y, y, i)).collect();
         let r = f.eval(D::<W>::from_re(t), &xs, &ys);
         val = r.re;
-        let g = r.eps.unwrap_generic(Const::<W>, U1);
         let m = W.min(n - c0);
-        out[c0..c0 + m].copy_from_slice(&g.as_slice()[..m]);
+        out[c0..c0 + m].copy_from_slice(&r.eps.as_slice()[..m]);
     }
     val
 }

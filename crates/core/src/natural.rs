@@ -186,19 +186,45 @@ impl<P: Potential> Natural<P> {
 
     /// Forces f = −∇V(q) (one gradient by dual numbers) into `f`.
     pub fn forces(&self, q: &[f64], f: &mut [f64]) -> Result<()> {
-        let n = self.dof();
-        check_len("q", q, n)?;
-        check_len("forces (output)", f, n)?;
-        ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, f);
-        f.iter_mut().for_each(|x| *x = -*x);
-        // A natural system does not depend on t: no time to name.
-        check_result("potential forces", f64::NAN, f)
+        self.force_field(q, f, false)
     }
 
     /// Accelerations q̈ = −M⁻¹ ∇V(q) into `a`.
     pub fn accelerations(&self, q: &[f64], a: &mut [f64]) -> Result<()> {
-        self.forces(q, a)?;
-        self.apply_inverse_mass(a);
+        self.force_field(q, a, true)
+    }
+
+    /// −∇V(q), times M⁻¹ when `accelerate`, into `out`: the hot path of every integrator on a natural
+    /// system. Lengths are checked; finiteness only once, on the result (a non-finite q gives a
+    /// non-finite gradient), and only when that check fails are the inputs examined, so that the
+    /// error still names a bad q.
+    #[inline]
+    fn force_field(&self, q: &[f64], out: &mut [f64], accelerate: bool) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_len(
+            if accelerate {
+                "q̈ (output)"
+            } else {
+                "forces (output)"
+            },
+            out,
+            n,
+        )?;
+        ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, out);
+        match (&self.mass, accelerate) {
+            (Mass::Diagonal { inv, .. }, true) => out.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= -i),
+            (Mass::Dense { chol, .. }, true) => {
+                out.iter_mut().for_each(|x| *x = -*x);
+                chol.solve_mut(&mut nalgebra::DVectorViewMut::from_slice(out, n));
+            }
+            (_, false) => out.iter_mut().for_each(|x| *x = -*x),
+        }
+        if check_result("potential forces", f64::NAN, out).is_err() {
+            check_finite("q", q)?;
+            // A natural system does not depend on t: no time to name.
+            return check_result("potential forces", f64::NAN, out);
+        }
         Ok(())
     }
 
@@ -392,13 +418,13 @@ impl<P: Potential> Dynamics for Natural<P> {
     fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
         check_len("q̇", v, self.dof())?;
         check_len("q̇ (output)", dq, self.dof())?;
-        check_finite("q", q)?;
-        check_finite("q̇", v)?;
         dq.copy_from_slice(v);
         self.accelerations(q, dv).map_err(|e| match e {
             Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
             other => other,
-        })
+        })?;
+        // q̇ = v is returned as given: one check of it, after the work (the error still names it).
+        check_finite("q̇", v)
     }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
         Natural::energy(self, q, v).map_err(|e| match e {

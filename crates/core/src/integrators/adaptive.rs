@@ -389,7 +389,13 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                 let fac = if err == 0.0 {
                     1.0 / c.fac_max
                 } else {
-                    let f = err.powf(alpha) / self.err_prev.powf(c.beta) / c.safety;
+                    // β = 0 (DOP853's default): no second power.
+                    let pi = if c.beta == 0.0 {
+                        1.0
+                    } else {
+                        self.err_prev.powf(c.beta)
+                    };
+                    let f = err.powf(alpha) / pi / c.safety;
                     f.clamp(1.0 / c.fac_max, 1.0 / c.fac_min)
                 };
                 let mut h_next = if self.fixed { h } else { h / fac };

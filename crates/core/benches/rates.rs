@@ -1,0 +1,183 @@
+//! The cost of one right-hand side of a small natural system against a hand-written one (issue 16,
+//! item 1): Kepler and Hénon-Heiles (2 dof) through `Natural::rates` (q̇ and q̈) and
+//! `SplitDynamics::kick_rate` (q̈ alone, what the compositions call), and Kepler as a
+//! `SeparableHamiltonian`. Each time is the minimum over 60 rounds of 10⁵ calls (interference only
+//! adds time); the calls are independent, so this measures throughput, not latency.
+//!
+//! The models are written twice, with and without `#[inline]` on the model's method: without it the
+//! method may land in another codegen unit than the kernel that calls it and is then not inlined,
+//! and the dual numbers travel through memory (the hint gives each unit its own copy).
+//!
+//! `cargo bench -p noether-core --bench rates`; results in docs/benchmarks.md.
+
+#![allow(missing_docs)]
+
+use noether_core::integrators::SplitDynamics;
+use noether_core::prelude::*;
+use std::hint::black_box;
+
+const IT: usize = 100_000;
+
+fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
+    (0..60)
+        .map(|_| {
+            let t0 = std::time::Instant::now();
+            black_box(f());
+            t0.elapsed().as_nanos() as f64 / IT as f64
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// V = −1/|q| (μ = 1), with `#[inline]`.
+struct Kepler;
+impl Potential for Kepler {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
+    }
+}
+impl Separable for Kepler {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        Potential::potential(self, q)
+    }
+}
+
+/// The same V without the hint.
+struct KeplerPlain;
+impl Potential for KeplerPlain {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
+    }
+}
+
+/// V = ½(x² + y²) + x²y − y³/3, with `#[inline]`.
+struct HenonHeiles;
+impl Potential for HenonHeiles {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        let (x, y) = (q[0], q[1]);
+        (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
+    }
+}
+
+/// The same V without the hint.
+struct HenonHeilesPlain;
+impl Potential for HenonHeilesPlain {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        let (x, y) = (q[0], q[1]);
+        (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
+    }
+}
+
+type Hand = fn(&[f64; 2], &[f64; 2], &mut [f64; 2], &mut [f64; 2]);
+
+#[inline(never)]
+fn hand_kepler(q: &[f64; 2], v: &[f64; 2], dq: &mut [f64; 2], dv: &mut [f64; 2]) {
+    let r2 = q[0] * q[0] + q[1] * q[1];
+    let r3 = r2 * r2.sqrt();
+    *dq = *v;
+    dv[0] = -q[0] / r3;
+    dv[1] = -q[1] / r3;
+}
+
+#[inline(never)]
+fn hand_hh(q: &[f64; 2], v: &[f64; 2], dq: &mut [f64; 2], dv: &mut [f64; 2]) {
+    let (x, y) = (q[0], q[1]);
+    *dq = *v;
+    dv[0] = -x - 2.0 * x * y;
+    dv[1] = -y - x * x + y * y;
+}
+
+const Q: [f64; 2] = [0.7, -0.4];
+const V: [f64; 2] = [0.3, 0.9];
+
+fn time_hand(hand: Hand) -> f64 {
+    let (mut dq, mut dv) = ([0.0; 2], [0.0; 2]);
+    min_ns(|| {
+        let mut s = 0.0;
+        for _ in 0..IT {
+            hand(black_box(&Q), black_box(&V), &mut dq, &mut dv);
+            s += dv[0];
+        }
+        s
+    })
+}
+
+/// (Natural::rates, kick_rate) in ns per call.
+fn time_natural<P: Potential>(p: P) -> (f64, f64) {
+    let nat = Natural::unit(p);
+    let (mut dq, mut dv) = ([0.0; 2], [0.0; 2]);
+    let rates = min_ns(|| {
+        let mut s = 0.0;
+        for _ in 0..IT {
+            Dynamics::rates(&nat, 0.0, black_box(&Q), black_box(&V), &mut dq, &mut dv).unwrap();
+            s += dv[0];
+        }
+        s
+    });
+    let kick = min_ns(|| {
+        let mut s = 0.0;
+        for _ in 0..IT {
+            nat.kick_rate(black_box(&Q), &mut dv).unwrap();
+            s += dv[0];
+        }
+        s
+    });
+    (rates, kick)
+}
+
+fn main() {
+    println!("| system | hand-written | Natural::rates | kick_rate | rates, model without #[inline] |");
+    println!("|---|---|---|---|---|");
+    for _ in 0..2 {
+        let h = time_hand(hand_kepler);
+        let (r, k) = time_natural(Kepler);
+        let (rp, _) = time_natural(KeplerPlain);
+        println!(
+            "| Kepler | {h:.2} ns | {r:.2} ns ({:.2}×) | {k:.2} ns ({:.2}×) | {rp:.2} ns ({:.2}×) |",
+            r / h,
+            k / h,
+            rp / h
+        );
+        let h = time_hand(hand_hh);
+        let (r, k) = time_natural(HenonHeiles);
+        let (rp, _) = time_natural(HenonHeilesPlain);
+        println!(
+            "| Hénon-Heiles | {h:.2} ns | {r:.2} ns ({:.2}×) | {k:.2} ns ({:.2}×) | {rp:.2} ns ({:.2}×) |",
+            r / h,
+            k / h,
+            rp / h
+        );
+    }
+    let sep = SeparableHamiltonian(Kepler);
+    let (mut dq, mut dp) = ([0.0; 2], [0.0; 2]);
+    let s = min_ns(|| {
+        let mut s = 0.0;
+        for _ in 0..IT {
+            Dynamics::rates(&sep, 0.0, black_box(&Q), black_box(&V), &mut dq, &mut dp).unwrap();
+            s += dp[0];
+        }
+        s
+    });
+    println!("Kepler as SeparableHamiltonian, rates (two gradients): {s:.2} ns");
+}
