@@ -93,7 +93,8 @@ pub trait NystromPair {
     const DENSE_LEN: usize;
 
     /// The dense polynomial y(θ) = y₀ + θ Σ_m `out[m]` θ^m on y = (q, q̇) (each `out[m]` of length 2n)
-    /// of a step of size h from (q₀, v₀) to (q₁, v₁), from the stages `k` (s blocks of n) and
+    /// of a step of size h from (q₀, v₀) to (q₁, v₁), from the stages `k` (by component: `k[x·s + j]`
+    /// is component x of stage j) and
     /// a₁ = f(q₁). The default is the quintic Hermite interpolant of q through q, q̇, q̈ at both ends
     /// and its derivative for q̇ (order 4; see the [module](self) docs).
     #[allow(clippy::too_many_arguments)]
@@ -108,13 +109,14 @@ pub trait NystromPair {
         out: &mut [Vec<f64>],
     ) {
         let n = q0.len();
+        let s = Self::C.len();
         let h2 = h * h;
         // q(θ) = q₀ + d₁θ + d₂θ² + d₃θ³ + d₄θ⁴ + d₅θ⁵ with d₁ = h q̇₀, d₂ = h² q̈₀/2 and d₃..d₅ from
         // q(1) = q₁, q'(1) = h q̇₁, q''(1) = h² q̈₁: with the residuals Δ = q₁ − q₀ − d₁ − d₂,
         // V = h(q̇₁ − q̇₀) − h² q̈₀, A = h²(q̈₁ − q̈₀): d₃ = 10Δ − 4V + A/2, d₄ = −15Δ + 7V − A,
         // d₅ = 6Δ − 3V + A/2. q̇(θ) = q'(θ)/h = q̇₀ + θ Σ_{m≥0} (m+2) d_{m+2}/h θ^m.
         for i in 0..n {
-            let a0 = k[i];
+            let a0 = k[i * s];
             let d1 = h * v0[i];
             let d2 = 0.5 * h2 * a0;
             let delta = q1[i] - q0[i] - d1 - d2;
@@ -149,17 +151,21 @@ fn dense_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
     }
 }
 
-/// out = Σ_j w_j k_j over the stages k (blocks of n = out.len()) with nonzero weight.
+/// Σ_j a_j b_j over the shorter of a, b, in four interleaved partial sums (the stage sums of the
+/// high-order pairs run over up to 16 terms: one chain of dependent additions would dominate them).
 #[inline]
-fn weighted_sum(w: &[f64], k: &[f64], out: &mut [f64]) {
-    let n = out.len();
-    out.iter_mut().for_each(|x| *x = 0.0);
-    for (j, &wj) in w.iter().enumerate() {
-        if wj != 0.0 {
-            let kj = &k[j * n..(j + 1) * n];
-            out.iter_mut().zip(kj).for_each(|(x, k)| *x += wj * k);
-        }
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    let mut acc = [0.0; 4];
+    for (x, y) in ca.zip(cb) {
+        acc[0] += x[0] * y[0];
+        acc[1] += x[1] * y[1];
+        acc[2] += x[2] * y[2];
+        acc[3] += x[3] * y[3];
     }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// An adaptive Runge-Kutta-Nyström pair `M` stepping a second-order system q̈ = f(q) (see the
@@ -192,15 +198,15 @@ pub struct Nystrom<S: SplitDynamics, M> {
     dense_allowed: bool,
     dense_requested: bool,
     n: usize,
-    /// The s stage accelerations, blocks of n.
+    /// The s stage accelerations by component: k[x·s + j] is component x of stage j.
     k: Vec<f64>,
     q0: Vec<f64>,
     v0: Vec<f64>,
     q1: Vec<f64>,
     v1: Vec<f64>,
-    /// Stage positions, then weighted sums.
+    /// Stage positions and accelerations.
     qs: Vec<f64>,
-    sum: Vec<f64>,
+    acc: Vec<f64>,
     /// f(q₁) after an accepted step (valid when `fsal`).
     a1: Vec<f64>,
     fsal: bool,
@@ -239,7 +245,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             q1: vec![0.0; n],
             v1: vec![0.0; n],
             qs: vec![0.0; n],
-            sum: vec![0.0; n],
+            acc: vec![0.0; n],
             a1: vec![0.0; n],
             fsal: false,
             err_prev: 1e-4,
@@ -300,47 +306,52 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
     fn attempt(&mut self, h: f64) -> Result<f64> {
         let n = self.n;
         let s = M::C.len();
+        // The stages are stored by component (k[x·s + j]): each weighted sum is one contiguous dot
+        // product per component, and the four sums of the solution and the estimate share one pass.
         for i in 1..s {
-            weighted_sum(M::A[i], &self.k[..i * n], &mut self.sum);
-            let c = M::C[i];
+            let (a, c) = (M::A[i], M::C[i]);
             for x in 0..n {
-                self.qs[x] = self.q0[x] + h * (c * self.v0[x] + h * self.sum[x]);
+                let kx = &self.k[x * s..x * s + i];
+                let sum = dot(a, kx);
+                self.qs[x] = self.q0[x] + h * (c * self.v0[x] + h * sum);
             }
-            let ki = &mut self.k[i * n..(i + 1) * n];
-            if !Self::accel(&self.system, &mut self.evaluations, &self.qs, ki)? {
+            if !Self::accel(&self.system, &mut self.evaluations, &self.qs, &mut self.acc)? {
                 return Ok(f64::INFINITY);
             }
-        }
-        if M::FSAL {
-            // The last stage was evaluated at q₀ + h(q̇₀ + h Σ b_j k_j) = q₁, computed the same way.
-            self.q1.copy_from_slice(&self.qs);
-        } else {
-            weighted_sum(M::B, &self.k, &mut self.sum);
             for x in 0..n {
-                self.q1[x] = self.q0[x] + h * (self.v0[x] + h * self.sum[x]);
+                self.k[x * s + i] = self.acc[x];
             }
         }
-        weighted_sum(M::BP, &self.k, &mut self.sum);
+        let (atol, rtol, h2) = (self.atol, self.rtol, h * h);
+        let mut sq = 0.0;
         for x in 0..n {
-            self.v1[x] = self.v0[x] + h * self.sum[x];
+            let kx = &self.k[x * s..(x + 1) * s];
+            let (mut b, mut bp, mut be, mut bpe) = (0.0, 0.0, 0.0, 0.0);
+            let weights = M::B.iter().zip(M::BP).zip(M::B_ERR).zip(M::BP_ERR);
+            for (k, (((wb, wbp), wbe), wbpe)) in kx.iter().zip(weights) {
+                b += wb * k;
+                bp += wbp * k;
+                be += wbe * k;
+                bpe += wbpe * k;
+            }
+            // FSAL: the last stage was evaluated at q₀ + h(q̇₀ + h Σ b_j k_j) = q₁, computed so.
+            let q1 = if M::FSAL {
+                self.qs[x]
+            } else {
+                self.q0[x] + h * (self.v0[x] + h * b)
+            };
+            let v1 = self.v0[x] + h * bp;
+            self.q1[x] = q1;
+            self.v1[x] = v1;
+            let eq = h2 * be / error_scale(atol, rtol, self.q0[x], q1);
+            let ev = h * bpe / error_scale(atol, rtol, self.v0[x], v1);
+            sq += eq * eq + ev * ev;
         }
         if self.q1.iter().chain(&self.v1).any(|x| !x.is_finite()) {
             return Ok(f64::INFINITY);
         }
         if self.fixed || n == 0 {
             return Ok(0.0);
-        }
-        let (atol, rtol) = (self.atol, self.rtol);
-        let mut sq = 0.0;
-        weighted_sum(M::B_ERR, &self.k, &mut self.sum);
-        for x in 0..n {
-            let e = h * h * self.sum[x] / error_scale(atol, rtol, self.q0[x], self.q1[x]);
-            sq += e * e;
-        }
-        weighted_sum(M::BP_ERR, &self.k, &mut self.sum);
-        for x in 0..n {
-            let e = h * self.sum[x] / error_scale(atol, rtol, self.v0[x], self.v1[x]);
-            sq += e * e;
         }
         let err = (sq / (2 * n) as f64).sqrt();
         Ok(if err.is_nan() { f64::INFINITY } else { err })
@@ -398,13 +409,15 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         let reuse = self.fsal && self.q1 == *state.q.as_slice();
         self.fsal = false;
         self.load(state);
-        if reuse {
-            self.k[..n].copy_from_slice(&self.a1);
-        } else if !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.k[..n])? {
+        let s = M::C.len();
+        if !reuse && !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t,
             });
+        }
+        for x in 0..n {
+            self.k[x * s] = self.a1[x];
         }
         let c = self.controller;
         let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
@@ -414,9 +427,10 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
             let err = self.attempt(h)?;
             if err <= 1.0 {
                 let dense = self.dense_allowed && self.dense_requested;
-                let s = M::C.len();
                 if M::FSAL {
-                    self.a1.copy_from_slice(&self.k[(s - 1) * n..]);
+                    for x in 0..n {
+                        self.a1[x] = self.k[x * s + s - 1];
+                    }
                     self.fsal = true;
                 } else if dense {
                     if !Self::accel(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
@@ -698,7 +712,7 @@ impl NystromPair for Rkn6 {
             for m in 0..5 {
                 let (mut bq, mut bv) = (0.0, 0.0);
                 for i in 0..6 {
-                    let ki = k[i * n + x];
+                    let ki = k[x * 6 + i];
                     bq += R6[i][m] * ki;
                     bv += RP6[i][m] * ki;
                 }

@@ -70,7 +70,7 @@ fn order_dprkn8() {
 fn order_dprkn12() {
     // Harmonic oscillator q̈ = −q (q = cos t) over t = 1000, where the global error grows linearly
     // in t and stays far above rounding for order 12: 6.0e-9, 7.5e-10, 9.4e-11, 1.1e-11
-    // (slopes 11.90, 12.05, 12.13).
+    // (slopes 11.90, 12.05, 12.13; fitted 12.03).
     let t_end = 1000.0_f64;
     let exact = (vec![t_end.cos()], vec![-t_end.sin()]);
     let e = errors_vs(
@@ -104,11 +104,11 @@ fn closed_form_nystrom_error_tracks_tolerance() {
     // system beside:
     //   tol    DPRKN6                 DPRKN8                 DPRKN12                DOP853
     //   1e-7   1.17e-6 (402+0, 2010)  1.45e-6 (130+50, 1440) 9.13e-7 (56+20, 1271)  3.70e-4 (93+37, 1560)
-    //   1e-9   8.23e-10 (1014+0, 5070) 1.31e-8 (239+70, 2472) 3.38e-9 (78+32, 1837) 2.26e-6 (153+62, 2580)
-    //   1e-11  2.38e-13 (2551+1, 12760) 8.86e-11 (443+3, 3568) 1.24e-10 (111+40, 2526) 1.67e-8 (256+73, 3948)
+    //   1e-9   8.24e-10 (1014+0, 5070) 1.31e-8 (239+70, 2472) 3.38e-9 (78+32, 1837) 2.26e-6 (153+62, 2580)
+    //   1e-11  3.07e-13 (2551+1, 12760) 8.93e-11 (443+3, 3568) 1.25e-10 (111+40, 2526) 1.67e-8 (256+73, 3948)
     // Checks: error ≤ 30 tol (largest measured ratio 13.1, DPRKN8 at 1e-9); 10⁴× tighter tolerance
-    // gives ≥ 2·10³× smaller error (smallest measured 7.4·10³, DPRKN12); at equal tolerance the
-    // error is ≤ 1/50 of DOP853's (smallest measured ratio 135, DPRKN12 at 1e-11) with fewer
+    // gives ≥ 2·10³× smaller error (smallest measured 7.3·10³, DPRKN12); at equal tolerance the
+    // error is ≤ 1/50 of DOP853's (smallest measured ratio 134, DPRKN12 at 1e-11) with fewer
     // evaluations for DPRKN8 and DPRKN12 (DOP853's error estimate is far more pessimistic here).
     let run = |tol: f64| {
         [
@@ -242,7 +242,7 @@ fn endpoint_and_interior_errors<M: NystromPair>() -> (f64, f64, usize) {
 #[test]
 fn closed_form_nystrom_dense_output_accuracy() {
     // Kepler e = 0.6, 5 periods, tolerances 1e-10. Measured largest errors at the step ends and
-    // inside the steps: DPRKN6 2.06e-11 and 2.07e-11 (1609 steps), DPRKN8 1.27e-9 and 1.38e-7 (321
+    // inside the steps: DPRKN6 2.18e-11 and 2.19e-11 (1609 steps), DPRKN8 1.27e-9 and 1.38e-7 (321
     // steps), DPRKN12 1.31e-9 and 8.64e-5 (93 steps). DPRKN6's own order-5 extension is as accurate
     // as its steps (within 1.5×, as DOPRI5's and DOP853's); the order-4 Hermite interpolant of the
     // high-order pairs is not, on their long steps (h up to ~0.6 here): bounds 2.2× and 2.3× the
@@ -287,7 +287,7 @@ fn closed_form_nystrom_driver_samples_requested_times() {
         let (q, p) = kepler_exact(0.6, st.t);
         worst = worst.max(distance(&st, &q, &p));
     }
-    // Measured 1.38e-11 (tolerance 1e-10 over ~2 periods); bound 3.6× that.
+    // Measured 1.41e-11 (tolerance 1e-10 over ~2 periods); bound 3.5× that.
     eprintln!("DPRKN6 driver output times: worst {worst:.2e}");
     assert!(worst < 5e-11, "{worst:e}");
 }
