@@ -35,10 +35,15 @@
 //! - DPRKN 6(4): the published continuous extension of the pair, free (no extra stage), polynomials of
 //!   degree 6 in θ for q and 5 for q̇; order 5 measured on Kepler (local error O(h⁶) at mid-step),
 //!   for q and q̇ alike;
-//! - DPRKN 8(6) and 12(10) (no published extension without extra stages): the quintic Hermite
-//!   interpolant of q through q, q̇, q̈ at both ends of the step (order 5 in q) and its derivative for
-//!   q̇ (the quartic through q̇ and q̈ at both ends with ∫q̇ = q₁ − q₀: order 4), so order 4 overall.
-//!   DPRKN 12(10) spends one more evaluation, f(q₁), on it, which the next step reuses.
+//! - DPRKN 8(6) and 12(10) (no published extension without extra stages): Hermite interpolation of
+//!   q through q, q̇, q̈ = f(q) at the nodes the run has, q̇ being the derivative of the polynomial in
+//!   q. When the step continues the previous accepted one (same q and q̇, step ratio in [1/4, 4]) the
+//!   polynomial has degree 8 through the previous step's start and both ends of this step: order 8
+//!   in q and 7 in q̇, so 7 overall. Otherwise (the first step, after a change of the state between
+//!   steps) it is the quintic through both ends of the step: order 5 in q, 4 in q̇ (the quartic
+//!   through q̇ and q̈ at both ends with ∫q̇ = q₁ − q₀). The order each step's interpolant has is in
+//!   [`DenseOutput::order`]. DPRKN 12(10) spends one more evaluation, f(q₁), on its dense output,
+//!   which the next step reuses.
 //!
 //! The coefficients are OrdinaryDiffEq.jl's exact rationals (and, for DPRKN 6(4), expressions in
 //! √8581) evaluated to 60 digits and rounded to f64; the quadrature conditions Σ b_i c_i^k =
@@ -91,6 +96,9 @@ pub trait NystromPair {
     const DENSE_ORDER: u32;
     /// Number of coefficient vectors of the dense polynomial.
     const DENSE_LEN: usize;
+    /// The dense output is the default Hermite interpolant, raised to degree 8 with the previous
+    /// step's start when there is one (see the [module](self) docs).
+    const HERMITE: bool;
 
     /// The dense polynomial y(θ) = y₀ + θ Σ_m `out[m]` θ^m on y = (q, q̇) (each `out[m]` of length 2n)
     /// of a step of size h from (q₀, v₀) to (q₁, v₁), from the stages `k` (by component: `k[x·s + j]`
@@ -135,6 +143,10 @@ pub trait NystromPair {
             out[2][n + i] = 4.0 * d4 / h;
             out[3][n + i] = 5.0 * d5 / h;
             out[4][n + i] = 0.0;
+            for c in out[5..].iter_mut() {
+                c[i] = 0.0;
+                c[n + i] = 0.0;
+            }
         }
     }
 }
@@ -209,6 +221,15 @@ pub struct Nystrom<S: SplitDynamics, M> {
     acc: Vec<f64>,
     /// f(q₁) after an accepted step (valid when `fsal`).
     a1: Vec<f64>,
+    /// Start (q, q̇, q̈) and size of the previous accepted step when the current one continues it
+    /// (valid when `prev`): the third node of the degree-8 Hermite dense output.
+    qp: Vec<f64>,
+    vp: Vec<f64>,
+    ap: Vec<f64>,
+    hp: f64,
+    prev: bool,
+    /// Size of the last accepted step.
+    h_last: f64,
     fsal: bool,
     err_prev: f64,
     dense: Option<DenseOutput<S::Partner>>,
@@ -247,6 +268,12 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             qs: vec![0.0; n],
             acc: vec![0.0; n],
             a1: vec![0.0; n],
+            qp: vec![0.0; n],
+            vp: vec![0.0; n],
+            ap: vec![0.0; n],
+            hp: 0.0,
+            prev: false,
+            h_last: 0.0,
             fsal: false,
             err_prev: 1e-4,
             dense: None,
@@ -377,14 +404,68 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             &self.a1,
             &mut coeffs,
         );
+        let r = self.hp / h;
+        let order = if M::HERMITE && self.prev && (0.25..=4.0).contains(&r) {
+            self.raise_hermite(h, &mut coeffs);
+            7
+        } else {
+            M::DENSE_ORDER
+        };
         self.dense = Some(DenseOutput::from_coefficients(
-            t,
-            h,
-            M::DENSE_ORDER,
-            y0,
-            coeffs,
-            dense_eval,
+            t, h, order, y0, coeffs, dense_eval,
         ));
+    }
+
+    /// Raises the quintic Hermite polynomial in `c` (through q, q̇, q̈ at θ = 0 and 1) to the degree-8
+    /// polynomial that also passes through q, q̇, q̈ at the previous step's start θₚ = −hₚ/h:
+    /// q(θ) = H₅(θ) + w(θ) p(θ) with w = θ³(θ − 1)³ and p quadratic, p, p′, p″ at θₚ solved from the
+    /// three conditions there. Order 8 in q and 7 in q̇ (its derivative), for step ratios hₚ/h in
+    /// [1/4, 4] (outside, the divisions by w(θₚ) would amplify the data's rounding).
+    fn raise_hermite(&self, h: f64, c: &mut [Vec<f64>]) {
+        let n = self.n;
+        let tp = -self.hp / h;
+        let (u, u1) = (tp, tp - 1.0);
+        let w = u.powi(3) * u1.powi(3);
+        let w1 = 3.0 * u * u * u1.powi(3) + 3.0 * u.powi(3) * u1 * u1;
+        let w2 = 6.0 * u * u1.powi(3) + 18.0 * u * u * u1 * u1 + 6.0 * u.powi(3) * u1;
+        // w(θ) = θ⁶ − 3θ⁵ + 3θ⁴ − θ³: coefficients of θ³..θ⁶.
+        const W: [f64; 4] = [-1.0, 3.0, -3.0, 1.0];
+        for x in 0..n {
+            // d[k]: coefficient of θ^k of q(θ) − q₀, k = 1..8 (d[0] = 0).
+            let mut d = [0.0; 9];
+            for k in 1..=5 {
+                d[k] = c[k - 1][x];
+            }
+            let (mut hv, mut hd1, mut hd2) = (0.0, 0.0, 0.0);
+            for k in (1..=5).rev() {
+                hv = hv * tp + d[k];
+            }
+            hv *= tp;
+            for k in (1..=5).rev() {
+                hd1 = hd1 * tp + k as f64 * d[k];
+            }
+            for k in (2..=5).rev() {
+                hd2 = hd2 * tp + (k * (k - 1)) as f64 * d[k];
+            }
+            let target = self.qp[x] - self.q0[x];
+            let p0 = (target - hv) / w;
+            let p1 = (h * self.vp[x] - hd1 - w1 * p0) / w;
+            let p2 = (h * h * self.ap[x] - hd2 - w2 * p0 - 2.0 * w1 * p1) / w;
+            // p(θ) = p0 + p1 (θ − θₚ) + p2/2 (θ − θₚ)² in powers of θ.
+            let pm = [p0 - p1 * tp + 0.5 * p2 * tp * tp, p1 - p2 * tp, 0.5 * p2];
+            for (j, wj) in W.iter().enumerate() {
+                for (i, pi) in pm.iter().enumerate() {
+                    d[3 + j + i] += wj * pi;
+                }
+            }
+            for k in 1..=8 {
+                c[k - 1][x] = d[k];
+            }
+            for m in 0..7 {
+                c[m][n + x] = (m + 2) as f64 * d[m + 2] / h;
+            }
+            c[7][n + x] = 0.0;
+        }
     }
 
     fn load<K: crate::Partner>(&mut self, state: &State<K>) {
@@ -407,9 +488,26 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         let t = state.t;
         // f depends on q alone: f(q₁) of the last step is the first stage when the step starts there.
         let reuse = self.fsal && self.q1 == *state.q.as_slice();
-        self.fsal = false;
-        self.load(state);
         let s = M::C.len();
+        // This step continues the last accepted one (same q and q̇): keep that step's start for the
+        // dense output (q₀, q̇₀ and k₁ still hold it).
+        self.prev = M::HERMITE
+            && reuse
+            && self.h_last > 0.0
+            && self.dense_allowed
+            && self.dense_requested
+            && self.v1 == *state.v.as_slice();
+        if self.prev {
+            self.qp.copy_from_slice(&self.q0);
+            self.vp.copy_from_slice(&self.v0);
+            for x in 0..n {
+                self.ap[x] = self.k[x * s];
+            }
+            self.hp = self.h_last;
+        }
+        self.fsal = false;
+        self.h_last = 0.0;
+        self.load(state);
         if !reuse && !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
@@ -450,6 +548,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                     h_next = h_next.min(h);
                 }
                 self.err_prev = err.max(1e-4);
+                self.h_last = h;
                 if dense {
                     self.build_dense(t, h);
                 } else if let Some(d) = self.dense.take() {
@@ -499,6 +598,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                 t: state.t,
             });
         }
+        self.h_last = 0.0;
         let mut y0 = vec![0.0; 2 * n];
         y0[..n].copy_from_slice(&self.q0);
         y0[n..].copy_from_slice(&self.v0);
@@ -692,6 +792,7 @@ impl NystromPair for Rkn6 {
     const FSAL: bool = true;
     const DENSE_ORDER: u32 = 5;
     const DENSE_LEN: usize = 6;
+    const HERMITE: bool = false;
 
     /// q(θ) = q₀ + hθ(q̇₀ + hθ Σ_i b_i(θ) k_i), q̇(θ) = q̇₀ + hθ Σ_i b'_i(θ) k_i (k₆ = f(q₁)).
     fn dense_coefficients(
@@ -833,7 +934,8 @@ impl NystromPair for Rkn8 {
     ];
     const FSAL: bool = true;
     const DENSE_ORDER: u32 = 4;
-    const DENSE_LEN: usize = 5;
+    const DENSE_LEN: usize = 8;
+    const HERMITE: bool = true;
 }
 
 /// The DPRKN 12(10) tableau (see the [module](self) docs).
@@ -1113,7 +1215,8 @@ impl NystromPair for Rkn12 {
 
     const FSAL: bool = false;
     const DENSE_ORDER: u32 = 4;
-    const DENSE_LEN: usize = 5;
+    const DENSE_LEN: usize = 8;
+    const HERMITE: bool = true;
 }
 
 #[cfg(test)]
