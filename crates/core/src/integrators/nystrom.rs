@@ -33,7 +33,7 @@
 //!
 //! Dense output (built only when the driver asks for it):
 //! - DPRKN 6(4): the published continuous extension of the pair, free (no extra stage), polynomials of
-//!   degree 6 in θ for q and 5 for q̇; order 5 measured on Kepler (local error O(h⁶) at mid-step),
+//!   degree 6 in θ for q and 5 for q̇; order 5 measured on Kepler (local error O(h⁶) at θ = 1/4),
 //!   for q and q̇ alike;
 //! - DPRKN 8(6) and 12(10) (no published extension without extra stages): Hermite interpolation of
 //!   q through q, q̇, q̈ = f(q) at the nodes the run has, q̇ being the derivative of the polynomial in
