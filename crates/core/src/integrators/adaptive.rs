@@ -82,6 +82,132 @@ pub struct Controller {
     pub beta: f64,
 }
 
+impl Controller {
+    /// The controller if its parameters are in range (0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞,
+    /// 0 ≤ β < ∞), an [`Error::InvalidParameter`] otherwise.
+    pub(super) fn checked(self) -> Result<Self> {
+        let c = self;
+        let ok = c.safety > 0.0
+            && c.safety <= 1.0
+            && c.fac_min > 0.0
+            && c.fac_min <= 1.0
+            && c.fac_max >= 1.0
+            && c.fac_max.is_finite()
+            && c.beta >= 0.0
+            && c.beta.is_finite();
+        if !ok {
+            return Err(Error::InvalidParameter {
+                name: "controller",
+                value: c.safety,
+                reason: "needs 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞ and 0 ≤ β < ∞",
+            });
+        }
+        Ok(self)
+    }
+
+    /// h/h_next after a step accepted with error `err` (≤ 1), the previous accepted one `err_prev`:
+    /// err^α / err_prev^β / safety, clamped to [1/fac_max, 1/fac_min] (1/fac_max for err = 0).
+    pub(super) fn accepted_divisor(&self, err: f64, err_prev: f64, alpha: f64) -> f64 {
+        if err == 0.0 {
+            1.0 / self.fac_max
+        } else {
+            // β = 0 (DOP853's default): no second power.
+            let pi = if self.beta == 0.0 { 1.0 } else { err_prev.powf(self.beta) };
+            let f = err.powf(alpha) / pi / self.safety;
+            f.clamp(1.0 / self.fac_max, 1.0 / self.fac_min)
+        }
+    }
+
+    /// h/h_retry after a rejected trial with error `err` (> 1, possibly ∞): Hairer's codes shrink by
+    /// err^α / safety (α = 1/q − 0.75β, the accepted step's exponent), at most by 1/fac_min.
+    pub(super) fn rejected_divisor(&self, err: f64, alpha: f64) -> f64 {
+        if err.is_finite() {
+            (err.powf(alpha) / self.safety).min(1.0 / self.fac_min)
+        } else {
+            1.0 / self.fac_min
+        }
+    }
+}
+
+/// Checks the tolerances (finite, ≥ 0, not both 0) and the smallest step `h_min` (finite, ≥ 0).
+pub(super) fn check_tolerances(atol: f64, rtol: f64, h_min: f64) -> Result<()> {
+    let bad = |name, value, reason| Err(Error::InvalidParameter { name, value, reason });
+    if !(atol.is_finite() && atol >= 0.0) {
+        return bad("atol", atol, "must be finite and non-negative");
+    }
+    if !(rtol.is_finite() && rtol >= 0.0) {
+        return bad("rtol", rtol, "must be finite and non-negative");
+    }
+    if atol == 0.0 && rtol == 0.0 {
+        return bad("atol", 0.0, "atol and rtol cannot both be zero");
+    }
+    if !(h_min.is_finite() && h_min >= 0.0) {
+        return bad("h_min", h_min, "must be finite and non-negative");
+    }
+    Ok(())
+}
+
+/// [`Error::StepSizeUnderflow`] when a trial step h at t is below `h_min` or below 10 ulps of t
+/// (`last_err` is the error estimate of the last rejected trial).
+#[inline]
+pub(super) fn check_underflow(t: f64, h: f64, h_min: f64, last_err: f64) -> Result<()> {
+    if h < h_min || h <= 10.0 * f64::EPSILON * t.abs() {
+        return Err(Error::StepSizeUnderflow {
+            t,
+            h,
+            error: last_err,
+        });
+    }
+    Ok(())
+}
+
+/// The outcome of one stage evaluation writing `out`: Ok(true) when it succeeded with finite
+/// values, Ok(false) when the model or the values were not finite (the trial step is rejected as
+/// too large), the model's error otherwise.
+#[inline]
+pub(super) fn finite_stage(r: Result<()>, out: &[f64]) -> Result<bool> {
+    match r {
+        Ok(()) => Ok(out.iter().all(|x| x.is_finite())),
+        Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
+        Err(e) => Err(e),
+    }
+}
+
+/// Hairer's `hinit` for y' = F(t, y) of a method of order `order`: with sk_i = atol + rtol·|y₀_i|,
+/// h₀ = 0.01 ‖y₀‖/‖F₀‖ (10⁻⁶ when either norm is ≤ 10⁻⁵), an estimate of ‖y″‖ from
+/// F₁ = F(t + h₀, y₀ + h₀F₀) written by `eval(h₀, F₁)`, and h = min(100h₀, (0.01/max(‖y″‖, ‖F₀‖))^(1/order)).
+/// When `eval` reports a non-finite F₁ (Ok(false)) the answer is 10⁻³h₀.
+pub(super) fn initial_step_size(
+    order: u32,
+    atol: f64,
+    rtol: f64,
+    y0: &[f64],
+    f0: &[f64],
+    f1: &mut [f64],
+    mut eval: impl FnMut(f64, &mut [f64]) -> Result<bool>,
+) -> Result<f64> {
+    let sk = |i: usize| atol + rtol * y0[i].abs();
+    let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|v| v * v).sum::<f64>().sqrt();
+    let dnf = norm(&mut (0..y0.len()).map(|i| f0[i] / sk(i)));
+    let dny = norm(&mut (0..y0.len()).map(|i| y0[i] / sk(i)));
+    let h = if dnf <= 1e-5 || dny <= 1e-5 {
+        1e-6
+    } else {
+        0.01 * dny / dnf
+    };
+    if !eval(h, f1)? {
+        return Ok(h * 1e-3);
+    }
+    let der2 = norm(&mut (0..y0.len()).map(|i| (f1[i] - f0[i]) / sk(i))) / h;
+    let der12 = der2.abs().max(dnf);
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / (order as f64))
+    };
+    Ok((100.0 * h).min(h1))
+}
+
 /// An adaptive embedded Runge-Kutta method `M` (see the [module](self) docs) stepping a [`Dynamics`].
 ///
 /// ```
@@ -165,23 +291,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
     }
     /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max, β ≥ 0, all finite).
     pub fn controller(mut self, controller: Controller) -> Result<Self> {
-        let c = controller;
-        let ok = c.safety > 0.0
-            && c.safety <= 1.0
-            && c.fac_min > 0.0
-            && c.fac_min <= 1.0
-            && c.fac_max >= 1.0
-            && c.fac_max.is_finite()
-            && c.beta >= 0.0
-            && c.beta.is_finite();
-        if !ok {
-            return Err(Error::InvalidParameter {
-                name: "controller",
-                value: c.safety,
-                reason: "needs 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞ and 0 ≤ β < ∞",
-            });
-        }
-        self.controller = controller;
+        self.controller = controller.checked()?;
         Ok(self)
     }
     /// Fixed steps: every step is accepted with the size asked for (no error control); for
@@ -206,20 +316,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
     }
 
     fn check_parameters(&self) -> Result<()> {
-        let bad = |name, value, reason| Err(Error::InvalidParameter { name, value, reason });
-        if !(self.atol.is_finite() && self.atol >= 0.0) {
-            return bad("atol", self.atol, "must be finite and non-negative");
-        }
-        if !(self.rtol.is_finite() && self.rtol >= 0.0) {
-            return bad("rtol", self.rtol, "must be finite and non-negative");
-        }
-        if self.atol == 0.0 && self.rtol == 0.0 {
-            return bad("atol", 0.0, "atol and rtol cannot both be zero");
-        }
-        if !(self.h_min.is_finite() && self.h_min >= 0.0) {
-            return bad("h_min", self.h_min, "must be finite and non-negative");
-        }
-        Ok(())
+        check_tolerances(self.atol, self.rtol, self.h_min)
     }
 
     /// F at (t, y) into k[i]; Ok(false) when the value is not finite.
@@ -228,11 +325,8 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let y = if from_tmp { &self.tmp } else { &self.y0 };
         let (dq, dv) = self.k[i].split_at_mut(n);
         self.evaluations += 1;
-        match self.system.rates(t, &y[..n], &y[n..], dq, dv) {
-            Ok(()) => Ok(self.k[i].iter().all(|x| x.is_finite())),
-            Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
-            Err(e) => Err(e),
-        }
+        let r = self.system.rates(t, &y[..n], &y[n..], dq, dv);
+        finite_stage(r, &self.k[i])
     }
 
     /// tmp = y0 + h Σ_j row_j k_j.
@@ -309,32 +403,20 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
                 t: state.t,
             });
         }
-        let sk: Vec<f64> = self.y0.iter().map(|y| self.atol + self.rtol * y.abs()).collect();
-        let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|v| v * v).sum::<f64>().sqrt();
-        let dnf = norm(&mut self.k[0].iter().zip(&sk).map(|(f, s)| f / s));
-        let dny = norm(&mut self.y0.iter().zip(&sk).map(|(y, s)| y / s));
-        let mut h = if dnf <= 1e-5 || dny <= 1e-5 {
-            1e-6
-        } else {
-            0.01 * dny / dnf
-        };
+        let y0 = self.y0.clone();
         let k0 = self.k[0].clone();
-        self.tmp
-            .iter_mut()
-            .enumerate()
-            .for_each(|(i, y)| *y = self.y0[i] + h * k0[i]);
+        let mut f1 = vec![0.0; n2];
         let last = self.k.len() - 1;
-        if !self.eval(last, state.t + h, true)? {
-            return Ok(h * 1e-3);
-        }
-        let der2 = norm(&mut (0..n2).map(|i| (self.k[last][i] - k0[i]) / sk[i])) / h;
-        let der12 = der2.abs().max(dnf);
-        let h1 = if der12 <= 1e-15 {
-            (h * 1e-3).max(1e-6)
-        } else {
-            (0.01 / der12).powf(1.0 / (M::ORDER as f64))
-        };
-        h = (100.0 * h).min(h1);
+        let (atol, rtol) = (self.atol, self.rtol);
+        let h = initial_step_size(M::ORDER, atol, rtol, &y0, &k0, &mut f1, |h, f1| {
+            self.tmp
+                .iter_mut()
+                .enumerate()
+                .for_each(|(i, y)| *y = y0[i] + h * k0[i]);
+            let ok = self.eval(last, state.t + h, true)?;
+            f1.copy_from_slice(&self.k[last]);
+            Ok(ok)
+        })?;
         // F(t, y₀) is the first stage of the first step (as in Hairer's codes, which evaluate it
         // once): keep it where a step looks for the FSAL stage.
         let s = M::C.len();
@@ -377,28 +459,14 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
         let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
         loop {
-            if h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs() {
-                return Err(Error::StepSizeUnderflow {
-                    t,
-                    h,
-                    error: last_err,
-                });
-            }
+            check_underflow(t, h, self.h_min, last_err)?;
             let err = self.attempt(t, h)?;
             if err <= 1.0 {
-                let fac = if err == 0.0 {
-                    1.0 / c.fac_max
+                let mut h_next = if self.fixed {
+                    h
                 } else {
-                    // β = 0 (DOP853's default): no second power.
-                    let pi = if c.beta == 0.0 {
-                        1.0
-                    } else {
-                        self.err_prev.powf(c.beta)
-                    };
-                    let f = err.powf(alpha) / pi / c.safety;
-                    f.clamp(1.0 / c.fac_max, 1.0 / c.fac_min)
+                    h / c.accepted_divisor(err, self.err_prev, alpha)
                 };
-                let mut h_next = if self.fixed { h } else { h / fac };
                 if rejected > 0 {
                     h_next = h_next.min(h);
                 }
@@ -421,13 +489,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             }
             rejected += 1;
             last_err = err;
-            // Hairer's codes shrink by err^α (α = 1/q − 0.75β, the accepted step's exponent).
-            let shrink = if err.is_finite() {
-                (err.powf(alpha) / c.safety).min(1.0 / c.fac_min)
-            } else {
-                1.0 / c.fac_min
-            };
-            h /= shrink;
+            h /= c.rejected_divisor(err, alpha);
         }
     }
     fn dof(&self) -> usize {

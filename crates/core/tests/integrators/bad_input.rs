@@ -34,6 +34,9 @@ fn velocity_steppers() -> Vec<Box<dyn Stepper<Partner = Velocities>>> {
         Box::new(Dopri5::new(EulerLagrange::new(PendulumL))),
         Box::new(Dop853::new(Natural::unit(PendulumV))),
         Box::new(Gauss::implicit_midpoint(Natural::unit(PendulumV))),
+        Box::new(Dprkn6::new(Natural::unit(PendulumV)).unwrap()),
+        Box::new(Dprkn8::new(Natural::unit(PendulumV)).unwrap()),
+        Box::new(Dprkn12::new(Natural::unit(PendulumV)).unwrap()),
     ]
 }
 
@@ -261,6 +264,38 @@ fn bad_input_adaptive_step_size_underflow() {
     };
     assert!(matches!(err, Error::StepSizeUnderflow { .. }), "{err}");
     assert!(traj_state.is_finite() && traj_state.q[0] <= 1.5);
+}
+
+#[test]
+fn bad_input_nystrom_failed_step_leaves_state() {
+    // The fragile pendulum (V NaN beyond θ = 1.5) from θ = 1.4 with θ̇ = 0.5: an adaptive Nyström
+    // method meets the NaN stages by shrinking its steps until StepSizeUnderflow; that step leaves
+    // the state exactly as it was, finite, short of θ = 1.5. A fixed step into the NaN region fails
+    // with NonFiniteResult, the state unchanged too.
+    fn check<S: Stepper<Partner = Velocities>>(mut s: S) {
+        let name = s.name();
+        let mut state = State::new(0.0, [1.4], [0.5]);
+        let mut h = 0.01;
+        let (err, before) = loop {
+            let before = state.clone();
+            match s.step(&mut state, h) {
+                Ok(info) => h = info.h_next,
+                Err(e) => break (e, before),
+            }
+        };
+        assert!(matches!(err, Error::StepSizeUnderflow { .. }), "{name}: {err}");
+        assert_eq!(state, before, "{name}");
+        assert!(state.is_finite() && state.q[0] <= 1.5, "{name}: {state:?}");
+    }
+    check(Dprkn6::new(Natural::unit(Fragile)).unwrap());
+    check(Dprkn8::new(Natural::unit(Fragile)).unwrap());
+    check(Dprkn12::new(Natural::unit(Fragile)).unwrap());
+    let mut s = Dprkn8::new(Natural::unit(Fragile)).unwrap().fixed_step(true);
+    let mut state = State::new(0.0, [1.4], [0.5]);
+    let before = state.clone();
+    let err = s.step(&mut state, 0.5).unwrap_err();
+    assert!(matches!(err, Error::NonFiniteResult { .. }), "{err}");
+    assert_eq!(state, before);
 }
 
 #[test]

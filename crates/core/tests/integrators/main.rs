@@ -6,6 +6,7 @@ mod adaptive;
 mod bad_input;
 mod conserves;
 mod implicit;
+mod nystrom;
 mod order;
 mod pin;
 mod problems;
