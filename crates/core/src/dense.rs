@@ -86,6 +86,11 @@ impl<K: Partner> DenseOutput<K> {
         self.coeffs
     }
 
+    /// y₀ and the coefficient vectors, to be refilled for the next step without allocating.
+    pub(crate) fn into_parts(self) -> (Vec<f64>, Vec<Vec<f64>>) {
+        (self.y0, self.coeffs)
+    }
+
     /// Start of the step.
     pub fn t_start(&self) -> f64 {
         self.t0

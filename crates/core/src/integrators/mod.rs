@@ -7,6 +7,7 @@
 //! | adaptive | [`adaptive`], [`dopri5`], [`dop853`] | Dormand-Prince 5(4) and 8(5,3), error control, dense output | any [`Dynamics`](crate::Dynamics) |
 //! | implicit symplectic | [`gauss`] | implicit midpoint, Gauss-Legendre 4 and 6 (Newton) | [`LinearizedDynamics`]: any H, natural L |
 //! | default | [`default_method`] | the method chosen from what the system declares | every system type |
+//! | Gauss-Radau | [`ias15`] | IAS15: 15th-order predictor-corrector, adaptive steps, dense output | q̈ = f(q): [`SplitDynamics`] with identity drift |
 //! | symplectic | [`symplectic`] | symplectic Euler, Störmer-Verlet, compositions of order 4, 6, 8 | [`SplitDynamics`]: separable H or natural L |
 
 pub mod adaptive;
@@ -15,6 +16,7 @@ pub mod dop853;
 pub mod dopri5;
 pub mod explicit;
 pub mod gauss;
+pub mod ias15;
 pub mod symplectic;
 
 pub use adaptive::{Adaptive, Controller, EmbeddedPair};
@@ -23,4 +25,5 @@ pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
 pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
 pub use gauss::{Gauss, LinearizedDynamics};
+pub use ias15::{Ias15, Ias15Control};
 pub use symplectic::{Composition, SplitDynamics, SymplecticEuler};
