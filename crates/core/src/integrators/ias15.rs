@@ -125,6 +125,17 @@ const RR: [f64; 28] = [
     0.0921996667221917338008147,
 ];
 
+/// 1/r, so that the divided differences multiply instead of divide.
+const RR_INV: [f64; 28] = {
+    let mut inv = [0.0; 28];
+    let mut i = 0;
+    while i < 28 {
+        inv[i] = 1.0 / RR[i];
+        i += 1;
+    }
+    inv
+};
+
 /// Everhart's c: b from g (the Newton form re-expanded in powers of θ), by rows.
 #[allow(clippy::excessive_precision)]
 const C: [f64; 21] = [
@@ -507,9 +518,9 @@ impl<S: SplitDynamics> Ias15<S> {
         let c0 = if J == 0 { 0 } else { (J - 1) * J / 2 };
         for k in 0..self.n {
             let g = &mut self.g[k];
-            let mut val = (self.at[k] - self.a0[k]) / RR[r0];
+            let mut val = (self.at[k] - self.a0[k]) * RR_INV[r0];
             for m in 0..J {
-                val = (val - g[m]) / RR[r0 + 1 + m];
+                val = (val - g[m]) * RR_INV[r0 + 1 + m];
             }
             let dg = val - g[J];
             g[J] = val;
@@ -590,9 +601,9 @@ impl<S: SplitDynamics> Ias15<S> {
         let (mut max_a, mut max_db) = (0.0_f64, 0.0_f64);
         for k in 0..self.n {
             let g = &mut self.g[k];
-            let mut val = (self.at[k] - self.a0[k]) / RR[R0];
+            let mut val = (self.at[k] - self.a0[k]) * RR_INV[R0];
             for m in 0..J {
-                val = (val - g[m]) / RR[R0 + 1 + m];
+                val = (val - g[m]) * RR_INV[R0 + 1 + m];
             }
             let dg = val - g[J];
             g[J] = val;
