@@ -516,15 +516,21 @@ impl<S: SplitDynamics> Ias15<S> {
     fn update_node<const J: usize>(&mut self) {
         let r0 = J * (J + 1) / 2;
         let c0 = if J == 0 { 0 } else { (J - 1) * J / 2 };
-        for k in 0..self.n {
-            let g = &mut self.g[k];
-            let mut val = (self.at[k] - self.a0[k]) * RR_INV[r0];
+        let (at, a0) = (&self.at[..], &self.a0[..]);
+        for ((((g, b), cs), at), a0) in self
+            .g
+            .iter_mut()
+            .zip(&mut self.b)
+            .zip(&mut self.csb)
+            .zip(at)
+            .zip(a0)
+        {
+            let mut val = (at - a0) * RR_INV[r0];
             for m in 0..J {
                 val = (val - g[m]) * RR_INV[r0 + 1 + m];
             }
             let dg = val - g[J];
             g[J] = val;
-            let (b, cs) = (&mut self.b[k], &mut self.csb[k]);
             for m in 0..J {
                 add_cs(&mut b[m], &mut cs[m], dg * C[c0 + m]);
             }
@@ -562,19 +568,28 @@ impl<S: SplitDynamics> Ias15<S> {
             for node in 1..8 {
                 let f = &HORNER[node];
                 let s = h * H[node];
-                for k in 0..self.n {
-                    let b = &self.b[k];
+                // Local slices: the buffers' pointers stay in registers through the loop.
+                let (b, a0, v0, x0, csx) = (
+                    &self.b[..],
+                    &self.a0[..],
+                    &self.v0[..],
+                    &self.x0[..],
+                    &self.csx[..],
+                );
+                for ((((xs, b), a0), v0), (x0, csx)) in
+                    self.xs.iter_mut().zip(b).zip(a0).zip(v0).zip(x0.iter().zip(csx))
+                {
                     let poly = (((((((b[6] * f[0] + b[5]) * f[1] + b[4]) * f[2] + b[3]) * f[3] + b[2])
                         * f[4]
                         + b[1])
                         * f[5]
                         + b[0])
                         * f[6]
-                        + self.a0[k])
+                        + a0)
                         * s
                         / 2.0
-                        + self.v0[k];
-                    self.xs[k] = (poly * s - self.csx[k]) + self.x0[k];
+                        + v0;
+                    *xs = (poly * s - csx) + x0;
                 }
                 if !Self::accelerations(&self.system, &self.xs, &mut self.at, &mut self.evaluations)? {
                     return Ok(Attempt::NonFinite(iterations));
@@ -599,20 +614,26 @@ impl<S: SplitDynamics> Ias15<S> {
         const R0: usize = J * (J + 1) / 2;
         const C0: usize = (J - 1) * J / 2;
         let (mut max_a, mut max_db) = (0.0_f64, 0.0_f64);
-        for k in 0..self.n {
-            let g = &mut self.g[k];
-            let mut val = (self.at[k] - self.a0[k]) * RR_INV[R0];
+        let (at, a0) = (&self.at[..], &self.a0[..]);
+        for ((((g, b), cs), at), a0) in self
+            .g
+            .iter_mut()
+            .zip(&mut self.b)
+            .zip(&mut self.csb)
+            .zip(at)
+            .zip(a0)
+        {
+            let mut val = (at - a0) * RR_INV[R0];
             for m in 0..J {
                 val = (val - g[m]) * RR_INV[R0 + 1 + m];
             }
             let dg = val - g[J];
             g[J] = val;
-            let (b, cs) = (&mut self.b[k], &mut self.csb[k]);
             for m in 0..J {
                 add_cs(&mut b[m], &mut cs[m], dg * C[C0 + m]);
             }
             add_cs(&mut b[J], &mut cs[J], dg);
-            let (a, d) = (self.at[k].abs(), dg.abs());
+            let (a, d) = (at.abs(), dg.abs());
             if a.is_normal() && a > max_a {
                 max_a = a;
             }
