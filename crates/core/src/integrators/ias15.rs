@@ -47,7 +47,8 @@
 //!   h_new = h (ε / (max|b₆| / max|a|))^{1/7}, the maxima over all coordinates of the blocks that move.
 //!
 //! The step is *accepted* unless h_new < h/4 (then it is redone with h_new); the next proposal grows
-//! by at most a factor 4. Accelerations that are not finite reject the step and retry with h/4; an
+//! by at most a factor 4. The first step of a run (or after the state was changed between steps),
+//! whose size is only a guess, is redone as soon as h_new < h. Accelerations that are not finite reject the step and retry with h/4; an
 //! iteration that has not converged after 12 rounds rejects it and retries with h/2. Below
 //! [`h_min`](Ias15::h_min) (or 10 ulps of t) the step fails with [`Error::StepSizeUnderflow`], the
 //! state untouched. In fixed-step mode ([`fixed_step`](Ias15::fixed_step)) every step takes the size

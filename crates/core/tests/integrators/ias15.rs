@@ -329,3 +329,20 @@ fn closed_form_ias15_stats() {
     let st = sol.stats();
     assert_eq!(st.evaluations, st.steps - 1 + 7 * st.newton_iterations, "{st:?}");
 }
+
+#[test]
+fn regress_ias15_changed_state_restarts_the_predictor() {
+    // The predictor and the compensated sums belong to the trajectory the stepper produced: from a
+    // state it did not return (an event, a user's change), a step is exactly a fresh stepper's step.
+    let h = 0.05;
+    let mut used = ias15().fixed_step(true);
+    let mut state = kepler_start::<Velocities>(ECC);
+    for _ in 0..10 {
+        used.step(&mut state, h).unwrap();
+    }
+    state.v[0] += 1e-3;
+    let mut fresh_state = state.clone();
+    used.step(&mut state, h).unwrap();
+    ias15().fixed_step(true).step(&mut fresh_state, h).unwrap();
+    assert_eq!(state, fresh_state);
+}
