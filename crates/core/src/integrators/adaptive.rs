@@ -112,7 +112,11 @@ impl Controller {
             1.0 / self.fac_max
         } else {
             // β = 0 (DOP853's default): no second power.
-            let pi = if self.beta == 0.0 { 1.0 } else { err_prev.powf(self.beta) };
+            let pi = if self.beta == 0.0 {
+                1.0
+            } else {
+                err_prev.powf(self.beta)
+            };
             let f = err.powf(alpha) / pi / self.safety;
             f.clamp(1.0 / self.fac_max, 1.0 / self.fac_min)
         }

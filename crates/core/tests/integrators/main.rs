@@ -5,6 +5,7 @@
 mod adaptive;
 mod bad_input;
 mod conserves;
+mod ias15;
 mod implicit;
 mod nystrom;
 mod order;
