@@ -82,16 +82,48 @@ fn kepler_error(q: &[f64]) -> f64 {
     ((q[0] - q0[0]).powi(2) + (q[1] - q0[1]).powi(2)).sqrt()
 }
 
-fn noether_dop853(tol: f64) -> f64 {
+/// Runs an adaptive stepper on Kepler to t = 200π (no output but the end) and returns the error.
+fn kepler_run<S: Stepper<Partner = Velocities>>(stepper: S) -> f64 {
     let (q, v) = kepler_start();
     let t_end = 2.0 * std::f64::consts::PI * ORBITS;
+    let sol = Driver::new(stepper, State::new(0.0, q, v))
+        .and_then(|d| d.save(Save::End))
+        .and_then(|d| d.max_steps(100_000_000).run_until(t_end))
+        .expect("run");
+    kepler_error(sol.last().q.as_slice())
+}
+
+fn noether_dop853(tol: f64) -> f64 {
     let dp = Dop853::new(Natural::unit(Kepler))
         .tolerances(tol, tol)
-        .expect("tolerances")
-        .with_dense_output(false);
-    let sol = Driver::new(dp, State::new(0.0, q, v))
+        .expect("tolerances");
+    kepler_run(dp.with_dense_output(false))
+}
+
+fn noether_dprkn8(tol: f64) -> f64 {
+    let m = Dprkn8::new(Natural::unit(Kepler)).and_then(|m| m.tolerances(tol, tol));
+    kepler_run(m.expect("DPRKN8").with_dense_output(false))
+}
+
+fn noether_dprkn12(tol: f64) -> f64 {
+    let m = Dprkn12::new(Natural::unit(Kepler)).and_then(|m| m.tolerances(tol, tol));
+    kepler_run(m.expect("DPRKN12").with_dense_output(false))
+}
+
+fn noether_ias15(eps: f64) -> f64 {
+    let m = Ias15::new(Natural::unit(Kepler)).and_then(|m| m.epsilon(eps));
+    kepler_run(m.expect("IAS15").with_dense_output(false))
+}
+
+/// Kahan-Li 8 with a fixed step of T/`per_orbit`.
+fn noether_kl8(per_orbit: f64) -> f64 {
+    let (q, v) = kepler_start();
+    let h = 2.0 * std::f64::consts::PI / per_orbit;
+    let steps = (ORBITS * per_orbit).round() as usize;
+    let kl8 = Composition::kahan_li8(Natural::unit(Kepler));
+    let sol = Driver::with_step(kl8, State::new(0.0, q, v), h)
         .and_then(|d| d.save(Save::End))
-        .and_then(|d| d.max_steps(10_000_000).run_until(t_end))
+        .and_then(|mut d| d.run_steps(steps))
         .expect("run");
     kepler_error(sol.last().q.as_slice())
 }
@@ -123,23 +155,91 @@ fn ode_solvers_dop853(tol: f64) -> f64 {
     kepler_error(&[y[0], y[1]])
 }
 
-fn kepler_table(rows: &mut Vec<(String, f64, f64)>) {
-    println!("\nKepler e = 0.6, 100 orbits: error |q(200π) − q₀| and time (min of interleaved runs)");
-    println!("| tol | ode_solvers DOP853 (hand rhs) | noether DOP853 on Natural | ratio |");
-    println!("|---|---|---|---|");
-    for tol in [1e-6, 1e-8, 1e-10, 1e-12] {
-        let reps = 15;
-        let [(ms_o, err_o), (ms_n, err_n)] = race(
-            reps,
-            [&mut || ode_solvers_dop853(tol), &mut || noether_dop853(tol)],
-        );
-        println!(
-            "| {tol:.0e} | {ms_o:.3} ms, err {err_o:.2e} | {ms_n:.3} ms, err {err_n:.2e} | {:.2} |",
-            ms_n / ms_o
-        );
-        rows.push(("ode_solvers DOP853".into(), ms_o, err_o));
-        rows.push(("noether DOP853".into(), ms_n, err_n));
+/// One method's sweep: its name, the parameter's name and values, and the run.
+struct Sweep {
+    name: &'static str,
+    param: &'static str,
+    values: Vec<f64>,
+    run: fn(f64) -> f64,
+}
+
+/// The smallest time among the runs whose error is at most `target` (no interpolation: the first
+/// run of the sweep that reaches the target counts).
+fn time_to(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    points
+        .iter()
+        .filter(|(_, e)| *e <= target)
+        .map(|(ms, _)| *ms)
+        .reduce(f64::min)
+}
+
+type Curve = (&'static str, Vec<(f64, f64)>);
+
+fn kepler_table() -> Vec<Curve> {
+    let tols = vec![1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15];
+    let sweeps = [
+        Sweep {
+            name: "ode_solvers DOP853 (hand-written rhs)",
+            param: "tol",
+            values: tols.clone(),
+            run: ode_solvers_dop853,
+        },
+        Sweep {
+            name: "noether DOP853",
+            param: "tol",
+            values: tols.clone(),
+            run: noether_dop853,
+        },
+        Sweep {
+            name: "noether DPRKN8",
+            param: "tol",
+            values: tols.clone(),
+            run: noether_dprkn8,
+        },
+        Sweep {
+            name: "noether DPRKN12",
+            param: "tol",
+            values: tols,
+            run: noether_dprkn12,
+        },
+        Sweep {
+            name: "noether IAS15",
+            param: "ε",
+            values: vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-9],
+            run: noether_ias15,
+        },
+        Sweep {
+            name: "noether Kahan-Li 8 (fixed h = T/n)",
+            param: "n",
+            values: vec![100.0, 200.0, 400.0, 800.0, 1600.0],
+            run: noether_kl8,
+        },
+    ];
+    println!("\nKepler e = 0.6, 100 orbits: error |q(200π) − q₀| and time (min of 7 interleaved runs)");
+    let mut curves = Vec::new();
+    for sw in &sweeps {
+        println!("\n{}\n| {} | error | time |\n|---|---|---|", sw.name, sw.param);
+        let mut pts = Vec::new();
+        for &x in &sw.values {
+            // Interleaved with the peer at a middle setting, so that both see the same load.
+            let [(ms, err), _] = race(7, [&mut || (sw.run)(x), &mut || ode_solvers_dop853(1e-10)]);
+            println!("| {x:.0e} | {err:.2e} | {ms:.3} ms |");
+            pts.push((ms, err));
+        }
+        curves.push((sw.name, pts));
     }
+    println!("\nTime to reach an error (the fastest run at or below it), and the ratio to ode_solvers:");
+    println!("| method | to 1e-6 | to 1e-10 |\n|---|---|---|");
+    let peer = curves[0].1.clone();
+    for (name, pts) in &curves {
+        let cell = |target| match (time_to(pts, target), time_to(&peer, target)) {
+            (Some(t), Some(p)) => format!("{t:.3} ms ({:.2}×)", t / p),
+            (Some(t), None) => format!("{t:.3} ms (the peer does not reach it)"),
+            _ => "not reached".to_string(),
+        };
+        println!("| {name} | {} | {} |", cell(1e-6), cell(1e-10));
+    }
+    curves
 }
 
 /// Kahan-Li 8 coefficients, from noether's own composition (the same numbers for both loops).
@@ -205,9 +305,20 @@ fn main() {
     // `cargo bench` passes `--bench`; a problem's name (kepler, hh) runs only that one.
     let which = std::env::args().nth(1).filter(|a| !a.starts_with('-'));
     let run = |name: &str| which.as_deref().is_none_or(|w| w == name);
-    let mut rows = Vec::new();
     if run("kepler") {
-        kepler_table(&mut rows);
+        let curves = kepler_table();
+        let mut fig = noether::plot::Figure::new("Kepler e = 0.6, 100 orbits: work against precision")
+            .x_label("log₁₀ time [ms]")
+            .y_label("error |q(200π) − q₀|")
+            .log_y();
+        for (name, pts) in curves {
+            fig = fig.series(name, pts.iter().map(|(ms, e)| (ms.log10(), *e)).collect());
+        }
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/work_precision.svg");
+        match fig.save(&path) {
+            Ok(p) => println!("\nwrote {}", p.display()),
+            Err(e) => println!("\nno picture: {e}"),
+        }
     }
     if run("hh") {
         henon_heiles_table();

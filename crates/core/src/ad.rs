@@ -242,11 +242,11 @@ fn gradient_once<F: Field, const W: usize>(
     let lift = |v: &[f64], seeded: bool| {
         let mut a = [D::<W>::from_re(0.0); W];
         for (i, (d, v)) in a.iter_mut().zip(v).enumerate() {
-            let unit = seeded && i < n;
-            *d = D::<W>::new(
-                *v,
-                SVector::from_fn(|k, _| if unit && k == i { 1.0 } else { 0.0 }),
-            );
+            *d = if seeded && i < n {
+                D::<W>::new(*v, SVector::from_fn(|k, _| if k == i { 1.0 } else { 0.0 }))
+            } else {
+                D::<W>::from_re(*v)
+            };
         }
         a
     };

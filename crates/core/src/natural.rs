@@ -195,9 +195,9 @@ impl<P: Potential> Natural<P> {
     }
 
     /// −∇V(q), times M⁻¹ when `accelerate`, into `out`: the hot path of every integrator on a natural
-    /// system. Lengths are checked; finiteness only once, on the result (a non-finite q gives a
-    /// non-finite gradient), and only when that check fails are the inputs examined, so that the
-    /// error still names a bad q.
+    /// system. Lengths are checked; finiteness only once, on the result and on V (a non-finite q gives
+    /// a non-finite V), and only when that check fails are the inputs examined, so that the error
+    /// still names a bad q. On error `out` may hold the partial result.
     #[inline]
     fn force_field(&self, q: &[f64], out: &mut [f64], accelerate: bool) -> Result<()> {
         let n = self.dof();
@@ -211,7 +211,7 @@ impl<P: Potential> Natural<P> {
             out,
             n,
         )?;
-        ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, out);
+        let value = ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, out);
         match (&self.mass, accelerate) {
             (Mass::Diagonal { inv, .. }, true) => out.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= -i),
             (Mass::Dense { chol, .. }, true) => {
@@ -220,10 +220,14 @@ impl<P: Potential> Natural<P> {
             }
             (_, false) => out.iter_mut().for_each(|x| *x = -*x),
         }
-        if check_result("potential forces", f64::NAN, out).is_err() {
+        // The value too: where V itself is infinite there is no force to return.
+        if !value.is_finite() || check_result("potential forces", f64::NAN, out).is_err() {
             check_finite("q", q)?;
             // A natural system does not depend on t: no time to name.
-            return check_result("potential forces", f64::NAN, out);
+            return Err(Error::NonFiniteResult {
+                what: "potential forces",
+                t: f64::NAN,
+            });
         }
         Ok(())
     }

@@ -14,11 +14,12 @@
 //! (a, ∇a) · (b, ∇b) = (a b, b ∇a + a ∇b),     g(a, ∇a) = (g(a), g′(a) ∇a).
 //! ```
 //!
-//! The jet is NaN-safe in the sense of ForwardDiff's `NANSAFE_MODE`: a gradient entry that is zero
-//! stays zero when it is multiplied by a factor that is infinite or NaN. A variable that does not
-//! reach a term therefore cannot poison it (issue 15, case 8): for L = ½q̇² − √q at q = 0 the
-//! momentum is q̇, not NaN from 0·∞, and V = (q²)^¾ has V′(0) = 0 (the chain rule gives
-//! ¾(q²)^(−¼)·2q = ∞·0 there).
+//! A flag records whether the gradient is structurally zero (the value depends on no variable: a
+//! constant, or a function of constants only). Such a gradient is never multiplied, so an infinite or
+//! NaN factor cannot poison it: the semantics of num-dual's `None` derivative, kept. For L = ½q̇² − √q
+//! at q = 0 the momentum is q̇ (q is a constant there), not NaN from 0·∞. A gradient that is zero only
+//! numerically (x² at x = 0) is multiplied as usual, so a singular derivative of a variable still
+//! shows as NaN (−1/|q| at q = 0) instead of a silent finite force.
 //!
 //! The number-type boilerplate comes from num-dual's exported macros, as for
 //! [`LagrangeJet`](super::LagrangeJet).
@@ -28,9 +29,9 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{DefaultAllocator, Dim, OVector};
 use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
-    impl_assign_ops, impl_comparisons, impl_derivatives, impl_dual_struct, impl_first_derivatives,
-    impl_float_const, impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_neg, impl_num,
-    impl_scalar_op, impl_signed, impl_zero_one,
+    impl_comparisons, impl_derivatives, impl_dual_struct, impl_first_derivatives, impl_float_const,
+    impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_num, impl_scalar_op, impl_signed,
+    impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -49,6 +50,8 @@ where
     pub re: T,
     /// Gradient.
     pub eps: OVector<T, D>,
+    /// `false` while the gradient is structurally zero (see the module documentation).
+    pub active: bool,
     f: PhantomData<F>,
 }
 
@@ -61,12 +64,18 @@ impl<T: DualNum<F>, F, D: Dim> GradJet<T, F, D>
 where
     DefaultAllocator: Allocator<D>,
 {
-    /// A jet from its value and gradient.
+    /// A jet from its value and gradient, which may be non-zero.
     #[inline(always)]
     pub fn new(re: T, eps: OVector<T, D>) -> Self {
+        Self::with_flag(re, eps, true)
+    }
+
+    #[inline(always)]
+    fn with_flag(re: T, eps: OVector<T, D>, active: bool) -> Self {
         GradJet {
             re,
             eps,
+            active,
             f: PhantomData,
         }
     }
@@ -81,10 +90,8 @@ where
     #[inline(always)]
     pub fn from_re(re: T) -> Self {
         let d = D::from_usize(D::try_to_usize().unwrap_or(0));
-        Self::new(
-            re,
-            OVector::<T, D>::from_element_generic(d, nalgebra::U1, T::zero()),
-        )
+        let zero = OVector::<T, D>::from_element_generic(d, nalgebra::U1, T::zero());
+        Self::with_flag(re, zero, false)
     }
 
     /// The variable with index `i < D`: value `re`, gradient the unit vector eᵢ.
@@ -92,17 +99,8 @@ where
     pub fn variable(re: T, i: usize) -> Self {
         let mut d = Self::from_re(re);
         d.eps[i] = T::one();
+        d.active = true;
         d
-    }
-}
-
-/// e·f, but 0 when e = 0 whatever f is (NaN-safe: see the module documentation).
-#[inline(always)]
-fn scale<T: Zero + Mul<Output = T>>(e: T, f: T) -> T {
-    if e.is_zero() {
-        e
-    } else {
-        e * f
     }
 }
 
@@ -113,7 +111,22 @@ where
     /// g(a) from g(a.re) and g′(a.re).
     #[inline(always)]
     fn chain_rule(&self, f0: T, f1: T) -> Self {
-        Self::new(f0, self.eps.map(|e| scale(e, f1.clone())))
+        let active = self.active;
+        let eps = self.eps.map(|e| if active { e * f1.clone() } else { e });
+        Self::with_flag(f0, eps, active)
+    }
+
+    /// α ∇a + β ∇b over the active gradients only: an inactive gradient is left out, not multiplied
+    /// (written as selects per entry, which compile without branches).
+    #[inline(always)]
+    fn lin(a: &Self, alpha: T, b: &Self, beta: T) -> (OVector<T, D>, bool) {
+        let (ua, ub) = (a.active, b.active);
+        let eps = a.eps.zip_map(&b.eps, |x, y| {
+            let xa = if ua { x * alpha.clone() } else { T::zero() };
+            let yb = if ub { y * beta.clone() } else { T::zero() };
+            xa + yb
+        });
+        (eps, ua || ub)
     }
 }
 
@@ -126,12 +139,8 @@ where
     type Output = GradJet<T, F, D>;
     #[inline(always)]
     fn mul(self, o: &GradJet<T, F, D>) -> GradJet<T, F, D> {
-        let (a, b) = (self.re.clone(), o.re.clone());
-        GradJet::new(
-            a.clone() * b.clone(),
-            self.eps
-                .zip_map(&o.eps, |x, y| scale(x, b.clone()) + scale(y, a.clone())),
-        )
+        let (eps, active) = GradJet::lin(self, o.re.clone(), o, self.re.clone());
+        GradJet::with_flag(self.re.clone() * o.re.clone(), eps, active)
     }
 }
 
@@ -143,13 +152,11 @@ where
     type Output = GradJet<T, F, D>;
     #[inline(always)]
     fn div(self, o: &GradJet<T, F, D>) -> GradJet<T, F, D> {
+        // (a/b)′ = a′/b − b′·(a/b)/b.
         let inv = o.re.recip();
         let q = self.re.clone() * inv.clone();
-        GradJet::new(
-            q.clone(),
-            self.eps
-                .zip_map(&o.eps, |x, y| scale(x - scale(y, q.clone()), inv.clone())),
-        )
+        let (eps, active) = GradJet::lin(self, inv.clone(), o, -(q.clone() * inv));
+        GradJet::with_flag(q, eps, active)
     }
 }
 
@@ -160,10 +167,8 @@ where
     type Output = GradJet<T, F, D>;
     #[inline(always)]
     fn add(self, o: &GradJet<T, F, D>) -> GradJet<T, F, D> {
-        GradJet::new(
-            self.re.clone() + o.re.clone(),
-            self.eps.zip_map(&o.eps, |x, y| x + y),
-        )
+        let (eps, active) = GradJet::lin(self, T::one(), o, T::one());
+        GradJet::with_flag(self.re.clone() + o.re.clone(), eps, active)
     }
 }
 
@@ -174,10 +179,59 @@ where
     type Output = GradJet<T, F, D>;
     #[inline(always)]
     fn sub(self, o: &GradJet<T, F, D>) -> GradJet<T, F, D> {
-        GradJet::new(
-            self.re.clone() - o.re.clone(),
-            self.eps.zip_map(&o.eps, |x, y| x - y),
-        )
+        let (eps, active) = GradJet::lin(self, T::one(), o, -T::one());
+        GradJet::with_flag(self.re.clone() - o.re.clone(), eps, active)
+    }
+}
+
+impl<T: DualNum<F>, F: Float, D: Dim> Neg for &GradJet<T, F, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    type Output = GradJet<T, F, D>;
+    #[inline(always)]
+    fn neg(self) -> GradJet<T, F, D> {
+        GradJet::with_flag(-self.re.clone(), self.eps.map(|e| -e), self.active)
+    }
+}
+
+impl<T: DualNum<F>, F: Float, D: Dim> Neg for GradJet<T, F, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    type Output = GradJet<T, F, D>;
+    #[inline(always)]
+    fn neg(self) -> GradJet<T, F, D> {
+        -&self
+    }
+}
+
+/// The compound assignments, through the binary operators (so that the flag follows).
+macro_rules! assign_op {
+    ($trt:ident, $mth:ident, $op:tt) => {
+        impl<T: DualNum<F>, F: Float, D: Dim> $trt for GradJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<D>,
+        {
+            #[inline(always)]
+            fn $mth(&mut self, o: Self) {
+                *self = &*self $op &o;
+            }
+        }
+    };
+}
+
+assign_op!(AddAssign, add_assign, +);
+assign_op!(SubAssign, sub_assign, -);
+assign_op!(MulAssign, mul_assign, *);
+assign_op!(DivAssign, div_assign, /);
+
+impl<T: DualNum<F>, F, D: Dim> RemAssign for GradJet<T, F, D>
+where
+    DefaultAllocator: Allocator<D>,
+{
+    fn rem_assign(&mut self, _o: Self) {
+        unimplemented!("remainder of a dual number")
     }
 }
 
@@ -245,8 +299,6 @@ where
 impl_first_derivatives!(GradJet, [eps], [D], [D]);
 impl_from_f!(GradJet, [eps], [D], [D]);
 impl_zero_one!(GradJet, [D], [D]);
-impl_neg!(GradJet, [eps], [D], [D]);
-impl_assign_ops!(GradJet, [eps], [D], [D]);
 impl_scalar_op!(GradJet, [eps], [D], [D]);
 impl_inv!(GradJet, [D], [D]);
 impl_iterator!(GradJet, [D], [D]);

@@ -83,9 +83,11 @@ pub struct Controller {
 }
 
 impl Controller {
-    /// The controller if its parameters are in range (0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞,
-    /// 0 ≤ β < ∞), an [`Error::InvalidParameter`] otherwise.
-    pub(super) fn checked(self) -> Result<Self> {
+    /// The controller if its parameters are in range for a method whose step size scales like
+    /// err^(−1/`order`): 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞, and 0 ≤ β < 4/(3·order) so
+    /// that the exponent α = 1/order − 0.75β of the error stays positive (with α ≤ 0 a larger error
+    /// no longer shrinks the step). An [`Error::InvalidParameter`] otherwise.
+    pub(super) fn checked(self, order: f64) -> Result<Self> {
         let c = self;
         let ok = c.safety > 0.0
             && c.safety <= 1.0
@@ -94,12 +96,12 @@ impl Controller {
             && c.fac_max >= 1.0
             && c.fac_max.is_finite()
             && c.beta >= 0.0
-            && c.beta.is_finite();
+            && 1.0 / order - 0.75 * c.beta > 0.0;
         if !ok {
             return Err(Error::InvalidParameter {
                 name: "controller",
-                value: c.safety,
-                reason: "needs 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞ and 0 ≤ β < ∞",
+                value: c.beta,
+                reason: "needs 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞ and 0 ≤ β < 4/(3·order)",
             });
         }
         Ok(self)
@@ -293,9 +295,9 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         self.check_parameters()?;
         Ok(self)
     }
-    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max, β ≥ 0, all finite).
+    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max < ∞, 0 ≤ β < 4/(3q)).
     pub fn controller(mut self, controller: Controller) -> Result<Self> {
-        self.controller = controller.checked()?;
+        self.controller = controller.checked(M::CONTROL_ORDER)?;
         Ok(self)
     }
     /// Fixed steps: every step is accepted with the size asked for (no error control); for

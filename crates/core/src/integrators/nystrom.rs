@@ -296,9 +296,9 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         self.h_min = h_min;
         Ok(self)
     }
-    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max, β ≥ 0, all finite).
+    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max < ∞, 0 ≤ β < 4/(3q)).
     pub fn controller(mut self, controller: Controller) -> Result<Self> {
-        self.controller = controller.checked()?;
+        self.controller = controller.checked(M::CONTROL_ORDER)?;
         Ok(self)
     }
     /// Fixed steps: every step is accepted with the size asked for (no error control).

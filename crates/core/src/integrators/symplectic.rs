@@ -62,8 +62,10 @@ impl<S: Separable + ?Sized> Field for PotentialOf<'_, S> {
     }
 }
 
-fn finite_or(out: &[f64]) -> Result<()> {
-    if out.iter().any(|x| !x.is_finite()) {
+/// Ok when the gradient `out` and the value it was taken of are finite (where T or V is infinite
+/// there is no rate to return).
+fn finite_or(value: f64, out: &[f64]) -> Result<()> {
+    if !value.is_finite() || out.iter().any(|x| !x.is_finite()) {
         return Err(Error::NonFiniteResult {
             what: "forces",
             t: f64::NAN,
@@ -101,15 +103,15 @@ impl<S: Separable> SplitDynamics for SeparableHamiltonian<S> {
     fn drift_rate(&self, p: &[f64], dq: &mut [f64]) -> Result<()> {
         check_len("p", p, self.0.dof())?;
         check_len("q̇ (output)", dq, self.0.dof())?;
-        ad::gradient(&KineticField(&self.0), 0.0, &[], p, Block::Y, dq);
-        finite_or(dq)
+        let value = ad::gradient(&KineticField(&self.0), 0.0, &[], p, Block::Y, dq);
+        finite_or(value, dq)
     }
     fn kick_rate(&self, q: &[f64], dp: &mut [f64]) -> Result<()> {
         check_len("q", q, self.0.dof())?;
         check_len("ṗ (output)", dp, self.0.dof())?;
-        ad::gradient(&PotentialOf(&self.0), 0.0, q, &[], Block::X, dp);
+        let value = ad::gradient(&PotentialOf(&self.0), 0.0, q, &[], Block::X, dp);
         dp.iter_mut().for_each(|x| *x = -*x);
-        finite_or(dp)
+        finite_or(value, dp)
     }
 }
 

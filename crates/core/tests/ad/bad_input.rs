@@ -2,9 +2,7 @@
 //! a NaN state.
 
 use crate::systems::{Chain, DoublePendulum};
-use noether_core::{
-    Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Natural, Potential, Scalar,
-};
+use noether_core::{Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Scalar};
 
 /// L = q̇₁ q₂ − ½ (q₁² + q₂²): linear in q̇, M = 0 (a first-order, degenerate Lagrangian).
 struct LinearInVelocity;
@@ -269,36 +267,4 @@ fn regress_natural_sizes_and_domain() {
     ));
     // V(4, 1) = 2 + 1, T = ½ (1 + 4): exact in binary.
     assert_eq!(nat.energy(&[4.0, 1.0], &[1.0, 2.0]), Ok(5.5));
-}
-
-/// V = (q²)^¾: smooth, V′(q) = (3/2)·q/|q|^½ → 0 at q = 0.
-struct ThreeQuarterPower;
-impl Potential for ThreeQuarterPower {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        (q[0] * q[0]).powf(0.75)
-    }
-}
-
-/// Issue 15, case 8 (second half): the chain rule at q = 0 multiplies the zero tangent of q² by the
-/// infinite derivative ¾(q²)^(−¼) of the power. The NaN-safe gradient jet keeps the zero, so the force
-/// at q = 0 is exactly 0 (it was `NonFiniteResult`), and away from 0 it is −(3/2) q |q|^(−½)
-/// (to a few ulps: the jet's arithmetic differs from the closed form's by rounding only).
-#[test]
-fn regress_zero_times_infinite_derivative_is_zero() {
-    let nat = Natural::unit(ThreeQuarterPower);
-    let mut f = [1.0];
-    nat.forces(&[0.0], &mut f).unwrap();
-    assert_eq!(f, [0.0]);
-    for q in [1e-12, 0.3, -2.0] {
-        nat.forces(&[q], &mut f).unwrap();
-        let exact = -1.5 * q / q.abs().sqrt();
-        assert!(
-            (f[0] - exact).abs() <= 4.0 * f64::EPSILON * exact.abs(),
-            "{q}: {} vs {exact}",
-            f[0]
-        );
-    }
 }

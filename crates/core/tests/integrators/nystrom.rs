@@ -349,4 +349,17 @@ fn bad_input_nystrom_needs_identity_drift() {
     };
     assert!(Dprkn12::new(pendulum()).unwrap().controller(bad).is_err());
     assert!(Dprkn12::new(pendulum()).unwrap().h_min(-1.0).is_err());
+    // A PI controller's error exponent α = 1/q − 0.75β must stay positive (with α ≤ 0 a larger error
+    // no longer shrinks the step): q = 11 for DPRKN12, so β < 4/33 = 0.1212…; q = 8 for DOP853,
+    // β < 1/6.
+    let pi = |beta| Controller {
+        safety: 0.9,
+        fac_min: 0.2,
+        fac_max: 10.0,
+        beta,
+    };
+    assert!(Dprkn12::new(pendulum()).unwrap().controller(pi(0.12)).is_ok());
+    assert!(Dprkn12::new(pendulum()).unwrap().controller(pi(0.13)).is_err());
+    assert!(Dop853::new(pendulum()).controller(pi(0.16)).is_ok());
+    assert!(Dop853::new(pendulum()).controller(pi(0.17)).is_err());
 }
