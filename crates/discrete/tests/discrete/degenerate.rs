@@ -175,3 +175,18 @@ fn bad_input_partly_degenerate() {
     assert!((o.residual - 1e-3).abs() < 1e-15, "{o:?}");
     assert_eq!(s, before);
 }
+
+/// The Galerkin integrators start their Newton from the velocity of the inverse Legendre map, which a
+/// degenerate Lagrangian does not have: they refuse it, consistent start or not, with
+/// `SingularMassMatrix` (pivot ratio 0 for M = 0), the state left as it was.
+#[test]
+fn bad_input_galerkin_degenerate() {
+    let mut g = noether_discrete::Galerkin::order4(Vortex { omega: 1.0 }).unwrap();
+    let before = vortex_start(0.0);
+    let mut s = before.clone();
+    assert!(matches!(
+        g.step(&mut s, 0.01),
+        Err(Error::SingularMassMatrix { pivot_ratio, .. }) if pivot_ratio == 0.0
+    ));
+    assert_eq!(s, before);
+}
