@@ -19,6 +19,12 @@
 //! which cannot go below ~ε|q|/h (q_{k+1} is a floating-point number), is weighted by the small
 //! increment instead of the position. Newton iterates on Δ, so the unknown carries no ε|q| rounding.
 //!
+//! A state the integrator did not produce itself (the start of a run, or a state changed between steps)
+//! is first checked by [`DiscreteLagrangian::check_momenta`]: for a degenerate Lagrangian (linear in
+//! q̇) momenta off the primary constraint p = ∂L/∂q̇ are refused with
+//! [`OffPrimaryConstraint`](crate::OffPrimaryConstraint) instead of taking a wild step (see
+//! [`primary`](crate::primary)). The steps that continue a run skip the check.
+//!
 //! The Jacobian neglects the derivative of the discrete forces (they come as plain `f64` from
 //! [`Lagrangian::generalized_force`](noether_core::Lagrangian::generalized_force)); Newton still converges
 //! to the exact solution of F = 0, linearly when the forces depend strongly on q_{k+1}.
@@ -142,6 +148,10 @@ pub struct VariationalIntegrator<Ld> {
     last: NewtonInfo,
     /// Step size of the Jacobian factor kept from the last step.
     factor_h: f64,
+    /// Relative tolerance of the primary-constraint check.
+    primary_tol: f64,
+    /// The state (q, p) the last step ended at, one after the other: a step from it skips the check.
+    end: Vec<f64>,
 }
 
 impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
@@ -162,7 +172,29 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
             lu: None,
             last: NewtonInfo::default(),
             factor_h: f64::NAN,
+            primary_tol: crate::primary::DEFAULT_TOLERANCE,
+            end: Vec::new(),
         }
+    }
+
+    /// Replaces the relative tolerance τ of the check of a starting state's momenta against the primary
+    /// constraint of a degenerate Lagrangian (default [`primary::DEFAULT_TOLERANCE`](crate::primary::DEFAULT_TOLERANCE)
+    /// = 1e-8; see [`primary`](crate::primary)). `InvalidParameter` unless τ is finite and positive.
+    pub fn with_primary_tolerance(mut self, tol: f64) -> Result<Self> {
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(Error::InvalidParameter {
+                name: "primary-constraint tolerance",
+                value: tol,
+                reason: "must be finite and positive",
+            });
+        }
+        self.primary_tol = tol;
+        Ok(self)
+    }
+
+    /// The relative tolerance of the primary-constraint check.
+    pub fn primary_tolerance(&self) -> f64 {
+        self.primary_tol
     }
 
     /// Replaces the Newton settings (iteration cap, Jacobian reuse, and the absolute tolerance τ on the
@@ -260,6 +292,10 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
         let n = self.ld.dof();
         check_flow_args(n, t, h, q, p)?;
         check_len("q₁ (workspace)", &self.q1, n)?;
+        let continues = self.end.len() == 2 * n && self.end[..n] == *q && self.end[n..] == *p;
+        if !continues {
+            self.ld.check_momenta(t, q, p, self.primary_tol)?;
+        }
         self.predictor.guess_increment(q, h, &mut self.d);
         let mut sys = DelSystem {
             ld: &self.ld,
@@ -305,6 +341,9 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
         q.copy_from_slice(&self.q1);
         p.iter_mut().zip(&self.dp).for_each(|(pi, di)| *pi += di);
         self.predictor.record_increment(q, &self.d, h);
+        self.end.clear();
+        self.end.extend_from_slice(q);
+        self.end.extend_from_slice(p);
         self.last = info;
         Ok(info.iterations)
     }

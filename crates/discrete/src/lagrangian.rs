@@ -74,6 +74,17 @@ pub trait DiscreteLagrangian {
         false
     }
 
+    /// Checks that the momenta `p` at (t, q) are ones the continuous system can have: for a degenerate
+    /// Lagrangian (∂²L/∂q̇² singular, e.g. L linear in q̇) p must lie on the primary constraint, to the
+    /// relative tolerance `tol` (see [`primary`](crate::primary)); otherwise
+    /// [`OffPrimaryConstraint`](crate::OffPrimaryConstraint). The variational integrator calls it on
+    /// a state it did not produce itself. `Ok` by default (no continuous Lagrangian to check against);
+    /// the quadratures of a continuous Lagrangian ([`Midpoint`](crate::Midpoint),
+    /// [`Trapezoidal`](crate::Trapezoidal)) check.
+    fn check_momenta(&self, _t: f64, _q: &[f64], _p: &[f64], _tol: f64) -> Result<()> {
+        Ok(())
+    }
+
     /// The discrete forces f⁻ (acting at the left end q₀) and f⁺ (at the right end q₁) of one step, whose
     /// sum approximates ∫ Q·δq dt over the step. Only called when
     /// [`has_discrete_force`](Self::has_discrete_force) is `true`.
@@ -102,6 +113,9 @@ impl<Ld: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &Ld {
     }
     fn has_discrete_force(&self) -> bool {
         (**self).has_discrete_force()
+    }
+    fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
+        (**self).check_momenta(t, q, p, tol)
     }
     fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
         (**self).discrete_force(t0, h, q0, q1, minus, plus)

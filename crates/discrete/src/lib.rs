@@ -16,6 +16,8 @@
 //! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6 by
 //!   symmetric composition; [`Galerkin`]: orders 4 and 6 by a polynomial path and Gauss quadrature.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
+//! - [`primary`]: for a degenerate Lagrangian (linear in q̇), a start whose momenta are off
+//!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
 //!   [`MechanicalMidpoint`] (Newton with a banded or dense Jacobian assembled term by term, O(N) for
 //!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton).
@@ -53,6 +55,7 @@ pub mod lagrangian;
 pub mod mechanical;
 pub mod mechanical_midpoint;
 pub mod momentum;
+pub mod primary;
 pub mod quadrature;
 pub mod verlet;
 
@@ -64,6 +67,7 @@ pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
 pub use mechanical::{LocalPotential, Mass, Mechanical};
 pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};
+pub use primary::OffPrimaryConstraint;
 pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
 pub use verlet::Verlet;
 

@@ -105,6 +105,10 @@ impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
         self.el.lagrangian().has_generalized_force()
     }
 
+    fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
+        crate::primary::check(&self.el, t, q, p, tol)
+    }
+
     fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
         let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
         let v: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| (b - a) / h).collect();
@@ -164,6 +168,10 @@ impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
 
     fn has_discrete_force(&self) -> bool {
         self.el.lagrangian().has_generalized_force()
+    }
+
+    fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
+        crate::primary::check(&self.el, t, q, p, tol)
     }
 
     fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {

@@ -3,6 +3,7 @@
 
 mod bad_input;
 mod conserves;
+mod degenerate;
 mod mechanical;
 mod models;
 mod order;
