@@ -40,7 +40,9 @@ use std::iter::{Product, Sum};
 use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
 
-/// Value and gradient with respect to `D` variables (see the [module](self) documentation).
+/// Value and gradient with respect to `D` variables: forward mode with a dense gradient part, whose
+/// structurally zero gradients (constants) are never multiplied, so that an infinite factor cannot
+/// poison them.
 #[derive(Clone, Debug)]
 pub struct GradJet<T: DualNum<F>, F, D: Dim>
 where
