@@ -214,9 +214,9 @@ impl<P: Potential> Natural<P> {
         let value = ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, out);
         match (&self.mass, accelerate) {
             (Mass::Diagonal { inv, .. }, true) => out.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= -i),
-            (Mass::Dense { chol, .. }, true) => {
+            (Mass::Dense { .. }, true) => {
                 out.iter_mut().for_each(|x| *x = -*x);
-                chol.solve_mut(&mut nalgebra::DVectorViewMut::from_slice(out, n));
+                self.apply_inverse_mass(out);
             }
             (_, false) => out.iter_mut().for_each(|x| *x = -*x),
         }

@@ -31,7 +31,7 @@
 //!   ordinary differential equations, Math. Comp. 66 (1997) 1089.
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len, check_step};
+use crate::error::{check_finite, check_len, check_result, check_step, finite_result};
 use crate::natural::{Natural, Potential};
 use crate::{
     Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper,
@@ -65,13 +65,7 @@ impl<S: Separable + ?Sized> Field for PotentialOf<'_, S> {
 /// Ok when the gradient `out` and the value it was taken of are finite (where T or V is infinite
 /// there is no rate to return).
 fn finite_or(value: f64, out: &[f64]) -> Result<()> {
-    if !value.is_finite() || out.iter().any(|x| !x.is_finite()) {
-        return Err(Error::NonFiniteResult {
-            what: "forces",
-            t: f64::NAN,
-        });
-    }
-    Ok(())
+    finite_result("forces", f64::NAN, value).and_then(|_| check_result("forces", f64::NAN, out))
 }
 
 /// State (q, p): q̇ = ∇T(p), ṗ = −∇V(q).
