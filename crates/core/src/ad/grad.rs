@@ -39,7 +39,8 @@ use std::iter::{Product, Sum};
 use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
 
-/// Value and gradient with respect to `D` variables (see the [module](self) documentation).
+/// Value and gradient with respect to `D` variables, the derivative part always present (the design
+/// notes are in the private module `ad::grad`, in the source).
 #[derive(Clone, Debug)]
 pub struct GradJet<T: DualNum<F>, F, D: Dim>
 where
