@@ -12,6 +12,7 @@
 //! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta |
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
 //! | [`analysis`] | noether-analysis | equilibria and normal modes |
+//! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | `plot` (feature `plot`) | noether-plot | SVG pictures of a run |
 //!
 //! ```
@@ -36,6 +37,7 @@
 
 pub use nalgebra;
 pub use noether_analysis as analysis;
+pub use noether_canonical as canonical;
 pub use noether_constraints as constraints;
 pub use noether_core as core;
 pub use noether_discrete as discrete;
