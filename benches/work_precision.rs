@@ -8,7 +8,11 @@
 //! Problems:
 //! - Kepler, e = 0.6, μ = 1, 100 orbits (t = 200π), error |q(200π) − q₀| (the orbit is periodic);
 //! - Hénon-Heiles, q₀ = (0.1, 0), p₀ = (0, 0.5), Kahan-Li 8 at h = 0.01 for 10⁶ steps, relative energy
-//!   error at the end, against the same composition written by hand.
+//!   error at the end, against the same composition written by hand;
+//! - the outer solar system (Hairer-Lubich-Wanner's data, noether-particles gravity), 200 000 days,
+//!   error max_i |q_i − q_i,ref| against a reference run (IAS15 at ε = 1e-11).
+//!
+//! The Python peers (REBOUND's IAS15 and WHFast, scipy) on the same problems: `benches/peers.py`.
 
 #![allow(missing_docs)]
 
@@ -228,10 +232,16 @@ fn kepler_table() -> Vec<Curve> {
         }
         curves.push((sw.name, pts));
     }
+    print_time_to(&curves);
+    curves
+}
+
+/// The time each method takes to reach 1e-6 and 1e-10, and its ratio to the first curve (the peer).
+fn print_time_to(curves: &[Curve]) {
     println!("\nTime to reach an error (the fastest run at or below it), and the ratio to ode_solvers:");
     println!("| method | to 1e-6 | to 1e-10 |\n|---|---|---|");
     let peer = curves[0].1.clone();
-    for (name, pts) in &curves {
+    for (name, pts) in curves {
         let cell = |target| match (time_to(pts, target), time_to(&peer, target)) {
             (Some(t), Some(p)) => format!("{t:.3} ms ({:.2}×)", t / p),
             (Some(t), None) => format!("{t:.3} ms (the peer does not reach it)"),
@@ -239,7 +249,6 @@ fn kepler_table() -> Vec<Curve> {
         };
         println!("| {name} | {} | {} |", cell(1e-6), cell(1e-10));
     }
-    curves
 }
 
 /// Kahan-Li 8 coefficients, from noether's own composition (the same numbers for both loops).
@@ -301,26 +310,210 @@ fn henon_heiles_table() {
     );
 }
 
+// ---- The outer solar system ----
+
+/// G in AU³/(solar mass·day²) and the time span in days (Hairer-Lubich-Wanner, GNI I.2.4).
+const G_SOLAR: f64 = 2.95912208286e-4;
+const SOLAR_T: f64 = 200_000.0;
+/// Masses relative to the Sun (the Sun's includes the inner planets), positions (AU) and velocities
+/// (AU/day) on 5 September 1994 (GNI Table I.2.1): Sun, Jupiter, Saturn, Uranus, Neptune, Pluto.
+const SOLAR: [(f64, [f64; 3], [f64; 3]); 6] = [
+    (1.00000597682, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
+    (0.000954786104043, [-3.5023653, -3.8169847, -1.5507963], [0.00565429, -0.00412490, -0.00190589]),
+    (0.000285583733151, [9.0755314, -3.0458353, -1.6483708], [0.00168318, 0.00483525, 0.00192462]),
+    (0.0000437273164546, [8.3101420, -16.2901086, -7.2521278], [0.00354178, 0.00137102, 0.00055029]),
+    (0.0000517759138449, [11.4707666, -25.7294829, -10.8169456], [0.00288930, 0.00114527, 0.00039677]),
+    (1.0 / 1.3e8, [-15.5387357, -25.2225594, -3.1902382], [0.00276725, -0.00170702, -0.00136504]),
+];
+
+type Gravitating = System<((), AllPairs<noether::particles::Gravity>)>;
+
+fn solar_system() -> (Gravitating, State) {
+    let particles = SOLAR.iter().map(|(m, _, _)| Particle::new(*m)).collect();
+    let sys = System::new(particles)
+        .and_then(|s| s.with(AllPairs::new(noether::particles::Gravity { g: G_SOLAR })))
+        .expect("solar system");
+    let q: Vec<Vec3> = SOLAR.iter().map(|b| b.1).collect();
+    let v: Vec<Vec3> = SOLAR.iter().map(|b| b.2).collect();
+    let s0 = sys.state(0.0, &q, &v).expect("state");
+    (sys.with_parallel(Parallel::Serial), s0)
+}
+
+/// The end positions of a run of `stepper` to 200 000 days.
+fn solar_run<S: Stepper<Partner = Velocities>>(stepper: S, s0: State) -> Vec<f64> {
+    let sol = Driver::new(stepper, s0)
+        .and_then(|d| d.save(Save::End))
+        .and_then(|d| d.max_steps(100_000_000).run_until(SOLAR_T))
+        .expect("run");
+    sol.last().q.as_slice().to_vec()
+}
+
+fn solar_error(q: &[f64], reference: &[f64]) -> f64 {
+    q.chunks(3)
+        .zip(reference.chunks(3))
+        .map(|(a, b)| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt())
+        .fold(0.0, f64::max)
+}
+
+/// The hand-written right-hand side for ode_solvers: y = (q₀..q₅, v₀..v₅), each a 3-vector.
+struct SolarRhs {
+    gm: [f64; 6],
+}
+impl ode_solvers::System<f64, SVector<f64, 36>> for SolarRhs {
+    fn system(&self, _t: f64, y: &SVector<f64, 36>, dy: &mut SVector<f64, 36>) {
+        for k in 0..18 {
+            dy[k] = y[18 + k];
+            dy[18 + k] = 0.0;
+        }
+        for i in 0..6 {
+            for j in i + 1..6 {
+                let d = [y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]];
+                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let inv3 = 1.0 / (r2 * r2.sqrt());
+                for c in 0..3 {
+                    dy[18 + 3 * i + c] += self.gm[j] * inv3 * d[c];
+                    dy[18 + 3 * j + c] -= self.gm[i] * inv3 * d[c];
+                }
+            }
+        }
+    }
+}
+
+fn solar_ode_solvers(tol: f64, reference: &[f64]) -> f64 {
+    let mut y0 = SVector::<f64, 36>::zeros();
+    for (i, (_, q, v)) in SOLAR.iter().enumerate() {
+        for c in 0..3 {
+            y0[3 * i + c] = q[c];
+            y0[18 + 3 * i + c] = v[c];
+        }
+    }
+    let gm = SOLAR.map(|b| G_SOLAR * b.0);
+    let mut s = ode_solvers::Dop853::from_param(
+        SolarRhs { gm },
+        0.0,
+        SOLAR_T,
+        SOLAR_T,
+        y0,
+        tol,
+        tol,
+        0.9,
+        0.0,
+        0.333,
+        6.0,
+        SOLAR_T,
+        0.0,
+        u32::MAX,
+        1000,
+        ode_solvers::dop_shared::OutputType::Sparse,
+    );
+    s.integrate().expect("ode_solvers run");
+    let y = s.y_out().last().expect("a state");
+    solar_error(&y.as_slice()[..18], reference)
+}
+
+fn solar_noether(method: &str, x: f64, reference: &[f64]) -> f64 {
+    let (sys, s0) = solar_system();
+    let q = match method {
+        "DOP853" => solar_run(Dop853::new(sys).tolerances(x, x).expect("tol").with_dense_output(false), s0),
+        "DPRKN8" => solar_run(
+            Dprkn8::new(sys).and_then(|m| m.tolerances(x, x)).expect("DPRKN8").with_dense_output(false),
+            s0,
+        ),
+        "DPRKN12" => solar_run(
+            Dprkn12::new(sys).and_then(|m| m.tolerances(x, x)).expect("DPRKN12").with_dense_output(false),
+            s0,
+        ),
+        "IAS15" => solar_run(
+            Ias15::new(sys).and_then(|m| m.epsilon(x)).expect("IAS15").with_dense_output(false),
+            s0,
+        ),
+        _ => {
+            // Kahan-Li 8 with x steps over the span.
+            let steps = x as usize;
+            let sol = Driver::with_step(Composition::kahan_li8(sys), s0, SOLAR_T / x)
+                .and_then(|d| d.save(Save::End))
+                .and_then(|mut d| d.run_steps(steps))
+                .expect("run");
+            sol.last().q.as_slice().to_vec()
+        }
+    };
+    solar_error(&q, reference)
+}
+
+fn solar_table() -> Vec<Curve> {
+    let reference = {
+        let (sys, s0) = solar_system();
+        solar_run(Ias15::new(sys).and_then(|m| m.epsilon(1e-11)).expect("IAS15"), s0)
+    };
+    println!("\nOuter solar system, 200 000 days: error max_i |q_i − q_i,ref| in AU (min of 5 interleaved runs)");
+    println!("reference (IAS15, ε = 1e-11) end positions:");
+    for b in reference.chunks(3) {
+        println!("  {:+.15e} {:+.15e} {:+.15e}", b[0], b[1], b[2]);
+    }
+    let check = solar_noether("DPRKN12", 1e-16, &reference);
+    println!("DPRKN12 at tol 1e-16 differs from the reference by {check:.2e} AU");
+    let tols = vec![1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14];
+    let sweeps: [(&'static str, &str, Vec<f64>); 6] = [
+        ("ode_solvers DOP853 (hand-written rhs)", "tol", tols.clone()),
+        ("noether DOP853", "tol", tols.clone()),
+        ("noether DPRKN8", "tol", tols.clone()),
+        ("noether DPRKN12", "tol", tols),
+        ("noether IAS15", "ε", vec![1e-4, 1e-5, 1e-6, 1e-7, 1e-9]),
+        ("noether Kahan-Li 8", "steps", vec![1000.0, 2000.0, 4000.0, 8000.0, 16000.0]),
+    ];
+    let mut curves = Vec::new();
+    for (name, param, values) in sweeps {
+        println!("\n{name}\n| {param} | error | time |\n|---|---|---|");
+        let method = name.trim_start_matches("noether ").split(' ').next().unwrap_or("");
+        let mut pts = Vec::new();
+        for &x in &values {
+            let r = &reference;
+            let mut run = || {
+                if name.starts_with("ode_solvers") {
+                    solar_ode_solvers(x, r)
+                } else {
+                    solar_noether(method, x, r)
+                }
+            };
+            let [(ms, err), _] = race(5, [&mut run, &mut || solar_ode_solvers(1e-10, r)]);
+            println!("| {x:.0e} | {err:.2e} | {ms:.3} ms |");
+            pts.push((ms, err));
+        }
+        curves.push((name, pts));
+    }
+    print_time_to(&curves);
+    curves
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; a problem's name (kepler, hh) runs only that one.
     let which = std::env::args().nth(1).filter(|a| !a.starts_with('-'));
     let run = |name: &str| which.as_deref().is_none_or(|w| w == name);
     if run("kepler") {
         let curves = kepler_table();
-        let mut fig = noether::plot::Figure::new("Kepler e = 0.6, 100 orbits: work against precision")
-            .x_label("log₁₀ time [ms]")
-            .y_label("error |q(200π) − q₀|")
-            .log_y();
-        for (name, pts) in curves {
-            fig = fig.series(name, pts.iter().map(|(ms, e)| (ms.log10(), *e)).collect());
-        }
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/work_precision.svg");
-        match fig.save(&path) {
-            Ok(p) => println!("\nwrote {}", p.display()),
-            Err(e) => println!("\nno picture: {e}"),
-        }
+        picture("Kepler e = 0.6, 100 orbits", "error |q(200π) − q₀|", "work_precision", curves);
     }
     if run("hh") {
         henon_heiles_table();
+    }
+    if run("solar") {
+        let curves = solar_table();
+        picture("outer solar system, 200 000 days", "error max |q − q_ref| [AU]", "work_precision_solar", curves);
+    }
+}
+
+/// Error against log₁₀ time, one series per method, to `target/<file>.svg`.
+fn picture(title: &str, y_label: &str, file: &str, curves: Vec<Curve>) {
+    let mut fig = noether::plot::Figure::new(&format!("{title}: work against precision"))
+        .x_label("log₁₀ time [ms]")
+        .y_label(y_label)
+        .log_y();
+    for (name, pts) in curves {
+        fig = fig.series(name, pts.iter().map(|(ms, e)| (ms.log10(), *e)).collect());
+    }
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("target/{file}.svg"));
+    match fig.save(&path) {
+        Ok(p) => println!("\nwrote {}", p.display()),
+        Err(e) => println!("\nno picture: {e}"),
     }
 }

@@ -50,17 +50,55 @@ pub trait EmbeddedPair {
     /// Dense order (of the continuous extension).
     const DENSE_ORDER: u32;
     /// The scaled error norm; `k` holds the s main stages and k_s = F(t + h, y₁).
-    fn error_norm(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64;
+    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64;
     /// Coefficients of the dense polynomial from all stages (main, F(t+h,y₁), dense extra).
-    fn dense_coefficients(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]);
+    fn dense_coefficients(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]);
     /// y(t₀ + θh) from the coefficients.
     fn dense_eval(theta: f64, y0: &[f64], coeffs: &[Vec<f64>], out: &mut [f64]);
 }
 
-/// Σ_j w_j k_j[i]: component i of a weighted sum of the stages k_j (j over the weights given).
+/// The stages of one step, stored by component: the values k_0,i … k_{S−1},i of component i of all
+/// S stages are contiguous, so that every weighted sum of stages is one contiguous dot product per
+/// component (for a 2-dof system the stage-by-stage layout spent more on the loops than on the sums).
+#[derive(Debug, Clone, Copy)]
+pub struct Stages<'a> {
+    k: &'a [f64],
+    stride: usize,
+}
+
+impl<'a> Stages<'a> {
+    /// Component `i` of every stage, k_0,i … k_{S−1},i.
+    #[inline]
+    pub fn of(&self, i: usize) -> &'a [f64] {
+        &self.k[i * self.stride..(i + 1) * self.stride]
+    }
+    /// Component `i` of stage `j`, k_j,i.
+    #[inline]
+    pub fn get(&self, j: usize, i: usize) -> f64 {
+        self.k[i * self.stride + j]
+    }
+    /// Σ_j w_j k_j,i: component i of a weighted sum of the stages (j over the weights given).
+    #[inline]
+    pub fn weighted(&self, w: &[f64], i: usize) -> f64 {
+        dot(w, self.of(i))
+    }
+}
+
+/// Σ_j a_j b_j over the shorter of a, b, in four interleaved partial sums (the stage sums of the
+/// high-order methods run over up to 16 terms: one chain of dependent additions would dominate them).
 #[inline]
-pub(super) fn weighted_stages(w: &[f64], k: &[Vec<f64>], i: usize) -> f64 {
-    w.iter().zip(k).map(|(w, k)| w * k[i]).sum()
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    let mut acc = [0.0; 4];
+    for (x, y) in ca.zip(cb) {
+        acc[0] += x[0] * y[0];
+        acc[1] += x[1] * y[1];
+        acc[2] += x[2] * y[2];
+        acc[3] += x[3] * y[3];
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
@@ -244,7 +282,12 @@ pub struct Adaptive<S: Dynamics, M> {
     dense_allowed: bool,
     dense_requested: bool,
     n: usize,
-    k: Vec<Vec<f64>>,
+    /// The stages by component (see [`Stages`]): k[x·S + j] is component x of stage j.
+    k: Vec<f64>,
+    /// S: main stages, F(t + h, y₁), dense stages.
+    stride: usize,
+    /// One evaluation of the vector field, before it is stored as a stage.
+    f: Vec<f64>,
     y0: Vec<f64>,
     y1: Vec<f64>,
     tmp: Vec<f64>,
@@ -270,7 +313,9 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             dense_allowed: true,
             dense_requested: true,
             n,
-            k: vec![vec![0.0; 2 * n]; stages],
+            k: vec![0.0; 2 * n * stages],
+            stride: stages,
+            f: vec![0.0; 2 * n],
             y0: vec![0.0; 2 * n],
             y1: vec![0.0; 2 * n],
             tmp: vec![0.0; 2 * n],
@@ -325,24 +370,40 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         check_tolerances(self.atol, self.rtol, self.h_min)
     }
 
-    /// F at (t, y) into k[i]; Ok(false) when the value is not finite.
-    fn eval(&mut self, i: usize, t: f64, from_tmp: bool) -> Result<bool> {
+    /// The stages of the current step.
+    fn stages(&self) -> Stages<'_> {
+        Stages {
+            k: &self.k,
+            stride: self.stride,
+        }
+    }
+
+    /// F at (t, y) into stage j; Ok(false) when the value is not finite.
+    fn eval(&mut self, j: usize, t: f64, from_tmp: bool) -> Result<bool> {
         let n = self.n;
         let y = if from_tmp { &self.tmp } else { &self.y0 };
-        let (dq, dv) = self.k[i].split_at_mut(n);
+        let (dq, dv) = self.f.split_at_mut(n);
         self.evaluations += 1;
         let r = self.system.rates(t, &y[..n], &y[n..], dq, dv);
-        finite_stage(r, &self.k[i])
+        let ok = finite_stage(r, &self.f)?;
+        let s = self.stride;
+        self.f
+            .iter()
+            .enumerate()
+            .for_each(|(x, f)| self.k[x * s + j] = *f);
+        Ok(ok)
+    }
+
+    /// Stage j as one vector.
+    fn stage(&self, j: usize) -> Vec<f64> {
+        (0..2 * self.n).map(|x| self.k[x * self.stride + j]).collect()
     }
 
     /// tmp = y0 + h Σ_j row_j k_j.
     fn combine(&mut self, h: f64, row: &[f64]) {
-        self.tmp.copy_from_slice(&self.y0);
-        for (j, a) in row.iter().enumerate() {
-            if *a != 0.0 {
-                let c = h * a;
-                self.tmp.iter_mut().zip(&self.k[j]).for_each(|(y, k)| *y += c * k);
-            }
+        let s = self.stride;
+        for (x, y) in self.tmp.iter_mut().enumerate() {
+            *y = self.y0[x] + h * dot(row, &self.k[x * s..x * s + row.len()]);
         }
     }
 
@@ -363,7 +424,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         if self.fixed {
             return Ok(0.0);
         }
-        let err = M::error_norm(h, &self.k, &self.y0, &self.y1, self.atol, self.rtol);
+        let err = M::error_norm(h, self.stages(), &self.y0, &self.y1, self.atol, self.rtol);
         Ok(if err.is_nan() { f64::INFINITY } else { err })
     }
 
@@ -382,7 +443,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         if coeffs.len() != M::DENSE_LEN {
             coeffs = vec![vec![0.0; 2 * self.n]; M::DENSE_LEN];
         }
-        M::dense_coefficients(h, &self.k, &self.y0, &self.y1, &mut coeffs);
+        M::dense_coefficients(h, self.stages(), &self.y0, &self.y1, &mut coeffs);
         let eval: DenseEval = M::dense_eval;
         self.dense = Some(DenseOutput::from_coefficients(
             t,
@@ -410,9 +471,9 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             });
         }
         let y0 = self.y0.clone();
-        let k0 = self.k[0].clone();
+        let k0 = self.stage(0);
         let mut f1 = vec![0.0; n2];
-        let last = self.k.len() - 1;
+        let last = self.stride - 1;
         let (atol, rtol) = (self.atol, self.rtol);
         let h = initial_step_size(M::ORDER, atol, rtol, &y0, &k0, &mut f1, |h, f1| {
             self.tmp
@@ -420,13 +481,15 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
                 .enumerate()
                 .for_each(|(i, y)| *y = y0[i] + h * k0[i]);
             let ok = self.eval(last, state.t + h, true)?;
-            f1.copy_from_slice(&self.k[last]);
+            f1.copy_from_slice(&self.f);
             Ok(ok)
         })?;
         // F(t, y₀) is the first stage of the first step (as in Hairer's codes, which evaluate it
         // once): keep it where a step looks for the FSAL stage.
-        let s = M::C.len();
-        self.k[s].copy_from_slice(&k0);
+        let (s, stride) = (M::C.len(), self.stride);
+        k0.iter()
+            .enumerate()
+            .for_each(|(x, k)| self.k[x * stride + s] = *k);
         self.y1.copy_from_slice(&self.y0);
         self.fsal = Some(state.t);
         Ok(h)
@@ -456,7 +519,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         self.load(state);
         if reuse {
             let s = M::C.len();
-            self.k.swap(0, s);
+            self.k.chunks_exact_mut(self.stride).for_each(|kx| kx[0] = kx[s]);
         } else if !self.eval(0, t, false)? {
             return Err(Error::NonFiniteResult { what: "rates", t });
         }

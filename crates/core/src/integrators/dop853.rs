@@ -12,7 +12,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
 //!   II.5 and II.10 (code DOP853, error estimate (10.x), dense output).
 
-use super::adaptive::{error_scale, weighted_stages, Adaptive, Controller, EmbeddedPair};
+use super::adaptive::{error_scale, Adaptive, Controller, EmbeddedPair, Stages};
 
 /// The DOP853 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -332,13 +332,13 @@ impl EmbeddedPair for Dp853 {
 
     /// err = |h| ‖e₅‖² / sqrt(n (‖e₅‖² + 0.01 ‖e₃‖²)) with e₅ = Σ E5_j k_j, e₃ = Σ (b_j − BHH_j) k_j
     /// measured in the scaled norm (Hairer's DOP853 estimate).
-    fn error_norm(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
+    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
         let n = y0.len();
         let (mut err5, mut err3) = (0.0, 0.0);
         for i in 0..n {
             let sk = error_scale(atol, rtol, y0[i], y1[i]);
-            let e5 = weighted_stages(&E5, k, i);
-            let e3 = weighted_stages(&E3, k, i);
+            let e5 = k.weighted(&E5, i);
+            let e3 = k.weighted(&E3, i);
             err5 += (e5 / sk) * (e5 / sk);
             err3 += (e3 / sk) * (e3 / sk);
         }
@@ -349,14 +349,14 @@ impl EmbeddedPair for Dp853 {
     }
 
     /// F₀ = Δy, F₁ = h k₁ − Δy, F₂ = 2Δy − h (k₁ + k₁₃), F₃..₆ = h Σ_j D_rj k_j (Δy = y₁ − y₀).
-    fn dense_coefficients(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]) {
+    fn dense_coefficients(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]) {
         for i in 0..y0.len() {
             let dy = y1[i] - y0[i];
             out[0][i] = dy;
-            out[1][i] = h * k[0][i] - dy;
-            out[2][i] = 2.0 * dy - h * (k[0][i] + k[12][i]);
+            out[1][i] = h * k.get(0, i) - dy;
+            out[2][i] = 2.0 * dy - h * (k.get(0, i) + k.get(12, i));
             for r in 0..4 {
-                out[3 + r][i] = h * weighted_stages(&D[r], k, i);
+                out[3 + r][i] = h * k.weighted(&D[r], i);
             }
         }
     }

@@ -8,7 +8,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Table
 //!   II.5.2 (coefficients), II.6 (dense output, code DOPRI5).
 
-use super::adaptive::{error_scale, weighted_stages, Adaptive, Controller, EmbeddedPair};
+use super::adaptive::{error_scale, Adaptive, Controller, EmbeddedPair, Stages};
 
 /// The DOPRI5 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -82,11 +82,11 @@ impl EmbeddedPair for Dp5 {
     const DENSE_ORDER: u32 = 4;
 
     /// err = sqrt((1/n) Σ_i (h Σ_j e_j k_j,i / sk_i)²) over the n components of y.
-    fn error_norm(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
+    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
         let n = y0.len();
         let mut sum = 0.0;
         for i in 0..n {
-            let e = h * weighted_stages(&E, k, i);
+            let e = h * k.weighted(&E, i);
             let sk = error_scale(atol, rtol, y0[i], y1[i]);
             sum += (e / sk) * (e / sk);
         }
@@ -95,14 +95,14 @@ impl EmbeddedPair for Dp5 {
     }
 
     /// r₁ = y₁ − y₀, r₂ = h k₁ − r₁, r₃ = r₁ − h k₇ − r₂, r₄ = h Σ d_i k_i.
-    fn dense_coefficients(h: f64, k: &[Vec<f64>], y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]) {
+    fn dense_coefficients(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]) {
         for i in 0..y0.len() {
             let dy = y1[i] - y0[i];
-            let bspl = h * k[0][i] - dy;
+            let bspl = h * k.get(0, i) - dy;
             out[0][i] = dy;
             out[1][i] = bspl;
-            out[2][i] = dy - h * k[6][i] - bspl;
-            out[3][i] = h * weighted_stages(&D, k, i);
+            out[2][i] = dy - h * k.get(6, i) - bspl;
+            out[3][i] = h * k.weighted(&D, i);
         }
     }
 

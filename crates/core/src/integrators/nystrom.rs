@@ -61,7 +61,7 @@
 //!   (Nyström methods, order conditions).
 
 use super::adaptive::{
-    check_tolerances, check_underflow, error_scale, finite_stage, initial_step_size, Controller,
+    check_tolerances, check_underflow, dot, error_scale, finite_stage, initial_step_size, Controller,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -161,23 +161,6 @@ fn dense_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
         }
         out[i] = y0[i] + theta * acc;
     }
-}
-
-/// Σ_j a_j b_j over the shorter of a, b, in four interleaved partial sums (the stage sums of the
-/// high-order pairs run over up to 16 terms: one chain of dependent additions would dominate them).
-#[inline]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    let mut acc = [0.0; 4];
-    for (x, y) in ca.zip(cb) {
-        acc[0] += x[0] * y[0];
-        acc[1] += x[1] * y[1];
-        acc[2] += x[2] * y[2];
-        acc[3] += x[3] * y[3];
-    }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// An adaptive Runge-Kutta-Nyström pair `M` stepping a second-order system q̈ = f(q) (see the
