@@ -10,7 +10,10 @@
 //! - Hénon-Heiles, q₀ = (0.1, 0), p₀ = (0, 0.5), Kahan-Li 8 at h = 0.01 for 10⁶ steps, relative energy
 //!   error at the end, against the same composition written by hand;
 //! - the outer solar system (Hairer-Lubich-Wanner's data, noether-particles gravity), 200 000 days,
-//!   error max_i |q_i − q_i,ref| against a reference run (IAS15 at ε = 1e-11).
+//!   error max_i |q_i − q_i,ref| against a reference run (IAS15 at ε = 1e-11);
+//! - a planar chain of 40 pendulum links (`EulerLagrange` on the user's L, a mass matrix solve in every
+//!   right-hand side), 2 s from rest at moderate angles, error max_k |θ_k − θ_k,ref| against
+//!   ode_solvers' DOP853 at tol 1e-14 with the hand-derived equations of motion.
 //!
 //! The Python peers (REBOUND's IAS15 and WHFast, scipy) on the same problems: `benches/peers.py`.
 
@@ -319,11 +322,31 @@ const SOLAR_T: f64 = 200_000.0;
 /// (AU/day) on 5 September 1994 (GNI Table I.2.1): Sun, Jupiter, Saturn, Uranus, Neptune, Pluto.
 const SOLAR: [(f64, [f64; 3], [f64; 3]); 6] = [
     (1.00000597682, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
-    (0.000954786104043, [-3.5023653, -3.8169847, -1.5507963], [0.00565429, -0.00412490, -0.00190589]),
-    (0.000285583733151, [9.0755314, -3.0458353, -1.6483708], [0.00168318, 0.00483525, 0.00192462]),
-    (0.0000437273164546, [8.3101420, -16.2901086, -7.2521278], [0.00354178, 0.00137102, 0.00055029]),
-    (0.0000517759138449, [11.4707666, -25.7294829, -10.8169456], [0.00288930, 0.00114527, 0.00039677]),
-    (1.0 / 1.3e8, [-15.5387357, -25.2225594, -3.1902382], [0.00276725, -0.00170702, -0.00136504]),
+    (
+        0.000954786104043,
+        [-3.5023653, -3.8169847, -1.5507963],
+        [0.00565429, -0.00412490, -0.00190589],
+    ),
+    (
+        0.000285583733151,
+        [9.0755314, -3.0458353, -1.6483708],
+        [0.00168318, 0.00483525, 0.00192462],
+    ),
+    (
+        0.0000437273164546,
+        [8.3101420, -16.2901086, -7.2521278],
+        [0.00354178, 0.00137102, 0.00055029],
+    ),
+    (
+        0.0000517759138449,
+        [11.4707666, -25.7294829, -10.8169456],
+        [0.00288930, 0.00114527, 0.00039677],
+    ),
+    (
+        1.0 / 1.3e8,
+        [-15.5387357, -25.2225594, -3.1902382],
+        [0.00276725, -0.00170702, -0.00136504],
+    ),
 ];
 
 type Gravitating = System<((), AllPairs<noether::particles::Gravity>)>;
@@ -367,7 +390,11 @@ impl ode_solvers::System<f64, SVector<f64, 36>> for SolarRhs {
         }
         for i in 0..6 {
             for j in i + 1..6 {
-                let d = [y[3 * j] - y[3 * i], y[3 * j + 1] - y[3 * i + 1], y[3 * j + 2] - y[3 * i + 2]];
+                let d = [
+                    y[3 * j] - y[3 * i],
+                    y[3 * j + 1] - y[3 * i + 1],
+                    y[3 * j + 2] - y[3 * i + 2],
+                ];
                 let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
                 let inv3 = 1.0 / (r2 * r2.sqrt());
                 for c in 0..3 {
@@ -414,17 +441,32 @@ fn solar_ode_solvers(tol: f64, reference: &[f64]) -> f64 {
 fn solar_noether(method: &str, x: f64, reference: &[f64]) -> f64 {
     let (sys, s0) = solar_system();
     let q = match method {
-        "DOP853" => solar_run(Dop853::new(sys).tolerances(x, x).expect("tol").with_dense_output(false), s0),
+        "DOP853" => solar_run(
+            Dop853::new(sys)
+                .tolerances(x, x)
+                .expect("tol")
+                .with_dense_output(false),
+            s0,
+        ),
         "DPRKN8" => solar_run(
-            Dprkn8::new(sys).and_then(|m| m.tolerances(x, x)).expect("DPRKN8").with_dense_output(false),
+            Dprkn8::new(sys)
+                .and_then(|m| m.tolerances(x, x))
+                .expect("DPRKN8")
+                .with_dense_output(false),
             s0,
         ),
         "DPRKN12" => solar_run(
-            Dprkn12::new(sys).and_then(|m| m.tolerances(x, x)).expect("DPRKN12").with_dense_output(false),
+            Dprkn12::new(sys)
+                .and_then(|m| m.tolerances(x, x))
+                .expect("DPRKN12")
+                .with_dense_output(false),
             s0,
         ),
         "IAS15" => solar_run(
-            Ias15::new(sys).and_then(|m| m.epsilon(x)).expect("IAS15").with_dense_output(false),
+            Ias15::new(sys)
+                .and_then(|m| m.epsilon(x))
+                .expect("IAS15")
+                .with_dense_output(false),
             s0,
         ),
         _ => {
@@ -445,7 +487,9 @@ fn solar_table() -> Vec<Curve> {
         let (sys, s0) = solar_system();
         solar_run(Ias15::new(sys).and_then(|m| m.epsilon(1e-11)).expect("IAS15"), s0)
     };
-    println!("\nOuter solar system, 200 000 days: error max_i |q_i − q_i,ref| in AU (min of 5 interleaved runs)");
+    println!(
+        "\nOuter solar system, 200 000 days: error max_i |q_i − q_i,ref| in AU (min of 5 interleaved runs)"
+    );
     println!("reference (IAS15, ε = 1e-11) end positions:");
     for b in reference.chunks(3) {
         println!("  {:+.15e} {:+.15e} {:+.15e}", b[0], b[1], b[2]);
@@ -459,12 +503,20 @@ fn solar_table() -> Vec<Curve> {
         ("noether DPRKN8", "tol", tols.clone()),
         ("noether DPRKN12", "tol", tols),
         ("noether IAS15", "ε", vec![1e-4, 1e-5, 1e-6, 1e-7, 1e-9]),
-        ("noether Kahan-Li 8", "steps", vec![1000.0, 2000.0, 4000.0, 8000.0, 16000.0]),
+        (
+            "noether Kahan-Li 8",
+            "steps",
+            vec![1000.0, 2000.0, 4000.0, 8000.0, 16000.0],
+        ),
     ];
     let mut curves = Vec::new();
     for (name, param, values) in sweeps {
         println!("\n{name}\n| {param} | error | time |\n|---|---|---|");
-        let method = name.trim_start_matches("noether ").split(' ').next().unwrap_or("");
+        let method = name
+            .trim_start_matches("noether ")
+            .split(' ')
+            .next()
+            .unwrap_or("");
         let mut pts = Vec::new();
         for &x in &values {
             let r = &reference;
@@ -485,26 +537,155 @@ fn solar_table() -> Vec<Curve> {
     curves
 }
 
+// ---- A chain of 40 pendulum links ----
+
+#[allow(dead_code, clippy::all)]
+#[path = "../crates/core/tests/ad/systems.rs"]
+mod systems;
+use systems::Chain;
+
+const LINKS: usize = 40;
+const CHAIN_T: f64 = 2.0;
+
+fn chain_start() -> [f64; LINKS] {
+    std::array::from_fn(|k| 0.3 * (k as f64).sin() + 0.1)
+}
+
+/// The hand-derived equations of motion (Cholesky of the hand-built mass matrix) for ode_solvers.
+struct ChainRhs(Chain<LINKS>);
+impl ode_solvers::System<f64, SVector<f64, { 2 * LINKS }>> for ChainRhs {
+    fn system(&self, _t: f64, y: &SVector<f64, { 2 * LINKS }>, dy: &mut SVector<f64, { 2 * LINKS }>) {
+        let q: [f64; LINKS] = std::array::from_fn(|k| y[k]);
+        let v: [f64; LINKS] = std::array::from_fn(|k| y[LINKS + k]);
+        let a = self.0.hand_accelerations(&q, &v);
+        for k in 0..LINKS {
+            dy[k] = v[k];
+            dy[LINKS + k] = a[k];
+        }
+    }
+}
+
+fn chain_ode_solvers(tol: f64) -> Vec<f64> {
+    let mut y0 = SVector::<f64, { 2 * LINKS }>::zeros();
+    for (k, q) in chain_start().iter().enumerate() {
+        y0[k] = *q;
+    }
+    let mut s = ode_solvers::Dop853::from_param(
+        ChainRhs(Chain::default()),
+        0.0,
+        CHAIN_T,
+        CHAIN_T,
+        y0,
+        tol,
+        tol,
+        0.9,
+        0.0,
+        0.333,
+        6.0,
+        CHAIN_T,
+        0.0,
+        u32::MAX,
+        1000,
+        ode_solvers::dop_shared::OutputType::Sparse,
+    );
+    s.integrate().expect("ode_solvers run");
+    let y = s.y_out().last().expect("a state");
+    y.as_slice()[..LINKS].to_vec()
+}
+
+fn chain_noether(tol: f64) -> Vec<f64> {
+    let el = EulerLagrange::new(Chain::<LINKS>::default());
+    let dp = Dop853::new(el)
+        .tolerances(tol, tol)
+        .expect("tol")
+        .with_dense_output(false);
+    let sol = Driver::new(dp, State::new(0.0, chain_start(), [0.0; LINKS]))
+        .and_then(|d| d.save(Save::End))
+        .and_then(|mut d| d.run_until(CHAIN_T))
+        .expect("run");
+    sol.last().q.as_slice().to_vec()
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+fn chain_table() -> Vec<Curve> {
+    let reference = chain_ode_solvers(1e-14);
+    println!("\nChain of {LINKS} pendulum links, {CHAIN_T} s: error max_k |θ_k − θ_k,ref| (min of 3 interleaved runs)");
+    println!(
+        "reference: ode_solvers DOP853 at tol 1e-14; noether's DOP853 at tol 1e-14 lies {:.2e} from it",
+        max_diff(&chain_noether(1e-14), &reference)
+    );
+    let tols = [1e-6, 1e-8, 1e-10, 1e-12];
+    type Run = fn(f64) -> Vec<f64>;
+    let runs: [(&'static str, Run); 2] = [
+        (
+            "ode_solvers DOP853 (hand-written equations of motion)",
+            chain_ode_solvers,
+        ),
+        ("noether DOP853 (EulerLagrange on L)", chain_noether),
+    ];
+    let mut curves = Vec::new();
+    for (name, run) in runs {
+        println!("\n{name}\n| tol | error | time |\n|---|---|---|");
+        let mut pts = Vec::new();
+        for &tol in &tols {
+            let r = &reference;
+            let [(ms, err), _] = race(
+                3,
+                [&mut || max_diff(&run(tol), r), &mut || {
+                    max_diff(&chain_ode_solvers(1e-8), r)
+                }],
+            );
+            println!("| {tol:.0e} | {err:.2e} | {ms:.3} ms |");
+            pts.push((ms, err));
+        }
+        curves.push((name, pts));
+    }
+    print_time_to(&curves);
+    curves
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; a problem's name (kepler, hh) runs only that one.
     let which = std::env::args().nth(1).filter(|a| !a.starts_with('-'));
     let run = |name: &str| which.as_deref().is_none_or(|w| w == name);
     if run("kepler") {
         let curves = kepler_table();
-        picture("Kepler e = 0.6, 100 orbits", "error |q(200π) − q₀|", "work_precision", curves);
+        picture(
+            "Kepler e = 0.6, 100 orbits",
+            "error |q(200π) − q₀|",
+            "work_precision",
+            curves,
+        );
     }
     if run("hh") {
         henon_heiles_table();
     }
+    if run("chain") {
+        let curves = chain_table();
+        picture(
+            "chain of 40 links, 2 s",
+            "error max |θ − θ_ref|",
+            "work_precision_chain",
+            curves,
+        );
+    }
     if run("solar") {
         let curves = solar_table();
-        picture("outer solar system, 200 000 days", "error max |q − q_ref| [AU]", "work_precision_solar", curves);
+        picture(
+            "outer solar system, 200 000 days",
+            "error max |q − q_ref| [AU]",
+            "work_precision_solar",
+            curves,
+        );
     }
 }
 
 /// Error against log₁₀ time, one series per method, to `target/<file>.svg`.
 fn picture(title: &str, y_label: &str, file: &str, curves: Vec<Curve>) {
-    let mut fig = noether::plot::Figure::new(&format!("{title}: work against precision"))
+    let mut fig = noether::plot::Figure::new(format!("{title}: work against precision"))
         .x_label("log₁₀ time [ms]")
         .y_label(y_label)
         .log_y();

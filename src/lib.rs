@@ -147,6 +147,8 @@ examples! {
     coupled_chains_momentum: "coupled chains: momentum to rounding, the mirror symmetry of the two chains (Figs. 5-7)",
     coupled_chains_transfer: "coupled chains: momentum transferred in a collision against v0 (the paper's Fig. 8)",
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
+    struck_rod: "impulsive motion: a struck rod, a caught rod, a peg at the centre of percussion",
+    collision_lab_cm: "two unequal masses collide: lab angles, recoil, energy transfer, lab cross section from CM",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -207,3 +207,13 @@ fn closed_form_rolling_disk() {
 fn closed_form_normal_modes() {
     assert_example_passes("normal_modes");
 }
+
+#[test]
+fn closed_form_struck_rod() {
+    assert_example_passes("struck_rod");
+}
+
+#[test]
+fn closed_form_collision_lab_cm() {
+    assert_example_passes("collision_lab_cm");
+}

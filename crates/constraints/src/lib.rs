@@ -13,6 +13,8 @@
 //!   discrete Lagrangian of noether-discrete.
 //! - Nonholonomic constraints A(t, q) q̇ + a(t, q) = 0 ([`Nonholonomic`]) in the continuous equations
 //!   (Lagrange-d'Alembert).
+//! - [`Impact`]: impulsive motion, the jump of the momenta by a generalized impulse and the impulsive
+//!   reactions of constraints that act for an instant (a blow, a catch, a rebound with restitution).
 //!
 //! Bad input is an error, never a panic: a state off the constraints ([`Error::ConstraintViolated`],
 //! naming the residual), redundant constraints ([`Error::RankDeficientConstraints`], with the rank),
@@ -58,6 +60,7 @@ pub mod dynamics;
 pub mod error;
 pub mod forces;
 pub mod holonomic;
+pub mod impulse;
 pub mod jets;
 pub mod nonholonomic;
 pub mod projection;
@@ -68,6 +71,7 @@ pub use dynamics::Constrained;
 pub use error::{Error, Result};
 pub use forces::ConstraintForces;
 pub use holonomic::{Holonomic, HolonomicSet};
+pub use impulse::{generalized_impulse, Impact, ImpactResult, StruckPoints};
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
 pub use projection::{project, Projected, Projection, ProjectionReport};
 pub use rattle::{Rattle, RattleInfo};

@@ -550,8 +550,10 @@ impl<'a, S: Stepper> Driver<'a, S> {
                             break;
                         }
                         Action::Reset(reset) => {
-                            reset(&mut self.state);
-                            self.state.validate(n)?;
+                            let mut changed = self.state.clone();
+                            reset(&mut changed)?;
+                            changed.validate(n)?;
+                            self.state = changed;
                             if matches!(self.save, Save::Steps | Save::Every(_)) {
                                 self.observe_into(&mut obs_row)?;
                                 sol.push(&self.state, &obs_row);

@@ -3,6 +3,7 @@
 mod bad_input;
 mod chain;
 mod continuous;
+mod impulse;
 mod models;
 mod nonholonomic;
 mod rattle;

@@ -33,7 +33,7 @@ impl Direction {
 }
 
 /// A state change applied when an event fires, after which the run continues.
-pub type Reset<'a, K> = Box<dyn FnMut(&mut State<K>) + 'a>;
+pub type Reset<'a, K> = Box<dyn FnMut(&mut State<K>) -> Result<()> + 'a>;
 
 pub(crate) enum Action<'a, K> {
     Record,
@@ -109,7 +109,18 @@ impl<'a, K: Partner> Event<'a, K> {
 
     /// At the event the state is changed by `reset` (which may change q, the partner, even t) and the
     /// run continues from the changed state. The solution saves the state before and after.
-    pub fn reset(mut self, reset: impl FnMut(&mut State<K>) + 'a) -> Self {
+    pub fn reset(mut self, mut reset: impl FnMut(&mut State<K>) + 'a) -> Self {
+        self.action = Action::Reset(Box::new(move |s| {
+            reset(s);
+            Ok(())
+        }));
+        self
+    }
+
+    /// As [`reset`](Self::reset), with a change that can fail (an impulsive jump solved by Newton, a
+    /// projection): an error ends the run with that error, and the driver's state is the one at the
+    /// event, before the reset began.
+    pub fn try_reset(mut self, reset: impl FnMut(&mut State<K>) -> Result<()> + 'a) -> Self {
         self.action = Action::Reset(Box::new(reset));
         self
     }

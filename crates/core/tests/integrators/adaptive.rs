@@ -271,3 +271,30 @@ fn closed_form_driver_uses_adaptive_steps() {
     assert!(sol.stats().steps < 200, "{:?}", sol.stats());
     assert_eq!(sol.len(), sol.stats().steps + 1);
 }
+
+#[test]
+fn bad_input_failing_reset_ends_the_run_with_its_error() {
+    // A reset that fails half-way (it changes v, then reports an error) ends the run with that
+    // error, and the driver's state is the state at the event, as it was before the reset began.
+    let s = Dop853::new(Natural::unit(PendulumV))
+        .tolerances(1e-12, 1e-12)
+        .unwrap();
+    let mut driver = Driver::new(s, pendulum_start()).unwrap().event(
+        Event::new("θ = 0", |s: &State| s.q[0]).falling().try_reset(|s| {
+            s.v[0] = 1e3;
+            Err(Error::Unsupported("a reset that fails"))
+        }),
+    );
+    let e = driver.run_until(10.0).unwrap_err();
+    assert_eq!(e, Error::Unsupported("a reset that fails"));
+    let at = driver.state();
+    let expected = elliptic_k((THETA0 / 2.0).sin().powi(2));
+    // At the event (located to 1e-14 on the dense output; the run's tolerance gives 1e-9 in t), with
+    // the velocity the pendulum had there, not the reset's 1e3: |θ̇| = 2 sin(θ₀/2) at the bottom (unit
+    // pendulum, energy).
+    assert!(at.q[0].abs() < 1e-12 && (at.t - expected).abs() < 1e-9, "{at:?}");
+    assert!(
+        (at.v[0].abs() - 2.0 * (THETA0 / 2.0).sin()).abs() < 1e-9,
+        "{at:?}"
+    );
+}
