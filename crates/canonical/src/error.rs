@@ -13,15 +13,9 @@ pub enum Error {
     /// An error of noether-core (dimensions, non-finite input or result, Newton failure).
     #[error(transparent)]
     Core(noether_core::Error),
-
     // ---- brackets, canonical transformations, generating functions, Hamilton-Jacobi ----
 
-
-
     // ---- action-angle variables, Routh's reduction, Poincaré sections ----
-
-
-
 }
 
 noether_core::crate_error_conversions!(Error);
