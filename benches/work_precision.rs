@@ -135,12 +135,14 @@ fn noether_kl8(per_orbit: f64) -> f64 {
     kepler_error(sol.last().q.as_slice())
 }
 
-fn ode_solvers_dop853(tol: f64) -> f64 {
-    let (q, v) = kepler_start();
-    let t_end = 2.0 * std::f64::consts::PI * ORBITS;
-    let y0 = SVector::<f64, 4>::new(q[0], q[1], v[0], v[1]);
+/// ode_solvers' DOP853 from y0 at t = 0 to `t_end` with atol = rtol = `tol` and Hairer's default
+/// controller (the one noether's DOP853 uses), no output but the end; the state at `t_end`.
+fn ode_solvers_end<F, const N: usize>(rhs: F, y0: SVector<f64, N>, t_end: f64, tol: f64) -> SVector<f64, N>
+where
+    F: ode_solvers::System<f64, SVector<f64, N>>,
+{
     let mut s = ode_solvers::Dop853::from_param(
-        KeplerRhs,
+        rhs,
         0.0,
         t_end,
         t_end,
@@ -158,7 +160,14 @@ fn ode_solvers_dop853(tol: f64) -> f64 {
         ode_solvers::dop_shared::OutputType::Sparse,
     );
     s.integrate().expect("ode_solvers run");
-    let y = s.y_out().last().expect("a state");
+    *s.y_out().last().expect("a state")
+}
+
+fn ode_solvers_dop853(tol: f64) -> f64 {
+    let (q, v) = kepler_start();
+    let t_end = 2.0 * std::f64::consts::PI * ORBITS;
+    let y0 = SVector::<f64, 4>::new(q[0], q[1], v[0], v[1]);
+    let y = ode_solvers_end(KeplerRhs, y0, t_end, tol);
     kepler_error(&[y[0], y[1]])
 }
 
@@ -415,26 +424,7 @@ fn solar_ode_solvers(tol: f64, reference: &[f64]) -> f64 {
         }
     }
     let gm = SOLAR.map(|b| G_SOLAR * b.0);
-    let mut s = ode_solvers::Dop853::from_param(
-        SolarRhs { gm },
-        0.0,
-        SOLAR_T,
-        SOLAR_T,
-        y0,
-        tol,
-        tol,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        SOLAR_T,
-        0.0,
-        u32::MAX,
-        1000,
-        ode_solvers::dop_shared::OutputType::Sparse,
-    );
-    s.integrate().expect("ode_solvers run");
-    let y = s.y_out().last().expect("a state");
+    let y = ode_solvers_end(SolarRhs { gm }, y0, SOLAR_T, tol);
     solar_error(&y.as_slice()[..18], reference)
 }
 
@@ -570,26 +560,7 @@ fn chain_ode_solvers(tol: f64) -> Vec<f64> {
     for (k, q) in chain_start().iter().enumerate() {
         y0[k] = *q;
     }
-    let mut s = ode_solvers::Dop853::from_param(
-        ChainRhs(Chain::default()),
-        0.0,
-        CHAIN_T,
-        CHAIN_T,
-        y0,
-        tol,
-        tol,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        CHAIN_T,
-        0.0,
-        u32::MAX,
-        1000,
-        ode_solvers::dop_shared::OutputType::Sparse,
-    );
-    s.integrate().expect("ode_solvers run");
-    let y = s.y_out().last().expect("a state");
+    let y = ode_solvers_end(ChainRhs(Chain::default()), y0, CHAIN_T, tol);
     y.as_slice()[..LINKS].to_vec()
 }
 
