@@ -2,6 +2,7 @@
 //! names say where the truth comes from (`closed_form_*`, `identity_*`, `conserves_*`, `errors_*`).
 
 mod generating;
+mod hamilton_jacobi;
 mod poisson;
 mod transform;
 
