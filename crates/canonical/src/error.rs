@@ -13,8 +13,42 @@ pub enum Error {
     /// An error of noether-core (dimensions, non-finite input or result, Newton failure).
     #[error(transparent)]
     Core(noether_core::Error),
-    // ---- brackets, canonical transformations, generating functions, Hamilton-Jacobi ----
 
+    // ---- brackets, canonical transformations, generating functions, Hamilton-Jacobi ----
+    /// Two functions (a bracket's f and g, a function and a Hamiltonian, a map and a Hamiltonian) are
+    /// defined on phase spaces of different dimensions.
+    #[error("phase-space mismatch: {first} degrees of freedom against {second}")]
+    PhaseSpaceMismatch {
+        /// Degrees of freedom of the first function.
+        first: usize,
+        /// Degrees of freedom of the second.
+        second: usize,
+    },
+    /// A check over sampled points was given no sample (its worst case would be meaningless).
+    #[error("no sample points were given")]
+    NoSamples,
+    /// A generating function whose mixed Hessian ∂²F/∂x∂X (old against new variables) is singular
+    /// where the transformation is asked for: it generates no transformation there.
+    #[error(
+        "generating function {kind} is degenerate at t = {t}: det ∂²F/∂x∂X = 0 (pivot ratio {pivot_ratio:e})"
+    )]
+    DegenerateGenerator {
+        /// Its kind ("F1", "F2", "F3", "F4").
+        kind: &'static str,
+        /// Time of the evaluation.
+        t: f64,
+        /// Smallest pivot of the mixed Hessian relative to its scale (NaN for a non-finite Hessian).
+        pivot_ratio: f64,
+    },
+    /// A complete integral S(q, α, t) whose mixed Hessian ∂²S/∂q∂α is singular at the point asked
+    /// for: Jacobi's theorem cannot be solved for q (or α) there (a turning point, a bad α).
+    #[error("complete integral is degenerate at t = {t}: det ∂²S/∂q∂α = 0 (pivot ratio {pivot_ratio:e})")]
+    DegenerateCompleteIntegral {
+        /// Time of the evaluation.
+        t: f64,
+        /// Smallest pivot of ∂²S/∂q∂α relative to its scale (NaN for a non-finite Hessian).
+        pivot_ratio: f64,
+    },
     // ---- action-angle variables, Routh's reduction, Poincaré sections ----
 }
 

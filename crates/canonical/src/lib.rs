@@ -6,5 +6,13 @@
 //! is exact (noether-core's dual numbers); every implicit relation is solved by core's Newton.
 
 pub mod error;
+pub mod generating;
+pub mod hamilton_jacobi;
+pub mod poisson;
+pub mod transform;
+pub use generating::{GeneratingFunction, Kind};
+pub use hamilton_jacobi::CompleteIntegral;
+pub use poisson::{bracket, constant_of_motion, time_derivative, PhaseFunction};
+pub use transform::CanonicalMap;
 
 pub use error::{Error, Result};
