@@ -8,3 +8,7 @@
 pub mod error;
 
 pub use error::{Error, Result};
+
+pub mod action_angle;
+
+pub use action_angle::{ActionAngle, Libration, Rotation};

@@ -1,0 +1,3 @@
+//! Integration tests of noether-canonical: one test binary, one module per topic.
+
+mod action_angle;
