@@ -68,6 +68,9 @@ use noether_core::roots::bracketed_root;
 use noether_core::{Hamiltonian, Scalar};
 use num_dual::{first_derivative, second_derivative, Dual2_64, Dual64};
 use std::cell::Cell;
+
+mod separated;
+pub use separated::{Orbit, Separated, SeparatedActions, SeparatedResult};
 use std::f64::consts::PI;
 
 /// A one-degree-of-freedom h(q, p): a 1-dof [`Hamiltonian`] at a fixed time, or one separated part
@@ -585,9 +588,10 @@ fn momenta_near_end<C: Curve>(c: &C, w: &Well, phi: f64, ps: f64) -> Result<(f64
 }
 
 /// One midpoint-rule pass over N nodes of a libration: (J, T, upper integrand, lower integrand).
-fn libration_pass<C: Curve>(c: &C, w: &Well, n: usize) -> Result<(f64, f64, Vec<f64>, Vec<f64>)> {
+fn libration_pass<C: Curve>(c: &C, w: &Well, n: usize, extras: Extras) -> Result<Pass> {
     let (mid, half) = (0.5 * (w.qa + w.qb), 0.5 * (w.qb - w.qa));
     let (mut gu, mut gl) = (vec![0.0; n], vec![0.0; n]);
+    let mut extra = vec![(0.0, 0.0); extras.len()];
     let mut area = 0.0;
     let mut guess = 0.0;
     for j in 0..n {
@@ -604,15 +608,68 @@ fn libration_pass<C: Curve>(c: &C, w: &Well, n: usize) -> Result<(f64, f64, Vec<
             momenta(c, q, w.e, ps, hs, hpp)?
         };
         area += (pp - pm) * wq;
+        for (x, f) in extra.iter_mut().zip(extras) {
+            let v = wq * (f(q, pp) - f(q, pm));
+            *x = (x.0 + v, x.1 + v.abs());
+        }
         gu[j] = wq / velocity(c, q, pp);
         gl[j] = -wq / velocity(c, q, pm);
     }
     let dphi = PI / n as f64;
     let period = dphi * (gu.iter().sum::<f64>() + gl.iter().sum::<f64>());
-    Ok((area * dphi / (2.0 * PI), period, gu, gl))
+    Ok(Pass {
+        action: area * dphi / (2.0 * PI),
+        period,
+        upper: gu,
+        lower: gl,
+        extras: extra.into_iter().map(|(a, b)| (a * dphi, b * dphi)).collect(),
+    })
+}
+
+/// Further integrands f(q, p) whose integrals ∮ f dq over the orbit are taken with J and T (and
+/// converge with them): a libration sums f(q, p₊) − f(q, p₋), a rotation f(q, p).
+pub(crate) type Extras<'a> = &'a [&'a dyn Fn(f64, f64) -> f64];
+
+/// Two passes agree: |x₁ − x₀| ≤ tol · scale.
+fn settled(x0: f64, x1: f64, scale: f64, tol: f64) -> bool {
+    (x1 - x0).abs() <= tol * scale
+}
+
+/// One quadrature pass: J, T (signed for a rotation), the time integrands, the further integrals
+/// with the integrals of their absolute values (their scale).
+struct Pass {
+    action: f64,
+    period: f64,
+    upper: Vec<f64>,
+    lower: Vec<f64>,
+    extras: Vec<(f64, f64)>,
+}
+
+impl Pass {
+    /// This pass agrees with `earlier` to `tol`: J and T relative, the extras against their scales.
+    fn settled(&self, earlier: &Pass, tol: f64) -> bool {
+        settled(earlier.action, self.action, self.action.abs(), tol)
+            && settled(earlier.period, self.period, self.period.abs(), tol)
+            && self
+                .extras
+                .iter()
+                .zip(&earlier.extras)
+                .all(|(a, b)| settled(b.0, a.0, a.1, tol))
+    }
 }
 
 pub(crate) fn libration<C: Curve>(c: &C, e: f64, q_inside: f64, s: &Settings) -> Result<Libration> {
+    Ok(libration_with(c, e, q_inside, s, &[])?.0)
+}
+
+/// The libration and the integrals ∮ f dq of the `extras`.
+pub(crate) fn libration_with<C: Curve>(
+    c: &C,
+    e: f64,
+    q_inside: f64,
+    s: &Settings,
+    extras: Extras,
+) -> Result<(Libration, Vec<f64>)> {
     finite("action-angle energy", e)?;
     finite("action-angle q_inside", q_inside)?;
     let (qa, qb) = turning_points(c, e, q_inside, s.search_step)?;
@@ -626,7 +683,7 @@ pub(crate) fn libration<C: Curve>(c: &C, e: f64, q_inside: f64, s: &Settings) ->
         rule: &rule,
     };
     let mut n = s.nodes;
-    let (mut j0, mut t0, _, _) = libration_pass(c, &well, n)?;
+    let mut last = libration_pass(c, &well, n, extras)?;
     loop {
         n *= 2;
         if n > s.max_nodes {
@@ -634,13 +691,14 @@ pub(crate) fn libration<C: Curve>(c: &C, e: f64, q_inside: f64, s: &Settings) ->
                 what: "libration action and period",
                 nodes: n / 2,
                 previous: f64::NAN,
-                estimate: j0,
+                estimate: last.action,
             });
         }
-        let (j1, t1, gu, gl) = libration_pass(c, &well, n)?;
-        let change = (j1 - j0).abs();
-        if change <= s.tolerance * j1.abs() && (t1 - t0).abs() <= s.tolerance * t1.abs() {
-            return Ok(Libration {
+        let pass = libration_pass(c, &well, n, extras)?;
+        let (j1, t1) = (pass.action, pass.period);
+        let change = (j1 - last.action).abs();
+        if pass.settled(&last, s.tolerance) {
+            let lib = Libration {
                 energy: e,
                 q_min: qa,
                 q_max: qb,
@@ -649,11 +707,12 @@ pub(crate) fn libration<C: Curve>(c: &C, e: f64, q_inside: f64, s: &Settings) ->
                 frequency: 2.0 * PI / t1,
                 nodes: n,
                 action_change: change,
-                upper: cosine_coefficients(&gu),
-                lower: cosine_coefficients(&gl),
-            });
+                upper: cosine_coefficients(&pass.upper),
+                lower: cosine_coefficients(&pass.lower),
+            };
+            return Ok((lib, pass.extras.iter().map(|x| x.0).collect()));
         }
-        (j0, t0) = (j1, t1);
+        last = pass;
     }
 }
 
@@ -716,18 +775,30 @@ fn rotation_pass<C: Curve>(
     period: f64,
     p_guess: f64,
     n: usize,
-) -> Result<(f64, f64, Vec<f64>)> {
+    extras: Extras,
+) -> Result<Pass> {
     let mut g = vec![0.0; n];
+    let mut extra = vec![(0.0, 0.0); extras.len()];
     let mut sum_p = 0.0;
     let mut p = momentum_on_branch(c, q0, e, p_guess)?;
     for (j, gj) in g.iter_mut().enumerate() {
         let q = q0 + (j as f64 + 0.5) * period / n as f64;
         p = momentum_on_branch(c, q, e, p)?;
         sum_p += p;
+        for (x, f) in extra.iter_mut().zip(extras) {
+            let v = f(q, p);
+            *x = (x.0 + v, x.1 + v.abs());
+        }
         *gj = 1.0 / velocity(c, q, p);
     }
     let dq = period / n as f64;
-    Ok((sum_p * dq / (2.0 * PI), g.iter().sum::<f64>() * dq, g))
+    Ok(Pass {
+        action: sum_p * dq / (2.0 * PI),
+        period: g.iter().sum::<f64>() * dq,
+        upper: g,
+        lower: Vec::new(),
+        extras: extra.into_iter().map(|(a, b)| (a * dq, b * dq)).collect(),
+    })
 }
 
 pub(crate) fn rotation<C: Curve>(
@@ -738,26 +809,40 @@ pub(crate) fn rotation<C: Curve>(
     p_guess: f64,
     s: &Settings,
 ) -> Result<Rotation> {
+    Ok(rotation_with(c, e, q0, period, p_guess, s, &[])?.0)
+}
+
+/// The rotation and the integrals ∮ f dq of the `extras`.
+pub(crate) fn rotation_with<C: Curve>(
+    c: &C,
+    e: f64,
+    q0: f64,
+    period: f64,
+    p_guess: f64,
+    s: &Settings,
+    extras: Extras,
+) -> Result<(Rotation, Vec<f64>)> {
     finite("action-angle energy", e)?;
     finite("rotation q0", q0)?;
     positive("rotation coordinate period", period)?;
     let mut n = s.nodes;
-    let (mut j0, mut t0, _) = rotation_pass(c, e, q0, period, p_guess, n)?;
+    let mut last = rotation_pass(c, e, q0, period, p_guess, n, extras)?;
     loop {
         if 2 * n > s.max_nodes {
             return Err(Error::QuadratureNotConverged {
                 what: "rotation action",
                 nodes: n,
                 previous: f64::NAN,
-                estimate: j0,
+                estimate: last.action,
             });
         }
         n *= 2;
-        let (j1, t1, g) = rotation_pass(c, e, q0, period, p_guess, n)?;
-        let change = (j1 - j0).abs();
-        if change <= s.tolerance * j1.abs() && (t1 - t0).abs() <= s.tolerance * t1.abs() {
-            let (a, b) = fourier(&g);
-            return Ok(Rotation {
+        let pass = rotation_pass(c, e, q0, period, p_guess, n, extras)?;
+        let (j1, t1) = (pass.action, pass.period);
+        let change = (j1 - last.action).abs();
+        if pass.settled(&last, s.tolerance) {
+            let (a, b) = fourier(&pass.upper);
+            let rot = Rotation {
                 energy: e,
                 q0,
                 coordinate_period: period,
@@ -767,9 +852,10 @@ pub(crate) fn rotation<C: Curve>(
                 nodes: n,
                 action_change: change,
                 series: (a, b),
-            });
+            };
+            return Ok((rot, pass.extras.iter().map(|x| x.0).collect()));
         }
-        (j0, t0) = (j1, t1);
+        last = pass;
     }
 }
 

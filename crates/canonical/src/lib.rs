@@ -11,4 +11,6 @@ pub use error::{Error, Result};
 
 pub mod action_angle;
 
-pub use action_angle::{ActionAngle, Libration, Rotation};
+pub use action_angle::{
+    ActionAngle, Libration, Orbit, Rotation, Separated, SeparatedActions, SeparatedResult,
+};
