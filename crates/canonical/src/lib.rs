@@ -14,3 +14,6 @@ pub mod action_angle;
 pub use action_angle::{
     ActionAngle, Libration, Orbit, Rotation, Separated, SeparatedActions, SeparatedResult,
 };
+pub mod section;
+
+pub use section::{section, section_by, Plane, SectionPoints};

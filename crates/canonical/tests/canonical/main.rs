@@ -1,3 +1,4 @@
 //! Integration tests of noether-canonical: one test binary, one module per topic.
 
 mod action_angle;
+mod section;
