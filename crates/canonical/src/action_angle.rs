@@ -479,7 +479,7 @@ pub(crate) fn turning_points<C: Curve>(c: &C, e: f64, q_inside: f64, step: f64) 
 }
 
 /// Gauss-Legendre nodes and weights on [0, 1] (m points; Newton on Pₘ from Chebyshev guesses).
-fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
     (0..m)
         .map(|i| {
             let mut x = (PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();

@@ -50,6 +50,16 @@ pub enum Error {
         /// The coordinate.
         q: f64,
     },
+    /// A coordinate declared cyclic is not: ∂L/∂q_c ≠ 0 at a sample point.
+    #[error("coordinate {index} is not cyclic: ∂L/∂q = {derivative:e} at t = {t}")]
+    NotCyclic {
+        /// The coordinate's index.
+        index: usize,
+        /// Time of the sample point.
+        t: f64,
+        /// ∂L/∂q_c there.
+        derivative: f64,
+    },
     /// A quadrature did not settle to its tolerance within the largest number of nodes.
     #[error(
         "quadrature of {what} not converged with {nodes} nodes: last two estimates {previous} and {estimate}"

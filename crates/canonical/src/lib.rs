@@ -17,3 +17,6 @@ pub use action_angle::{
 pub mod section;
 
 pub use section::{section, section_by, Plane, SectionPoints};
+pub mod routh;
+
+pub use routh::Routh;

@@ -1,4 +1,5 @@
 //! Integration tests of noether-canonical: one test binary, one module per topic.
 
 mod action_angle;
+mod routh;
 mod section;
