@@ -215,6 +215,16 @@ impl<H: Hamiltonian> ActionAngle<H> {
         libration(&self.curve(), energy, q_inside, &self.settings())
     }
 
+    /// The libration of H frozen at time `t` through the phase point (q, p), at the energy H(t, q, p)
+    /// in the well around `q_inside`: for a slowly changing H its action is the adiabatic invariant.
+    pub fn frozen_libration(&self, t: f64, q: f64, p: f64, q_inside: f64) -> Result<Libration> {
+        let c = AtTime {
+            h: &self.hamiltonian,
+            t: finite("frozen time", t)?,
+        };
+        libration(&c, c.h(q, p), q_inside, &self.settings())
+    }
+
     /// The angle θ ∈ [0, 2π) of the phase point (q, p) on the libration `lib` (its branch from the sign
     /// of p − p*(q)).
     pub fn angle(&self, lib: &Libration, q: f64, p: f64) -> Result<f64> {
