@@ -147,6 +147,7 @@ examples! {
     coupled_chains_momentum: "coupled chains: momentum to rounding, the mirror symmetry of the two chains (Figs. 5-7)",
     coupled_chains_transfer: "coupled chains: momentum transferred in a collision against v0 (the paper's Fig. 8)",
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
+    action_angle: "action-angle variables by quadrature: pendulum (elliptic K, E), Kepler's radial and Delaunay actions",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

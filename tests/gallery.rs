@@ -207,3 +207,8 @@ fn closed_form_rolling_disk() {
 fn closed_form_normal_modes() {
     assert_example_passes("normal_modes");
 }
+
+#[test]
+fn closed_form_action_angle() {
+    assert_example_passes("action_angle");
+}

@@ -383,7 +383,14 @@ pub(crate) fn bottom<C: Curve>(c: &C, q: f64, guess: f64) -> Result<(f64, f64, f
         }
     }
     let (x, _) = solve_dense(&Newton::default(), Stationary { c, q }, &[guess])?;
-    let p = x[0];
+    // Polish: Newton stops at |∂H/∂p| ≤ 1e-12; one more step (quadratic convergence) takes p* to
+    // rounding, which the end corrections (Taylor's remainder about p*) rely on.
+    let (_, hp, hpp) = second_derivative(|p: Dual2_64| c.h(Dual2_64::from(q), p), x[0]);
+    let p = if hpp != 0.0 && hpp.is_finite() {
+        x[0] - hp / hpp
+    } else {
+        x[0]
+    };
     let (h, _, hpp) = second_derivative(|p: Dual2_64| c.h(Dual2_64::from(q), p), p);
     Ok((p, h, hpp))
 }
@@ -774,7 +781,10 @@ pub(crate) fn momentum_on_branch<C: Curve>(c: &C, q: f64, e: f64, guess: f64) ->
         }
     }
     let (x, _) = solve_dense(&Newton::default(), Level { c, q, e }, &[guess])?;
-    Ok(x[0])
+    // Polish as in `bottom`: one more Newton step from |H − E| ≤ 1e-12 to rounding.
+    let hp = velocity(c, q, x[0]);
+    let p = x[0] - (c.h(q, x[0]) - e) / hp;
+    Ok(if p.is_finite() { p } else { x[0] })
 }
 
 /// One midpoint pass over a rotation: (J, signed T, time integrand in s).
