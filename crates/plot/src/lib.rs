@@ -65,8 +65,10 @@ pub const MAX_POINTS: usize = 4000;
 pub struct Series {
     /// Legend entry.
     pub name: String,
-    /// The points (x, y), drawn joined in order.
+    /// The points (x, y), drawn joined in order (or as dots when `dots`).
     pub points: Vec<(f64, f64)>,
+    /// Drawn as unjoined dots (a scatter: a Poincaré section) instead of a line.
+    pub dots: bool,
 }
 
 /// A line plot of several series.
@@ -117,7 +119,17 @@ impl Figure {
         self.series.push(Series {
             name: name.into(),
             points: thin(points, MAX_POINTS),
+            dots: false,
         });
+        self
+    }
+
+    /// Adds a series drawn as unjoined dots (a scatter), otherwise as [`series`](Self::series).
+    pub fn dots(mut self, name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        self = self.series(name, points);
+        if let Some(s) = self.series.last_mut() {
+            s.dots = true;
+        }
         self
     }
 
@@ -282,9 +294,15 @@ impl Figure {
             let color = color(i);
             let log = self.log_y;
             let pts = s.points.iter().copied().filter(move |&(_, y)| !log || y > 0.0);
-            let drawn = chart
-                .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                .map_err(draw_error)?;
+            let drawn = if s.dots {
+                chart
+                    .draw_series(pts.map(|p| Circle::new(p, 1, color.filled())))
+                    .map_err(draw_error)?
+            } else {
+                chart
+                    .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                    .map_err(draw_error)?
+            };
             if !s.name.is_empty() {
                 drawn
                     .label(s.name.as_str())

@@ -1,9 +1,12 @@
 //! Integration tests of noether-canonical: one test binary, one module per part of the crate. Test
 //! names say where the truth comes from (`closed_form_*`, `identity_*`, `conserves_*`, `errors_*`).
 
+mod action_angle;
 mod generating;
 mod hamilton_jacobi;
 mod poisson;
+mod routh;
+mod section;
 mod transform;
 
 /// Shared helpers: a small deterministic generator of test points, and the models several modules use.
@@ -71,3 +74,4 @@ pub mod common {
         }
     }
 }
+
