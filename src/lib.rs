@@ -147,6 +147,9 @@ examples! {
     coupled_chains_momentum: "coupled chains: momentum to rounding, the mirror symmetry of the two chains (Figs. 5-7)",
     coupled_chains_transfer: "coupled chains: momentum transferred in a collision against v0 (the paper's Fig. 8)",
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
+    poisson_brackets: "Poisson brackets by AD: {L_x, L_y} = L_z, Kepler's L and Runge-Lenz A commute with H, {A_x, A_y} = −2mH L_z",
+    canonical_transformation: "canonical maps and generating functions: oscillator to action-angle (K = ωP), polar coordinates, rotating frame (K = H − ωL_z)",
+    hamilton_jacobi: "Hamilton-Jacobi: Kepler's separated complete integral, the orbit from Jacobi's theorem vs DOP853 and the conic",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -207,3 +207,18 @@ fn closed_form_rolling_disk() {
 fn closed_form_normal_modes() {
     assert_example_passes("normal_modes");
 }
+
+#[test]
+fn closed_form_poisson_brackets() {
+    assert_example_passes("poisson_brackets");
+}
+
+#[test]
+fn closed_form_canonical_transformation() {
+    assert_example_passes("canonical_transformation");
+}
+
+#[test]
+fn closed_form_hamilton_jacobi() {
+    assert_example_passes("hamilton_jacobi");
+}

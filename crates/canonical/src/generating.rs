@@ -20,7 +20,7 @@
 //! integrators (RK4, DOP853, ...) step: each evaluation inverts the map by Newton at f64, warm-started
 //! from the last one.
 //!
-//! Why K is not a generic [`Hamiltonian`](noether_core::Hamiltonian) model: K(Q, P) needs the old
+//! Why K is not a generic [`Hamiltonian`] model: K(Q, P) needs the old
 //! point, which F defines only implicitly; a generic `hamiltonian<D>` would have to run Newton in the
 //! dual numbers (and a linear solve in D) to carry derivatives through the inverse. Here the
 //! derivatives of K come instead from the implicit-function theorem at f64, exactly.
