@@ -150,6 +150,9 @@ examples! {
     struck_rod: "impulsive motion: a struck rod, a caught rod, a peg at the centre of percussion",
     collision_lab_cm: "two unequal masses collide: lab angles, recoil, energy transfer, lab cross section from CM",
     action_angle: "action-angle variables by quadrature: pendulum (elliptic K, E), Kepler's radial and Delaunay actions",
+    poisson_brackets: "Poisson brackets by AD: {L_x, L_y} = L_z, Kepler's L and Runge-Lenz A commute with H, {A_x, A_y} = −2mH L_z",
+    canonical_transformation: "canonical maps and generating functions: oscillator to action-angle (K = ωP), polar coordinates, rotating frame (K = H − ωL_z)",
+    hamilton_jacobi: "Hamilton-Jacobi: Kepler's separated complete integral, the orbit from Jacobi's theorem vs DOP853 and the conic",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -222,3 +222,18 @@ fn closed_form_collision_lab_cm() {
 fn closed_form_action_angle() {
     assert_example_passes("action_angle");
 }
+
+#[test]
+fn closed_form_poisson_brackets() {
+    assert_example_passes("poisson_brackets");
+}
+
+#[test]
+fn closed_form_canonical_transformation() {
+    assert_example_passes("canonical_transformation");
+}
+
+#[test]
+fn closed_form_hamilton_jacobi() {
+    assert_example_passes("hamilton_jacobi");
+}

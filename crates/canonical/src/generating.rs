@@ -20,7 +20,7 @@
 //! integrators (RK4, DOP853, ...) step: each evaluation inverts the map by Newton at f64, warm-started
 //! from the last one.
 //!
-//! Why K is not a generic [`Hamiltonian`](noether_core::Hamiltonian) model: K(Q, P) needs the old
+//! Why K is not a generic [`Hamiltonian`] model: K(Q, P) needs the old
 //! point, which F defines only implicitly; a generic `hamiltonian<D>` would have to run Newton in the
 //! dual numbers (and a linear solve in D) to carry derivatives through the inverse. Here the
 //! derivatives of K come instead from the implicit-function theorem at f64, exactly.
@@ -431,9 +431,9 @@ impl<G: GeneratingFunction> Generated<G> {
         let (mut fxt, mut fxxt) = (vec![0.0; n], vec![0.0; n]);
         ad::directional_gradient(&f, t, x, xx, (1.0, &[], &[]), Block::X, &mut fxt, None);
         ad::directional_gradient(&f, t, x, xx, (1.0, &[], &[]), Block::Y, &mut fxxt, None);
-        let (hq, hp) = hamilton_field(h, t, old.0, old.1)?;
-        // ∇_z H = (−ṗ, q̇).
-        let mut grad = DVector::from_vec([hp.iter().map(|v| -v).collect::<Vec<_>>(), hq].concat());
+        let (qdot, pdot) = hamilton_field(h, t, old.0, old.1)?;
+        // ∇_z H = (∂H/∂q, ∂H/∂p) = (−ṗ, q̇).
+        let mut grad = DVector::from_vec([pdot.iter().map(|v| -v).collect::<Vec<_>>(), qdot].concat());
         let col_x = if k.old_is_q() { 0 } else { n };
         for i in 0..n {
             grad[col_x + i] += fxt[i];
