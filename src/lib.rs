@@ -148,6 +148,9 @@ examples! {
     coupled_chains_transfer: "coupled chains: momentum transferred in a collision against v0 (the paper's Fig. 8)",
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
     action_angle: "action-angle variables by quadrature: pendulum (elliptic K, E), Kepler's radial and Delaunay actions",
+    poincare_henon_heiles: "Poincaré sections of Hénon-Heiles at E = 1/12 and 1/6: points on H = E; a separable system's on its second integral",
+    routh_reduction: "Routh's reduction: Kepler to r, the heavy top to θ against the full model, cyclic angles by quadrature",
+    adiabatic_invariant: "adiabatic invariance: an oscillator's frequency ramped 1 → 4, E × 4 while J moves by O(ε)",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -212,3 +212,18 @@ fn closed_form_normal_modes() {
 fn closed_form_action_angle() {
     assert_example_passes("action_angle");
 }
+
+#[test]
+fn closed_form_poincare_henon_heiles() {
+    assert_example_passes("poincare_henon_heiles");
+}
+
+#[test]
+fn closed_form_routh_reduction() {
+    assert_example_passes("routh_reduction");
+}
+
+#[test]
+fn closed_form_adiabatic_invariant() {
+    assert_example_passes("adiabatic_invariant");
+}
