@@ -54,8 +54,11 @@ fn start(e: f64, y: f64, py: f64) -> Option<State<Momenta>> {
     (px2 > 0.0).then(|| State::new(0.0, [0.0, y], [px2.sqrt(), py]))
 }
 
-/// The section of the orbit from `s0` up to `t_end`: the (y, p_y) points, the largest |H − E| and |x|.
-fn orbit_section(s0: State<Momenta>, e: f64, t_end: f64) -> Result<(Vec<(f64, f64)>, f64, f64), BoxError> {
+/// The (y, p_y) points of one orbit's section, the largest |H − E| and the largest |x| there.
+type OrbitSection = (Vec<(f64, f64)>, f64, f64);
+
+/// The section of the orbit from `s0` up to `t_end`.
+fn orbit_section(s0: State<Momenta>, e: f64, t_end: f64) -> Result<OrbitSection, BoxError> {
     let h = HamiltonEquations::new(HenonHeiles);
     let dop = Dop853::new(HamiltonEquations::new(HenonHeiles)).tolerances(1e-14, 1e-14)?;
     let points = section(Driver::new(dop, s0)?, Plane::coordinate(0, 0.0), t_end)?;
