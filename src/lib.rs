@@ -153,6 +153,9 @@ examples! {
     poisson_brackets: "Poisson brackets by AD: {L_x, L_y} = L_z, Kepler's L and Runge-Lenz A commute with H, {A_x, A_y} = −2mH L_z",
     canonical_transformation: "canonical maps and generating functions: oscillator to action-angle (K = ωP), polar coordinates, rotating frame (K = H − ωL_z)",
     hamilton_jacobi: "Hamilton-Jacobi: Kepler's separated complete integral, the orbit from Jacobi's theorem vs DOP853 and the conic",
+    poincare_henon_heiles: "Poincaré sections of Hénon-Heiles at E = 1/12 and 1/6: points on H = E; a separable system's on its second integral",
+    routh_reduction: "Routh's reduction: Kepler to r, the heavy top to θ against the full model, cyclic angles by quadrature",
+    adiabatic_invariant: "adiabatic invariance: an oscillator's frequency ramped 1 → 4, E × 4 while J moves by O(ε)",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -237,3 +237,18 @@ fn closed_form_canonical_transformation() {
 fn closed_form_hamilton_jacobi() {
     assert_example_passes("hamilton_jacobi");
 }
+
+#[test]
+fn closed_form_poincare_henon_heiles() {
+    assert_example_passes("poincare_henon_heiles");
+}
+
+#[test]
+fn closed_form_routh_reduction() {
+    assert_example_passes("routh_reduction");
+}
+
+#[test]
+fn closed_form_adiabatic_invariant() {
+    assert_example_passes("adiabatic_invariant");
+}
