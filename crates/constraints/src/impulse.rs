@@ -224,7 +224,7 @@ impl<'a, L: Lagrangian, C: Holonomic> Impact<'a, L, C> {
 
     /// The velocities q̇⁺ after the instant at (t, q) for the velocities `v` = q̇⁻ before it, the
     /// impulsive reactions and the energy change. Errors: dimensions, non-finite input, redundant
-    /// impact constraints ([`Error::RankDeficientConstraints`]), a failed solve.
+    /// impact constraints ([`Error::RankDeficientConstraints`](crate::Error::RankDeficientConstraints)), a failed solve.
     pub fn velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<ImpactResult> {
         let (n, m) = (self.impulse.len(), self.constraints.count());
         check_len("q", q, n)?;
