@@ -149,6 +149,7 @@ examples! {
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
     struck_rod: "impulsive motion: a struck rod, a caught rod, a peg at the centre of percussion",
     collision_lab_cm: "two unequal masses collide: lab angles, recoil, energy transfer, lab cross section from CM",
+    free_rigid_body: "free asymmetric body in quaternions (LGVI): Ω by sn, cn, dn, period 4K/rate, |L| and E to rounding",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

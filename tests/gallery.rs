@@ -217,3 +217,8 @@ fn closed_form_struck_rod() {
 fn closed_form_collision_lab_cm() {
     assert_example_passes("collision_lab_cm");
 }
+
+#[test]
+fn closed_form_free_rigid_body() {
+    assert_example_passes("free_rigid_body");
+}
