@@ -222,3 +222,8 @@ fn closed_form_collision_lab_cm() {
 fn closed_form_free_rigid_body() {
     assert_example_passes("free_rigid_body");
 }
+
+#[test]
+fn closed_form_intermediate_axis() {
+    assert_example_passes("intermediate_axis");
+}
