@@ -59,12 +59,25 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         return Err(format!("expected flips, saw {} up and {} down", ups.len(), downs.len()).into());
     }
     let measured = (ups[2] - ups[0]) / 2.0;
-    report.checks.push(Check::rel(NAME, "flip period vs 4K(k)/(dτ/dt)", measured, period, 3.5e-7));
+    report.checks.push(Check::rel(
+        NAME,
+        "flip period vs 4K(k)/(dτ/dt)",
+        measured,
+        period,
+        3.5e-7,
+    ));
     // The first flip (Ω₂ through zero downwards) comes a quarter period after the start at τ = K.
-    report.checks.push(Check::rel(NAME, "first flip at T/4", downs[0], 0.25 * period, 3.5e-7));
+    report.checks.push(Check::rel(
+        NAME,
+        "first flip at T/4",
+        downs[0],
+        0.25 * period,
+        3.5e-7,
+    ));
 
     let mut worst: f64 = 0.0;
-    let (mut computed, mut exact): (Vec<Vec<(f64, f64)>>, Vec<Vec<(f64, f64)>>) = (vec![vec![]; 3], vec![vec![]; 3]);
+    let mut computed: Vec<Vec<(f64, f64)>> = vec![vec![]; 3];
+    let mut exact = computed.clone();
     for (i, &t) in sol.times().iter().enumerate() {
         let w = body.body_angular_velocity(&sol.state(i))?;
         let e = top.omega(t + t0);
@@ -78,11 +91,18 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
             }
         }
     }
-    report.checks.push(Check::abs(NAME, "max |Ω − Ω(sn, cn, dn)| over one period", worst, 0.0, 6e-6));
+    report.checks.push(Check::abs(
+        NAME,
+        "max |Ω − Ω(sn, cn, dn)| over one period",
+        worst,
+        0.0,
+        6e-6,
+    ));
 
-    let mut fig = Figure::new("Intermediate-axis flip: body angular velocity (LGVI) and the elliptic solution")
-        .x_label("t")
-        .y_label("Ω_i");
+    let mut fig =
+        Figure::new("Intermediate-axis flip: body angular velocity (LGVI) and the elliptic solution")
+            .x_label("t")
+            .y_label("Ω_i");
     for (j, label) in ["Ω₁", "Ω₂", "Ω₃"].iter().enumerate() {
         fig = fig
             .series(format!("{label} (LGVI)"), computed[j].clone())

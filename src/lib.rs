@@ -151,6 +151,7 @@ examples! {
     collision_lab_cm: "two unequal masses collide: lab angles, recoil, energy transfer, lab cross section from CM",
     free_rigid_body: "free asymmetric body in quaternions (LGVI): Ω by sn, cn, dn, period 4K/rate, |L| and E to rounding",
     intermediate_axis: "the Dzhanibekov flip: a body spun about its middle axis turns over, period 4K(k)/rate near the separatrix",
+    top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -227,3 +227,8 @@ fn closed_form_free_rigid_body() {
 fn closed_form_intermediate_axis() {
     assert_example_passes("intermediate_axis");
 }
+
+#[test]
+fn closed_form_top_quaternion() {
+    assert_example_passes("top_quaternion");
+}
