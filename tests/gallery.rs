@@ -252,3 +252,18 @@ fn closed_form_routh_reduction() {
 fn closed_form_adiabatic_invariant() {
     assert_example_passes("adiabatic_invariant");
 }
+
+#[test]
+fn closed_form_free_rigid_body() {
+    assert_example_passes("free_rigid_body");
+}
+
+#[test]
+fn closed_form_intermediate_axis() {
+    assert_example_passes("intermediate_axis");
+}
+
+#[test]
+fn closed_form_top_quaternion() {
+    assert_example_passes("top_quaternion");
+}

@@ -13,6 +13,7 @@
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
 //! | [`analysis`] | noether-analysis | equilibria and normal modes |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
+//! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
 //! | `plot` (feature `plot`) | noether-plot | SVG pictures of a run |
 //!
 //! ```
@@ -44,6 +45,7 @@ pub use noether_discrete as discrete;
 pub use noether_particles as particles;
 #[cfg(feature = "plot")]
 pub use noether_plot as plot;
+pub use noether_rigid as rigid;
 pub use num_dual;
 
 /// Closure-like shorthands for small models (see [`noether_core::shorthand`]).
