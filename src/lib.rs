@@ -149,6 +149,8 @@ examples! {
     coupled_chains_heat: "coupled chains, attractive: equilibrium, random heating, energy of each chain, spectra",
     struck_rod: "impulsive motion: a struck rod, a caught rod, a peg at the centre of percussion",
     collision_lab_cm: "two unequal masses collide: lab angles, recoil, energy transfer, lab cross section from CM",
+    gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
+    rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

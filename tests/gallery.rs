@@ -217,3 +217,13 @@ fn closed_form_struck_rod() {
 fn closed_form_collision_lab_cm() {
     assert_example_passes("collision_lab_cm");
 }
+
+#[test]
+fn closed_form_gibbs_appell() {
+    assert_example_passes("gibbs_appell");
+}
+
+#[test]
+fn closed_form_rolling_sphere() {
+    assert_example_passes("rolling_sphere");
+}
