@@ -159,6 +159,8 @@ examples! {
     free_rigid_body: "free asymmetric body in quaternions (LGVI): Ω by sn, cn, dn, period 4K/rate, |L| and E to rounding",
     intermediate_axis: "the Dzhanibekov flip: a body spun about its middle axis turns over, period 4K(k)/rate near the separatrix",
     top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
+    gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
+    rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -267,3 +267,13 @@ fn closed_form_intermediate_axis() {
 fn closed_form_top_quaternion() {
     assert_example_passes("top_quaternion");
 }
+
+#[test]
+fn closed_form_gibbs_appell() {
+    assert_example_passes("gibbs_appell");
+}
+
+#[test]
+fn closed_form_rolling_sphere() {
+    assert_example_passes("rolling_sphere");
+}
