@@ -60,8 +60,8 @@ pub mod prelude {
         linear_stability, normal_modes, EffectivePotential, Equilibrium, EquilibriumFinder, Kind,
     };
     pub use noether_constraints::{
-        project, Constrained, ConstraintForces, ConstraintSet, Holonomic, HolonomicSet, Impact, Nonholonomic,
-        NonholonomicSet, Projected, Projection, Rattle, StruckPoints,
+        project, Constrained, ConstraintForces, ConstraintSet, GibbsAppell, GibbsAppellEquations, Holonomic,
+        HolonomicSet, Impact, Nonholonomic, NonholonomicSet, Projected, Projection, Rattle, StruckPoints,
     };
     pub use noether_core::prelude::*;
     pub use noether_discrete::prelude::{
