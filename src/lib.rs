@@ -156,6 +156,11 @@ examples! {
     poincare_henon_heiles: "Poincaré sections of Hénon-Heiles at E = 1/12 and 1/6: points on H = E; a separable system's on its second integral",
     routh_reduction: "Routh's reduction: Kepler to r, the heavy top to θ against the full model, cyclic angles by quadrature",
     adiabatic_invariant: "adiabatic invariance: an oscillator's frequency ramped 1 → 4, E × 4 while J moves by O(ε)",
+    free_rigid_body: "free asymmetric body in quaternions (LGVI): Ω by sn, cn, dn, period 4K/rate, |L| and E to rounding",
+    intermediate_axis: "the Dzhanibekov flip: a body spun about its middle axis turns over, period 4K(k)/rate near the separatrix",
+    top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
+    gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
+    rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

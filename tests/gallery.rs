@@ -252,3 +252,28 @@ fn closed_form_routh_reduction() {
 fn closed_form_adiabatic_invariant() {
     assert_example_passes("adiabatic_invariant");
 }
+
+#[test]
+fn closed_form_free_rigid_body() {
+    assert_example_passes("free_rigid_body");
+}
+
+#[test]
+fn closed_form_intermediate_axis() {
+    assert_example_passes("intermediate_axis");
+}
+
+#[test]
+fn closed_form_top_quaternion() {
+    assert_example_passes("top_quaternion");
+}
+
+#[test]
+fn closed_form_gibbs_appell() {
+    assert_example_passes("gibbs_appell");
+}
+
+#[test]
+fn closed_form_rolling_sphere() {
+    assert_example_passes("rolling_sphere");
+}

@@ -13,6 +13,9 @@
 //!   discrete Lagrangian of noether-discrete.
 //! - Nonholonomic constraints A(t, q) q̇ + a(t, q) = 0 ([`Nonholonomic`]) in the continuous equations
 //!   (Lagrange-d'Alembert).
+//! - [`GibbsAppellEquations`]: quasi-velocities u with q̇ = W u + w and the Gibbs-Appell equations
+//!   ∂S/∂u̇ = Π from the acceleration energy S of particles and rigid parts, by dual numbers; no
+//!   multipliers (a core [`Dynamics`](noether_core::Dynamics) on (t, q, u)).
 //! - [`Impact`]: impulsive motion, the jump of the momenta by a generalized impulse and the impulsive
 //!   reactions of constraints that act for an instant (a blow, a catch, a rebound with restitution).
 //!
@@ -59,6 +62,7 @@
 pub mod dynamics;
 pub mod error;
 pub mod forces;
+pub mod gibbs_appell;
 pub mod holonomic;
 pub mod impulse;
 pub mod jets;
@@ -70,6 +74,7 @@ pub mod set;
 pub use dynamics::Constrained;
 pub use error::{Error, Result};
 pub use forces::ConstraintForces;
+pub use gibbs_appell::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
 pub use holonomic::{Holonomic, HolonomicSet};
 pub use impulse::{generalized_impulse, Impact, ImpactResult, StruckPoints};
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
@@ -81,8 +86,9 @@ pub use set::ConstraintSet;
 /// are this crate's (which wrap core's and convert from it with `?`).
 pub mod prelude {
     pub use crate::{
-        project, Constrained, ConstraintForces, ConstraintSet, Error, Holonomic, HolonomicSet, Nonholonomic,
-        NonholonomicSet, Projected, Projection, ProjectionReport, Rattle, RattleInfo, Result,
+        project, Constrained, ConstraintForces, ConstraintSet, Error, GibbsAppell, GibbsAppellEquations,
+        Holonomic, HolonomicSet, Nonholonomic, NonholonomicSet, Projected, Projection, ProjectionReport,
+        QuasiVelocities, Rattle, RattleInfo, Result, RigidPart,
     };
     pub use noether_core::prelude::*;
 }

@@ -13,6 +13,7 @@
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
 //! | [`analysis`] | noether-analysis | equilibria and normal modes |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
+//! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
 //! | `plot` (feature `plot`) | noether-plot | SVG pictures of a run |
 //!
 //! ```
@@ -44,6 +45,7 @@ pub use noether_discrete as discrete;
 pub use noether_particles as particles;
 #[cfg(feature = "plot")]
 pub use noether_plot as plot;
+pub use noether_rigid as rigid;
 pub use num_dual;
 
 /// Closure-like shorthands for small models (see [`noether_core::shorthand`]).
@@ -58,8 +60,8 @@ pub mod prelude {
         linear_stability, normal_modes, EffectivePotential, Equilibrium, EquilibriumFinder, Kind,
     };
     pub use noether_constraints::{
-        project, Constrained, ConstraintForces, ConstraintSet, Holonomic, HolonomicSet, Impact, Nonholonomic,
-        NonholonomicSet, Projected, Projection, Rattle, StruckPoints,
+        project, Constrained, ConstraintForces, ConstraintSet, GibbsAppell, GibbsAppellEquations, Holonomic,
+        HolonomicSet, Impact, Nonholonomic, NonholonomicSet, Projected, Projection, Rattle, StruckPoints,
     };
     pub use noether_core::prelude::*;
     pub use noether_discrete::prelude::{

@@ -3,6 +3,7 @@
 mod bad_input;
 mod chain;
 mod continuous;
+mod gibbs_appell;
 mod impulse;
 mod models;
 mod nonholonomic;
