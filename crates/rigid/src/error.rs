@@ -35,6 +35,19 @@ pub enum Error {
         /// Largest principal moment.
         largest: f64,
     },
+    /// A body too flat for matrix coordinates: the kinetic energy ½ tr(Ṙ J_d Ṙᵀ) needs
+    /// J_d = ½ tr(J) I − J positive definite, i.e. every principal moment below the sum of the other
+    /// two (a lamina has I₃ = I₁ + I₂). The LGVI has no such restriction.
+    #[error(
+        "body too flat for matrix coordinates: ½ tr(J) − I_k = {smallest:e} against {largest:e} (each \
+         principal moment must be below the sum of the other two); use the LGVI"
+    )]
+    FlatBody {
+        /// Smallest eigenvalue of J_d.
+        smallest: f64,
+        /// Largest eigenvalue of J_d.
+        largest: f64,
+    },
 }
 
 noether_core::crate_error_conversions!(Error);

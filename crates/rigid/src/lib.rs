@@ -3,7 +3,8 @@
 //! Rigid bodies on the rotation group: the orientation is a unit quaternion (never angles, so no chart
 //! has a pole), the motion is stepped by a Lie-group variational integrator that keeps it a rotation to
 //! rounding, and the potential V(R) of the orientation is written once as generic code like any model
-//! (its torque by dual numbers).
+//! (its torque by dual numbers). [`rattle`] steps the same body in matrix coordinates with RATTLE on
+//! the orthogonality constraints RᵀR = I.
 //!
 //! ```
 //! use nalgebra::{UnitQuaternion, Vector3};
@@ -23,6 +24,7 @@
 pub mod body;
 pub mod error;
 pub mod lgvi;
+pub mod rattle;
 pub mod rotation;
 
 pub use body::{Free, Inertia, OrientationPotential, RigidBody, UniformGravity};
