@@ -369,3 +369,32 @@ fn bad_input_impacts_are_typed_errors() {
     assert!(redundant.apply(&mut s).is_err());
     assert_eq!(s, before);
 }
+
+#[test]
+fn closed_form_blow_on_a_locked_point_goes_into_the_reaction() {
+    // A blow struck exactly at a point that the impact constraints hold (a rod pinned at its end, hit
+    // at the pin): the constraint takes the whole impulse, the rod does not move, and the pin's reaction
+    // is −F̂. Not an error: the constraint's reaction is defined and unique (Φ_q has full rank).
+    let rod = EulerLagrange::new(Rod { m: 1.5, l: 0.9 });
+    let end = OnRod { s: 0.45 };
+    let pin = Pin {
+        s: 0.45,
+        at: [0.45, 0.0],
+    };
+    let blow = [0.3, -0.7];
+    let r = Impact::new(&rod)
+        .blow(&end, &blow)
+        .unwrap()
+        .constraints(pin, 0.0)
+        .unwrap()
+        .velocities(0.0, &[0.0; 3], &[0.0; 3])
+        .unwrap();
+    // Measured: v⁺ exactly 0, reactions −F̂ to 1 ulp.
+    assert!(r.v.iter().all(|v| v.abs() < 1e-16), "{:?}", r.v);
+    assert!(
+        close(r.reactions[0], -blow[0], 4e-16) && close(r.reactions[1], -blow[1], 4e-16),
+        "{:?}",
+        r.reactions
+    );
+    assert!(r.energy_change.abs() < 1e-16, "{}", r.energy_change);
+}
