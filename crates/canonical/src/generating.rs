@@ -244,28 +244,9 @@ impl<G: GeneratingFunction> Generated<G> {
         &self,
         t: f64,
         (q, p): (&[f64], &[f64]),
-        (guess_q, guess_p): (&[f64], &[f64]),
+        guess: (&[f64], &[f64]),
     ) -> Result<(Vec<f64>, Vec<f64>)> {
-        let n = self.generator.dof();
-        check_point(n, t, q, p)?;
-        check_point(n, t, guess_q, guess_p)?;
-        let k = self.kind();
-        let (x, y) = split(k.old_is_q(), q, p);
-        let (guess, _) = split(k.new_is_q(), guess_q, guess_p);
-        let problem = Relation {
-            g: &self.generator,
-            t,
-            known: x,
-            target: y,
-            forward: true,
-        };
-        let (xx, _) = solve_dense(&self.newton, problem, guess).map_err(self.degenerate(t))?;
-        let xx = xx.as_slice().to_vec();
-        let mut yy = vec![0.0; n];
-        ad::gradient(&GenField(&self.generator), t, x, &xx, Block::Y, &mut yy);
-        yy.iter_mut().for_each(|v| *v *= k.sigma_new());
-        check_result("generated transformation", t, &yy)?;
-        Ok(join(k.new_is_q(), xx, yy))
+        self.generate(t, (q, p), guess, true)
     }
 
     /// (q, p) from (Q, P): solves the new relation for F's old argument by Newton from the guess
@@ -274,28 +255,52 @@ impl<G: GeneratingFunction> Generated<G> {
         &self,
         t: f64,
         (new_q, new_p): (&[f64], &[f64]),
+        guess: (&[f64], &[f64]),
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        self.generate(t, (new_q, new_p), guess, false)
+    }
+
+    /// The two directions of the map, mirror images: of the point given, F depends on the half
+    /// `known`; Newton solves the relation of that side for F's other argument, whose conjugate half
+    /// is then σ ∂F/∂(that argument). Forward: known = F's old argument x, solved = its new one X.
+    fn generate(
+        &self,
+        t: f64,
+        (from_q, from_p): (&[f64], &[f64]),
         (guess_q, guess_p): (&[f64], &[f64]),
+        forward: bool,
     ) -> Result<(Vec<f64>, Vec<f64>)> {
         let n = self.generator.dof();
-        check_point(n, t, new_q, new_p)?;
+        check_point(n, t, from_q, from_p)?;
         check_point(n, t, guess_q, guess_p)?;
         let k = self.kind();
-        let (xx, yy) = split(k.new_is_q(), new_q, new_p);
-        let (guess, _) = split(k.old_is_q(), guess_q, guess_p);
+        let (known_is_q, solved_is_q, sigma) = if forward {
+            (k.old_is_q(), k.new_is_q(), k.sigma_new())
+        } else {
+            (k.new_is_q(), k.old_is_q(), k.sigma_old())
+        };
+        let (known, target) = split(known_is_q, from_q, from_p);
+        let (guess, _) = split(solved_is_q, guess_q, guess_p);
         let problem = Relation {
             g: &self.generator,
             t,
-            known: xx,
-            target: yy,
-            forward: false,
+            known,
+            target,
+            forward,
         };
-        let (x, _) = solve_dense(&self.newton, problem, guess).map_err(self.degenerate(t))?;
-        let x = x.as_slice().to_vec();
-        let mut y = vec![0.0; n];
-        ad::gradient(&GenField(&self.generator), t, &x, xx, Block::X, &mut y);
-        y.iter_mut().for_each(|v| *v *= k.sigma_old());
-        check_result("generated transformation", t, &y)?;
-        Ok(join(k.old_is_q(), x, y))
+        let (solved, _) = solve_dense(&self.newton, problem, guess).map_err(self.degenerate(t))?;
+        let solved = solved.as_slice().to_vec();
+        let mut conjugate = vec![0.0; n];
+        // F(t, x, X): the solved argument is X going forward, x going backward.
+        let (x, xx, block) = if forward {
+            (known, &solved[..], Block::Y)
+        } else {
+            (&solved[..], known, Block::X)
+        };
+        ad::gradient(&GenField(&self.generator), t, x, xx, block, &mut conjugate);
+        conjugate.iter_mut().for_each(|v| *v *= sigma);
+        check_result("generated transformation", t, &conjugate)?;
+        Ok(join(solved_is_q, solved, conjugate))
     }
 
     /// F's arguments (x, X) at a pair of corresponding points.
