@@ -46,6 +46,7 @@ pub mod scalar;
 pub mod shorthand;
 pub mod state;
 pub mod stepper;
+pub mod tangent;
 
 pub use chart::ChartGuard;
 pub use dense::DenseOutput;
@@ -62,6 +63,7 @@ pub use newton::{Newton, NewtonInfo, NewtonSystem};
 pub use scalar::Scalar;
 pub use state::{Momenta, Partner, State, Velocities};
 pub use stepper::{StepInfo, Stepper};
+pub use tangent::TangentStepper;
 
 /// Everything a model and a simulation need, in one import.
 pub mod prelude {
@@ -70,6 +72,6 @@ pub mod prelude {
     pub use crate::{
         Direction, Driver, Dynamics, Error, EulerLagrange, Event, HamiltonEquations, Hamiltonian, Lagrangian,
         LegendreTransform, Momenta, Natural, Partner, Potential, Result, Save, Scalar, Separable,
-        SeparableHamiltonian, Solution, State, StepInfo, Stepper, Stop, Velocities,
+        SeparableHamiltonian, Solution, State, StepInfo, Stepper, Stop, TangentStepper, Velocities,
     };
 }

@@ -3,7 +3,10 @@
 //! All three step any [`Dynamics`] on (q, v), v = q̇ or p, and leave the state untouched on error.
 
 use crate::error::check_step;
-use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper};
+use crate::integrators::LinearizedDynamics;
+use crate::tangent::{check_tangent_shape, explicit_rk_tangent};
+use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper, TangentStepper};
+use nalgebra::DMatrix;
 
 /// A pair of work vectors (q-part, v-part) of a one-step method: rates F = (q̇, v̇) or a new state.
 struct Pair {
@@ -216,5 +219,90 @@ impl<S: Dynamics> Stepper for Rk4<S> {
     }
     fn name(&self) -> &'static str {
         "RK4"
+    }
+}
+
+/// RK4's tableau (A by rows below the diagonal, b, c).
+const RK4_TABLEAU: (&[&[f64]], &[f64], &[f64]) = (
+    &[&[], &[0.5], &[0.0, 0.5], &[0.0, 0.0, 1.0]],
+    &[1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+    &[0.0, 0.5, 0.5, 1.0],
+);
+
+/// Takes `stepper`'s step on a copy of `state`, then `tangent` from the start state; commits both only
+/// when both succeed (so a failure leaves `state` and Ψ as they were).
+fn step_then_tangent<St: Stepper>(
+    stepper: &mut St,
+    state: &mut State<St::Partner>,
+    h: f64,
+    tangent: impl FnOnce(&St, &State<St::Partner>) -> Result<()>,
+) -> Result<StepInfo> {
+    let mut next = state.clone();
+    let info = stepper.step(&mut next, h)?;
+    tangent(stepper, state)?;
+    *state = next;
+    Ok(info)
+}
+
+/// Ψ of RK4 by its differentiated stages (see [`crate::tangent`]).
+impl<S: LinearizedDynamics> TangentStepper for Rk4<S> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        check_tangent_shape(psi, self.system.dof())?;
+        step_then_tangent(self, state, h, |m, s| {
+            explicit_rk_tangent(
+                &m.system,
+                (s.t, s.q.as_slice(), s.v.as_slice()),
+                h,
+                RK4_TABLEAU,
+                psi,
+            )
+        })
+    }
+}
+
+/// Ψ of forward Euler, I + hJ(y₀), and of Euler-Cromer,
+///
+/// ```text
+/// ∂v₁/∂y₀ = [0 I] + h J_v(t, q₀, v₀),   ∂q₁/∂y₀ = [I 0] + h (J_qq(t, q₀, v₁) [I 0] + J_qv(t, q₀, v₁) ∂v₁/∂y₀),
+/// ```
+///
+/// with J_v the v-rows of J and J_qq, J_qv the q-rows of J split by columns.
+impl<S: LinearizedDynamics, R: FirstOrderRule> TangentStepper for FirstOrder<S, R> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        let n = self.system.dof();
+        check_tangent_shape(psi, n)?;
+        step_then_tangent(self, state, h, |m, s| {
+            let (t, q, v) = (s.t, s.q.as_slice(), s.v.as_slice());
+            if !R::NEW_VELOCITIES {
+                return explicit_rk_tangent(&m.system, (t, q, v), h, (&[&[]], &[1.0], &[0.0]), psi);
+            }
+            let mut jac = DMatrix::zeros(2 * n, 2 * n);
+            m.system.jacobian(t, q, v, &mut jac)?;
+            let mut out = DMatrix::identity(2 * n, 2 * n);
+            // v-rows: [0 I] + h J_v(y₀).
+            let dv1 = out.rows(n, n) + h * jac.rows(n, n);
+            // q-rows at (q₀, v₁), v₁ = v₀ + h v̇(y₀).
+            let (mut dq, mut v1) = (vec![0.0; n], vec![0.0; n]);
+            m.system.rates(t, q, v, &mut dq, &mut v1)?;
+            v1.iter_mut().zip(v).for_each(|(a, v)| *a = v + h * *a);
+            m.system.jacobian(t, q, &v1, &mut jac)?;
+            let dq1 = out.rows(0, n)
+                + h * (jac.view((0, 0), (n, n)) * out.rows(0, n) + jac.view((0, n), (n, n)) * &dv1);
+            out.rows_mut(0, n).copy_from(&dq1);
+            out.rows_mut(n, n).copy_from(&dv1);
+            crate::error::check_result("step Jacobian Ψ", t, out.as_slice())?;
+            psi.copy_from(&out);
+            Ok(())
+        })
     }
 }
