@@ -28,8 +28,9 @@ pub fn henon_heiles_state() -> State<Momenta> {
 }
 
 /// Relative difference step of the reference and the agreement it allows: with δ = 1e-5 the central
-/// difference has truncation error δ²|y'''|/6 ≈ 2e-11 and rounding ε/δ ≈ 1e-11 on these unit-scale
-/// problems, so Ψ and the reference agree to a few 1e-11 (measured per test below).
+/// difference has truncation error of order δ² times third derivatives (≈ 1e-10 h) and rounding
+/// ε/δ ≈ 1e-11 on these unit-scale problems: an exact Ψ and the reference agree to about 1e-12
+/// (measured per test).
 pub const FD_REL: f64 = 1e-5;
 
 /// max |Ψ − Ψ_fd| over the entries, Ψ from `step_tangent` and Ψ_fd from central differences, with the
