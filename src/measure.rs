@@ -18,21 +18,3 @@ pub fn envelope(x: &[f64], y: &[f64], window: usize) -> Vec<(f64, f64)> {
         .map(|(xs, ys)| (xs[window - 1], ys.iter().fold(0.0_f64, |m, v| m.max(v.abs()))))
         .collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn mean_period_of_equally_spaced_times() {
-        assert_eq!(mean_period(&[1.0, 3.0, 5.0, 7.0]), Some(2.0));
-        assert_eq!(mean_period(&[1.0]), None);
-    }
-
-    #[test]
-    fn envelope_takes_the_largest_magnitude_per_window() {
-        let x = [0.0, 1.0, 2.0, 3.0, 4.0];
-        let y = [1.0, -3.0, 2.0, 0.5, 9.0];
-        assert_eq!(envelope(&x, &y, 2), vec![(1.0, 3.0), (3.0, 2.0)]);
-    }
-}
