@@ -135,6 +135,22 @@ pub(crate) fn explicit_rk_tangent<S: crate::integrators::LinearizedDynamics>(
     Ok(())
 }
 
+/// Takes `stepper`'s step on a copy of `state`, then `tangent(stepper, start state, step info)`;
+/// commits the new state only when both succeed (so a failure leaves `state`, and Ψ when `tangent`
+/// writes it last, as they were).
+pub(crate) fn step_then_tangent<St: Stepper>(
+    stepper: &mut St,
+    state: &mut State<St::Partner>,
+    h: f64,
+    tangent: impl FnOnce(&St, &State<St::Partner>, &StepInfo) -> Result<()>,
+) -> Result<StepInfo> {
+    let mut next = state.clone();
+    let info = stepper.step(&mut next, h)?;
+    tangent(stepper, state, &info)?;
+    *state = next;
+    Ok(info)
+}
+
 /// Ψ by central differences of the step itself, column j from the two steps of `stepper` started at
 /// y₀ ± δ_j e_j, δ_j = `rel` · max(1, |y₀_j|): the reference a [`TangentStepper`] is checked against
 /// (a user's own included). Its error is O(δ²) truncation plus O(ε/δ) rounding: with `rel` = 1e-5
