@@ -4,6 +4,7 @@
 mod adaptive;
 mod explicit;
 mod gauss;
+mod symplectic;
 
 use nalgebra::DMatrix;
 use noether_core::prelude::*;
