@@ -18,8 +18,10 @@
 //! decreasing), so that quadratic invariants are kept to rounding at every step size.
 //!
 //! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`] on (q, p), a
-//! `SeparableHamiltonian` on (q, p) and a [`Natural`] system on (q, q̇). A general Lagrangian is
-//! best written as a Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
+//! `SeparableHamiltonian` on (q, p), a [`Natural`] system on (q, q̇), and an
+//! [`EulerLagrange`](crate::EulerLagrange) without generalized forces on (q, q̇) (its Jacobian from
+//! third derivatives of L, see [`crate::tangent`]). A general Lagrangian is best written as a
+//! Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
 //! a configuration-dependent mass matrix is not symplectic in any case).
 //!
 //! A failed Newton solve returns [`Error::NewtonDiverged`] with the iteration count and the last

@@ -4,6 +4,7 @@
 mod adaptive;
 mod explicit;
 mod gauss;
+mod lagrangian;
 mod symplectic;
 
 use nalgebra::DMatrix;
