@@ -11,7 +11,13 @@
 //! equation G(Z, y₀) = 0 by Newton, it is the implicit-function theorem at the converged solution,
 //! ∂Z/∂y₀ = −G_Z⁻¹ G_{y₀}, not the derivative of Newton's iterations.
 //!
-//! Over a run the tangents multiply: ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀.
+//! Over a run the tangents multiply: ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀ ([`run_jacobian`], and [`propagate`]
+//! for a block of tangent vectors).
+//!
+//! Methods with a Ψ: RK4, Euler, Euler-Cromer, DOPRI5 and DOP853 (h frozen at the step taken), the
+//! Gauss methods (implicit-function theorem), symplectic Euler and the Verlet compositions (kick and
+//! drift Jacobians), for any [`LinearizedDynamics`](crate::integrators::LinearizedDynamics): a
+//! Hamiltonian, a separable or natural system, or (defined here) `EulerLagrange` of any Lagrangian.
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -336,4 +342,117 @@ fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
     }
     crate::error::check_result("Jacobian of Lagrange's equations", t, jac.as_slice())?;
     Ok(jac)
+}
+
+/// Advances `state` by `steps` steps of `stepper` with step `h` and carries the tangent vectors `w`
+/// (the 2n × k block of columns W, rows ordered (q, v)) along:
+///
+/// ```text
+/// W ← Ψ_{N−1} ⋯ Ψ₁ Ψ₀ W,   Ψ_k = ∂y_{k+1}/∂y_k the Jacobian of step k (TangentStepper::step_tangent),
+/// ```
+///
+/// so that on return W holds ∂y_N/∂y₀ · W₀: the linearized flow of the numerical map applied to W₀
+/// (k = 1: a tangent vector; k = 2n with W₀ = I: the whole Jacobian, see [`run_jacobian`]). Each step
+/// costs one `step_tangent` and one 2n × 2n × k product. An adaptive method takes whatever step its
+/// controller accepts (Ψ is that of the step taken); for N steps of exactly h use its fixed-step mode.
+///
+/// Errors: `w` without 2n rows ([`Error::Dimension`](crate::Error::Dimension)), a non-finite entry
+/// of `w` ([`Error::NonFinite`](crate::Error::NonFinite)), and any error of a step (the step's own
+/// typed error, e.g. an invalid h or a non-finite state). On error `state` and `w` are left as they
+/// were (the run works on copies and commits both at the end).
+///
+/// ```
+/// use noether_core::prelude::*;
+/// use noether_core::tangent::propagate;
+/// use nalgebra::DMatrix;
+///
+/// /// Harmonic oscillator H = ½(p² + q²).
+/// struct Oscillator;
+/// impl Hamiltonian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+///         (p[0] * p[0] + q[0] * q[0]) * 0.5
+///     }
+/// }
+///
+/// // The implicit midpoint rule maps y' = Ay (A = [[0, 1], [−1, 0]]) by the Cayley transform of hA:
+/// // a rotation by θ = 2 atan(h/2). After N steps a tangent vector δy₀ = (1, 0) has turned by Nθ.
+/// let (h, n) = (0.1, 50);
+/// let mut midpoint = Gauss::implicit_midpoint(HamiltonEquations::new(Oscillator));
+/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let mut w = DMatrix::from_column_slice(2, 1, &[1.0, 0.0]);
+/// propagate(&mut midpoint, &mut s, h, n, &mut w)?;
+/// let angle = n as f64 * 2.0 * (h / 2.0).atan();
+/// assert!((w[(0, 0)] - angle.cos()).abs() < 1e-13 && (w[(1, 0)] + angle.sin()).abs() < 1e-13);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+pub fn propagate<S: TangentStepper>(
+    stepper: &mut S,
+    state: &mut State<S::Partner>,
+    h: f64,
+    steps: usize,
+    w: &mut DMatrix<f64>,
+) -> Result<()> {
+    let n = stepper.dof();
+    if w.nrows() != 2 * n {
+        return Err(crate::Error::Dimension {
+            what: "tangent vectors W (rows)",
+            expected: 2 * n,
+            got: w.nrows(),
+        });
+    }
+    crate::error::check_finite("tangent vectors W", w.as_slice())?;
+    let mut s = state.clone();
+    let mut out = w.clone();
+    let mut psi = DMatrix::zeros(2 * n, 2 * n);
+    for _ in 0..steps {
+        stepper.step_tangent(&mut s, h, &mut psi)?;
+        out = &psi * out;
+    }
+    *state = s;
+    w.copy_from(&out);
+    Ok(())
+}
+
+/// The Jacobian of `steps` steps of `stepper` with step `h` from `state`,
+///
+/// ```text
+/// Φ = ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀   (2n × 2n, rows and columns ordered (q, v)),
+/// ```
+///
+/// advancing `state` to y_N: [`propagate`] with W₀ = I. The monodromy matrix of a periodic orbit, the
+/// sensitivity of a shot to its start, the tangent map whose singular values give finite-time
+/// Lyapunov exponents. Errors as [`propagate`]; on error `state` is left as it was.
+///
+/// ```
+/// use noether_core::prelude::*;
+/// use noether_core::tangent::run_jacobian;
+///
+/// struct Oscillator;
+/// impl Hamiltonian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+///         (p[0] * p[0] + q[0] * q[0]) * 0.5
+///     }
+/// }
+///
+/// // Gauss 4 is symplectic: det Φ = 1 over the whole run (Liouville).
+/// let mut g4 = Gauss::gauss4(HamiltonEquations::new(Oscillator));
+/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let phi = run_jacobian(&mut g4, &mut s, 0.1, 100)?;
+/// assert!((phi.determinant() - 1.0).abs() < 1e-13);
+/// // For a linear system Φ maps y₀ to y_N: here (1, 0) to the state itself.
+/// assert!((phi[(0, 0)] - s.q[0]).abs() < 1e-13 && (phi[(1, 0)] - s.v[0]).abs() < 1e-13);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+pub fn run_jacobian<S: TangentStepper>(
+    stepper: &mut S,
+    state: &mut State<S::Partner>,
+    h: f64,
+    steps: usize,
+) -> Result<DMatrix<f64>> {
+    let n = stepper.dof();
+    let mut phi = DMatrix::identity(2 * n, 2 * n);
+    propagate(stepper, state, h, steps, &mut phi)?;
+    Ok(phi)
 }

@@ -5,6 +5,7 @@ mod adaptive;
 mod explicit;
 mod gauss;
 mod lagrangian;
+mod run;
 mod symplectic;
 
 use nalgebra::DMatrix;
@@ -23,6 +24,22 @@ impl Hamiltonian for HenonHeiles {
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
             - q[1].powi(3) / 3.0
+    }
+}
+
+/// Hénon-Heiles as a separable H = T(p) + V(q), for the split methods.
+#[derive(Debug, Clone, Copy)]
+pub struct HhSeparable;
+
+impl Separable for HhSeparable {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        (q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1] - q[1].powi(3) / 3.0
     }
 }
 
