@@ -5,6 +5,7 @@ mod adaptive;
 mod explicit;
 mod gauss;
 mod lagrangian;
+mod nystrom;
 mod run;
 mod symplectic;
 
