@@ -11,7 +11,13 @@
 //! equation G(Z, y₀) = 0 by Newton, it is the implicit-function theorem at the converged solution,
 //! ∂Z/∂y₀ = −G_Z⁻¹ G_{y₀}, not the derivative of Newton's iterations.
 //!
-//! Over a run the tangents multiply: ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀.
+//! Over a run the tangents multiply: ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀ ([`run_jacobian`], and [`propagate`]
+//! for a block of tangent vectors).
+//!
+//! Methods with a Ψ: RK4, Euler, Euler-Cromer, DOPRI5 and DOP853 (h frozen at the step taken), the
+//! Gauss methods (implicit-function theorem), symplectic Euler and the Verlet compositions (kick and
+//! drift Jacobians), for any [`LinearizedDynamics`](crate::integrators::LinearizedDynamics): a
+//! Hamiltonian, a separable or natural system, or (defined here) `EulerLagrange` of any Lagrangian.
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -135,6 +141,22 @@ pub(crate) fn explicit_rk_tangent<S: crate::integrators::LinearizedDynamics>(
     Ok(())
 }
 
+/// Takes `stepper`'s step on a copy of `state`, then `tangent(stepper, start state, step info)`;
+/// commits the new state only when both succeed (so a failure leaves `state`, and Ψ when `tangent`
+/// writes it last, as they were).
+pub(crate) fn step_then_tangent<St: Stepper>(
+    stepper: &mut St,
+    state: &mut State<St::Partner>,
+    h: f64,
+    tangent: impl FnOnce(&St, &State<St::Partner>, &StepInfo) -> Result<()>,
+) -> Result<StepInfo> {
+    let mut next = state.clone();
+    let info = stepper.step(&mut next, h)?;
+    tangent(stepper, state, &info)?;
+    *state = next;
+    Ok(info)
+}
+
 /// Ψ by central differences of the step itself, column j from the two steps of `stepper` started at
 /// y₀ ± δ_j e_j, δ_j = `rel` · max(1, |y₀_j|): the reference a [`TangentStepper`] is checked against
 /// (a user's own included). Its error is O(δ²) truncation plus O(ε/δ) rounding: with `rel` = 1e-5
@@ -178,4 +200,259 @@ pub fn central_difference<S: Stepper>(
         }
     }
     Ok(psi)
+}
+
+/// The exact Jacobian of Lagrange's equations on (q, q̇), for any Lagrangian (configuration- and
+/// velocity-dependent mass matrix included):
+///
+/// ```text
+/// J = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]],   M q̈ = b,   b = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t,
+/// ∂q̈·δ = M⁻¹ (δb − (δM) q̈)   for δ = (δq, δq̇),
+/// ```
+///
+/// which needs third derivatives of L. Column j of J comes from one evaluation of L with the
+/// [`LagrangeJet`](crate::ad::LagrangeJet) of [`ad::lagrange_terms`](crate::ad::lagrange_terms) over an
+/// inner `Dual64` seeded along δ = e_j: the jet gives b and M, the inner dual their derivatives δb and
+/// δM. M is factored once per call by [`linalg`](crate::linalg). Up to 10 degrees of freedom (the
+/// jet's stack range, as `EulerLagrange::accelerations`); more give [`Error::Unsupported`](crate::Error::Unsupported).
+///
+/// Generalized forces Q(t, q, q̇) are plain `f64` functions that dual numbers cannot differentiate:
+/// with [`has_generalized_force`](crate::Lagrangian::has_generalized_force) true the Jacobian is refused
+/// with [`Error::Unsupported`](crate::Error::Unsupported) (write the force into L, or use
+/// [`central_difference`] of the step).
+impl<L: crate::Lagrangian> crate::integrators::LinearizedDynamics for crate::EulerLagrange<L> {
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.dof();
+        crate::error::check_phase_point(n, t, q, v, "q̇")?;
+        if out.nrows() != 2 * n || out.ncols() != 2 * n {
+            return Err(crate::Error::Dimension {
+                what: "Jacobian of Lagrange's equations (rows and columns)",
+                expected: 2 * n,
+                got: if out.nrows() != 2 * n {
+                    out.nrows()
+                } else {
+                    out.ncols()
+                },
+            });
+        }
+        if self.lagrangian().has_generalized_force() {
+            return Err(crate::Error::Unsupported(
+                "the Jacobian of Lagrange's equations with generalized forces (Q is not differentiable by dual numbers)",
+            ));
+        }
+        let f = crate::lagrange::LagrangianField(self.lagrangian());
+        let jac = match n {
+            0 => Ok(DMatrix::zeros(0, 0)),
+            1 => lagrange_jacobian::<_, 1>(&f, t, q, v),
+            2 => lagrange_jacobian::<_, 2>(&f, t, q, v),
+            3 => lagrange_jacobian::<_, 3>(&f, t, q, v),
+            4 => lagrange_jacobian::<_, 4>(&f, t, q, v),
+            5 => lagrange_jacobian::<_, 5>(&f, t, q, v),
+            6 => lagrange_jacobian::<_, 6>(&f, t, q, v),
+            7 => lagrange_jacobian::<_, 7>(&f, t, q, v),
+            8 => lagrange_jacobian::<_, 8>(&f, t, q, v),
+            9 => lagrange_jacobian::<_, 9>(&f, t, q, v),
+            10 => lagrange_jacobian::<_, 10>(&f, t, q, v),
+            _ => Err(crate::Error::Unsupported(
+                "the Jacobian of Lagrange's equations for more than 10 degrees of freedom",
+            )),
+        }?;
+        out.copy_from(&jac);
+        Ok(())
+    }
+}
+
+/// (b, M) of Lagrange's equations M q̈ = b and their derivatives along δ = (δq, δq̇): one evaluation of
+/// f with a [`LagrangeJet`](crate::ad::LagrangeJet) over `Dual64`, seeded like
+/// [`ad::lagrange_terms`](crate::ad::lagrange_terms) at (t + s, x + s·y + ·, y + ·) with
+/// x = q + ε δq, y = q̇ + ε δq̇.
+fn lagrange_terms_along<F: crate::ad::Field, const N: usize>(
+    f: &F,
+    t: f64,
+    (x, y): (&[f64], &[f64]),
+    (dx, dy): (&[f64], &[f64]),
+) -> (
+    nalgebra::SVector<num_dual::Dual64, N>,
+    nalgebra::SMatrix<num_dual::Dual64, N, N>,
+) {
+    use crate::ad::{LagrangeJet, Part};
+    use nalgebra::{Const, SVector};
+    use num_dual::Dual64;
+    type J<const N: usize> = LagrangeJet<Dual64, f64, Const<N>>;
+    let unit = |i: usize| Part::unit(Const::<N>, i);
+    let zero = Dual64::from(0.0);
+    let mut xs = [J::<N>::from_re(zero); N];
+    let mut ys = [J::<N>::from_re(zero); N];
+    for i in 0..N {
+        let (xi, yi) = (Dual64::new(x[i], dx[i]), Dual64::new(y[i], dy[i]));
+        xs[i] = J::new(xi, unit(i), yi, Part::none(), Part::none(), Part::none());
+        ys[i] = J::new(yi, Part::none(), zero, unit(i), Part::none(), Part::none());
+    }
+    let tt = J::new(
+        Dual64::from(t),
+        Part::none(),
+        Dual64::from(1.0),
+        Part::none(),
+        Part::none(),
+        Part::none(),
+    );
+    let r = f.eval(tt, &xs, &ys);
+    let row = |p: &Part<Dual64, f64, nalgebra::U1, Const<N>>| {
+        p.get()
+            .map_or_else(SVector::<Dual64, N>::zeros, |m| m.transpose())
+    };
+    (row(&r.gx) - row(&r.hsw), r.hww.matrix(Const::<N>))
+}
+
+/// J of Lagrange's equations for N degrees of freedom, column by column (see the
+/// [`LinearizedDynamics`](crate::integrators::LinearizedDynamics) impl of `EulerLagrange`).
+fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
+    f: &F,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+) -> Result<DMatrix<f64>> {
+    let zeros = [0.0; N];
+    let mut jac = DMatrix::zeros(2 * N, 2 * N);
+    jac.view_mut((0, N), (N, N)).fill_with_identity();
+    let columns: Vec<_> = (0..2 * N)
+        .map(|j| {
+            let mut e = [0.0; N];
+            e[j % N] = 1.0;
+            let dir = if j < N {
+                (&e[..], &zeros[..])
+            } else {
+                (&zeros[..], &e[..])
+            };
+            lagrange_terms_along::<F, N>(f, t, (q, v), dir)
+        })
+        .collect();
+    let Some((b0, m0)) = columns.first() else {
+        return Ok(jac);
+    };
+    // M and q̈ = M⁻¹b from the real parts (the same in every column).
+    let factor = crate::linalg::factor_mass(DMatrix::from_fn(N, N, |r, c| m0[(r, c)].re), t)?;
+    let acc = factor.solve_matrix(&DMatrix::from_fn(N, 1, |r, _| b0[r].re));
+    for (j, (b, m)) in columns.iter().enumerate() {
+        // δb − (δM) q̈, then M⁻¹.
+        let rhs = DMatrix::from_fn(N, 1, |r, _| {
+            b[r].eps - (0..N).map(|c| m[(r, c)].eps * acc[(c, 0)]).sum::<f64>()
+        });
+        jac.view_mut((N, j), (N, 1)).copy_from(&factor.solve_matrix(&rhs));
+    }
+    crate::error::check_result("Jacobian of Lagrange's equations", t, jac.as_slice())?;
+    Ok(jac)
+}
+
+/// Advances `state` by `steps` steps of `stepper` with step `h` and carries the tangent vectors `w`
+/// (the 2n × k block of columns W, rows ordered (q, v)) along:
+///
+/// ```text
+/// W ← Ψ_{N−1} ⋯ Ψ₁ Ψ₀ W,   Ψ_k = ∂y_{k+1}/∂y_k the Jacobian of step k (TangentStepper::step_tangent),
+/// ```
+///
+/// so that on return W holds ∂y_N/∂y₀ · W₀: the linearized flow of the numerical map applied to W₀
+/// (k = 1: a tangent vector; k = 2n with W₀ = I: the whole Jacobian, see [`run_jacobian`]). Each step
+/// costs one `step_tangent` and one 2n × 2n × k product. An adaptive method takes whatever step its
+/// controller accepts (Ψ is that of the step taken); for N steps of exactly h use its fixed-step mode.
+///
+/// Errors: `w` without 2n rows ([`Error::Dimension`](crate::Error::Dimension)), a non-finite entry
+/// of `w` ([`Error::NonFinite`](crate::Error::NonFinite)), and any error of a step (the step's own
+/// typed error, e.g. an invalid h or a non-finite state). On error `state` and `w` are left as they
+/// were (the run works on copies and commits both at the end).
+///
+/// ```
+/// use noether_core::prelude::*;
+/// use noether_core::tangent::propagate;
+/// use nalgebra::DMatrix;
+///
+/// /// Harmonic oscillator H = ½(p² + q²).
+/// struct Oscillator;
+/// impl Hamiltonian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+///         (p[0] * p[0] + q[0] * q[0]) * 0.5
+///     }
+/// }
+///
+/// // The implicit midpoint rule maps y' = Ay (A = [[0, 1], [−1, 0]]) by the Cayley transform of hA:
+/// // a rotation by θ = 2 atan(h/2). After N steps a tangent vector δy₀ = (1, 0) has turned by Nθ.
+/// let (h, n) = (0.1, 50);
+/// let mut midpoint = Gauss::implicit_midpoint(HamiltonEquations::new(Oscillator));
+/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let mut w = DMatrix::from_column_slice(2, 1, &[1.0, 0.0]);
+/// propagate(&mut midpoint, &mut s, h, n, &mut w)?;
+/// let angle = n as f64 * 2.0 * (h / 2.0).atan();
+/// assert!((w[(0, 0)] - angle.cos()).abs() < 1e-13 && (w[(1, 0)] + angle.sin()).abs() < 1e-13);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+pub fn propagate<S: TangentStepper>(
+    stepper: &mut S,
+    state: &mut State<S::Partner>,
+    h: f64,
+    steps: usize,
+    w: &mut DMatrix<f64>,
+) -> Result<()> {
+    let n = stepper.dof();
+    if w.nrows() != 2 * n {
+        return Err(crate::Error::Dimension {
+            what: "tangent vectors W (rows)",
+            expected: 2 * n,
+            got: w.nrows(),
+        });
+    }
+    crate::error::check_finite("tangent vectors W", w.as_slice())?;
+    let mut s = state.clone();
+    let mut out = w.clone();
+    let mut psi = DMatrix::zeros(2 * n, 2 * n);
+    for _ in 0..steps {
+        stepper.step_tangent(&mut s, h, &mut psi)?;
+        out = &psi * out;
+    }
+    *state = s;
+    w.copy_from(&out);
+    Ok(())
+}
+
+/// The Jacobian of `steps` steps of `stepper` with step `h` from `state`,
+///
+/// ```text
+/// Φ = ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀   (2n × 2n, rows and columns ordered (q, v)),
+/// ```
+///
+/// advancing `state` to y_N: [`propagate`] with W₀ = I. The monodromy matrix of a periodic orbit, the
+/// sensitivity of a shot to its start, the tangent map whose singular values give finite-time
+/// Lyapunov exponents. Errors as [`propagate`]; on error `state` is left as it was.
+///
+/// ```
+/// use noether_core::prelude::*;
+/// use noether_core::tangent::run_jacobian;
+///
+/// struct Oscillator;
+/// impl Hamiltonian for Oscillator {
+///     fn dof(&self) -> usize { 1 }
+///     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+///         (p[0] * p[0] + q[0] * q[0]) * 0.5
+///     }
+/// }
+///
+/// // Gauss 4 is symplectic: det Φ = 1 over the whole run (Liouville).
+/// let mut g4 = Gauss::gauss4(HamiltonEquations::new(Oscillator));
+/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let phi = run_jacobian(&mut g4, &mut s, 0.1, 100)?;
+/// assert!((phi.determinant() - 1.0).abs() < 1e-13);
+/// // For a linear system Φ maps y₀ to y_N: here (1, 0) to the state itself.
+/// assert!((phi[(0, 0)] - s.q[0]).abs() < 1e-13 && (phi[(1, 0)] - s.v[0]).abs() < 1e-13);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+pub fn run_jacobian<S: TangentStepper>(
+    stepper: &mut S,
+    state: &mut State<S::Partner>,
+    h: f64,
+    steps: usize,
+) -> Result<DMatrix<f64>> {
+    let n = stepper.dof();
+    let mut phi = DMatrix::identity(2 * n, 2 * n);
+    propagate(stepper, state, h, steps, &mut phi)?;
+    Ok(phi)
 }

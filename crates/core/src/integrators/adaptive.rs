@@ -591,3 +591,28 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         )
     }
 }
+
+/// Ψ of the accepted step with its step size h frozen (the derivative of y₀ ↦ y₁ at the h taken, after
+/// any rejected trials): the method's main stages differentiated as an explicit Runge-Kutta method,
+/// K_i = J(t + c_i h, Y_i)(I + h Σ_{j<i} a_ij K_j), Ψ = I + h Σ_i b_i K_i, with the tableau of
+/// [`EmbeddedPair`] ([`EmbeddedPair::A`], [`EmbeddedPair::B`], [`EmbeddedPair::C`]). The controller's
+/// dependence of h on y₀ (through the error estimate) is not part of Ψ.
+impl<S: crate::integrators::LinearizedDynamics, M: EmbeddedPair> crate::TangentStepper for Adaptive<S, M> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut nalgebra::DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        crate::tangent::check_tangent_shape(psi, self.n)?;
+        crate::tangent::step_then_tangent(self, state, h, |m, s, info| {
+            crate::tangent::explicit_rk_tangent(
+                &m.system,
+                (s.t, s.q.as_slice(), s.v.as_slice()),
+                info.h,
+                (M::A, M::B, M::C),
+                psi,
+            )
+        })
+    }
+}

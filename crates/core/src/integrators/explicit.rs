@@ -4,7 +4,7 @@
 
 use crate::error::check_step;
 use crate::integrators::LinearizedDynamics;
-use crate::tangent::{check_tangent_shape, explicit_rk_tangent};
+use crate::tangent::{check_tangent_shape, explicit_rk_tangent, step_then_tangent};
 use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper, TangentStepper};
 use nalgebra::DMatrix;
 
@@ -229,21 +229,6 @@ const RK4_TABLEAU: (&[&[f64]], &[f64], &[f64]) = (
     &[0.0, 0.5, 0.5, 1.0],
 );
 
-/// Takes `stepper`'s step on a copy of `state`, then `tangent` from the start state; commits both only
-/// when both succeed (so a failure leaves `state` and Ψ as they were).
-fn step_then_tangent<St: Stepper>(
-    stepper: &mut St,
-    state: &mut State<St::Partner>,
-    h: f64,
-    tangent: impl FnOnce(&St, &State<St::Partner>) -> Result<()>,
-) -> Result<StepInfo> {
-    let mut next = state.clone();
-    let info = stepper.step(&mut next, h)?;
-    tangent(stepper, state)?;
-    *state = next;
-    Ok(info)
-}
-
 /// Ψ of RK4 by its differentiated stages (see [`crate::tangent`]).
 impl<S: LinearizedDynamics> TangentStepper for Rk4<S> {
     fn step_tangent(
@@ -253,7 +238,7 @@ impl<S: LinearizedDynamics> TangentStepper for Rk4<S> {
         psi: &mut DMatrix<f64>,
     ) -> Result<StepInfo> {
         check_tangent_shape(psi, self.system.dof())?;
-        step_then_tangent(self, state, h, |m, s| {
+        step_then_tangent(self, state, h, |m, s, _| {
             explicit_rk_tangent(
                 &m.system,
                 (s.t, s.q.as_slice(), s.v.as_slice()),
@@ -281,7 +266,7 @@ impl<S: LinearizedDynamics, R: FirstOrderRule> TangentStepper for FirstOrder<S, 
     ) -> Result<StepInfo> {
         let n = self.system.dof();
         check_tangent_shape(psi, n)?;
-        step_then_tangent(self, state, h, |m, s| {
+        step_then_tangent(self, state, h, |m, s, _| {
             let (t, q, v) = (s.t, s.q.as_slice(), s.v.as_slice());
             if !R::NEW_VELOCITIES {
                 return explicit_rk_tangent(&m.system, (t, q, v), h, (&[&[]], &[1.0], &[0.0]), psi);

@@ -18,8 +18,10 @@
 //! decreasing), so that quadratic invariants are kept to rounding at every step size.
 //!
 //! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`] on (q, p), a
-//! `SeparableHamiltonian` on (q, p) and a [`Natural`] system on (q, q̇). A general Lagrangian is
-//! best written as a Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
+//! `SeparableHamiltonian` on (q, p), a [`Natural`] system on (q, q̇), and an
+//! [`EulerLagrange`](crate::EulerLagrange) without generalized forces on (q, q̇) (its Jacobian from
+//! third derivatives of L, see [`crate::tangent`]). A general Lagrangian is best written as a
+//! Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
 //! a configuration-dependent mass matrix is not symplectic in any case).
 //!
 //! A failed Newton solve returns [`Error::NewtonDiverged`] with the iteration count and the last
@@ -351,9 +353,26 @@ impl<S: LinearizedDynamics> DenseProblem for Stages<'_, S> {
     }
 }
 
-impl<S: LinearizedDynamics> Stepper for Gauss<S> {
-    type Partner = S::Partner;
-    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
+impl<S: LinearizedDynamics> Gauss<S> {
+    /// The stage equations of the step (t, y₀, h) as a Newton problem.
+    fn stage_problem<'a>(&'a self, t: f64, h: f64, y0: &'a [f64]) -> Stages<'a, S> {
+        let m = y0.len();
+        Stages {
+            system: &self.system,
+            t,
+            h,
+            y0,
+            a: &self.a,
+            c: &self.c,
+            s: self.s,
+            f: vec![0.0; self.s * m],
+            y: vec![0.0; m],
+            jac: DMatrix::zeros(m, m),
+        }
+    }
+
+    /// Solves the stage equations of one step from `state`: (y₀, converged Z, Newton iterations).
+    fn solve_stages(&self, state: &State<S::Partner>, h: f64) -> Result<(Vec<f64>, Vec<f64>, usize)> {
         check_step(h)?;
         let n = self.system.dof();
         state.validate(n)?;
@@ -368,24 +387,19 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
         let scale = 1.0 + max_norm(&y0);
         newton.tol_residual *= scale;
         newton.tol_step *= scale;
-        let mut sys = Dense::new(Stages {
-            system: &self.system,
-            t,
-            h,
-            y0: &y0,
-            a: &self.a,
-            c: &self.c,
-            s,
-            f: vec![0.0; s * m],
-            y: vec![0.0; m],
-            jac: DMatrix::zeros(m, m),
-        });
+        let mut sys = Dense::new(self.stage_problem(t, h, &y0));
         let info = newton.solve(&mut sys, &mut z).map_err(|e| match e {
             Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
             other => other,
         })?;
-        let mut y1 = y0.clone();
-        for i in 0..s {
+        Ok((y0, z, info.iterations))
+    }
+
+    /// y₁ = y₀ + Σ d_i Z_i, checked finite.
+    fn new_state(&self, t: f64, y0: &[f64], z: &[f64]) -> Result<Vec<f64>> {
+        let m = y0.len();
+        let mut y1 = y0.to_vec();
+        for i in 0..self.s {
             for k in 0..m {
                 y1[k] += self.d[i] * z[i * m + k];
             }
@@ -396,9 +410,22 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
                 t,
             });
         }
+        Ok(y1)
+    }
+
+    /// Writes y₁ into `state`, remembers the step for the next starting guess.
+    fn commit(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        (y0, y1, z): (Vec<f64>, Vec<f64>, &[f64]),
+        iterations: usize,
+    ) -> StepInfo {
+        let (s, m) = (self.s, y0.len());
+        let n = m / 2;
         state.q.as_mut_slice().copy_from_slice(&y1[..n]);
         state.v.as_mut_slice().copy_from_slice(&y1[n..]);
-        state.t = t + h;
+        state.t += h;
         let stages = (0..s * m).map(|k| y0[k % m] + z[k]).collect();
         self.last = Some(LastStep {
             t_end: state.t,
@@ -408,9 +435,44 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             stages,
         });
         // One vector field per stage and residual (the start guess costs one more on a fresh start).
-        Ok(StepInfo::fixed(h)
-            .with_evaluations(s * (info.iterations + 1))
-            .with_newton(info.iterations, 0))
+        StepInfo::fixed(h)
+            .with_evaluations(s * (iterations + 1))
+            .with_newton(iterations, 0)
+    }
+
+    /// Ψ of the step (t, y₀, h) with converged stage increments `z`, by the implicit-function theorem
+    /// (see the [`TangentStepper`] impl).
+    fn stage_tangent(&self, t: f64, h: f64, y0: &[f64], z: &[f64]) -> Result<DMatrix<f64>> {
+        let (s, m) = (self.s, y0.len());
+        let mut gz = DMatrix::zeros(s * m, s * m);
+        self.stage_problem(t, h, y0).jacobian(z, &mut gz)?;
+        // −G_{y₀} block i = h Σ_j a_ij J(Y_j) = I − Σ_j G_Z(i, j): the blocks of G_Z already hold it.
+        let mut rhs = DMatrix::zeros(s * m, m);
+        for i in 0..s {
+            let mut bi = rhs.view_mut((i * m, 0), (m, m));
+            bi.fill_with_identity();
+            for j in 0..s {
+                bi -= gz.view((i * m, j * m), (m, m));
+            }
+        }
+        let dz = crate::linalg::DenseFactor::lu(gz)
+            .map_err(|e| e.in_matrix("Gauss stage Jacobian (tangent)"))?
+            .solve_matrix(&rhs);
+        let mut psi = DMatrix::identity(m, m);
+        for i in 0..s {
+            psi += self.d[i] * dz.view((i * m, 0), (m, m));
+        }
+        crate::error::check_result("step Jacobian Ψ", t, psi.as_slice())?;
+        Ok(psi)
+    }
+}
+
+impl<S: LinearizedDynamics> Stepper for Gauss<S> {
+    type Partner = S::Partner;
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
+        let (y0, z, iterations) = self.solve_stages(state, h)?;
+        let y1 = self.new_state(state.t, &y0, &z)?;
+        Ok(self.commit(state, h, (y0, y1, &z), iterations))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
         Some(
@@ -430,5 +492,33 @@ impl<S: LinearizedDynamics> Stepper for Gauss<S> {
             2 => "Gauss-Legendre 4 (2 stages)",
             _ => "Gauss-Legendre 6 (3 stages)",
         }
+    }
+}
+
+/// Ψ of a Gauss step by the implicit-function theorem at the converged stages (not by differentiating
+/// Newton's iterations). With G(Z, y₀)_i = Z_i − h Σ_j a_ij F(y₀ + Z_j) = 0,
+///
+/// ```text
+/// G_Z = [δ_ij I − h a_ij J(Y_j)],   G_{y₀} = [−h Σ_j a_ij J(Y_j)]_i,
+/// ∂Z/∂y₀ = −G_Z⁻¹ G_{y₀},           Ψ = I + Σ_i d_i ∂Z_i/∂y₀,
+/// ```
+///
+/// G_Z being the exact Jacobian of the stage equations at the converged Z (evaluated once more there
+/// and factored by the one LU of [`linalg`](crate::linalg)). The stages carry the Newton tolerance
+/// (1e-15 relative by default), so Ψ is the derivative of the exactly solved step to about that
+/// level times ‖∂Ψ/∂Z‖.
+impl<S: LinearizedDynamics> crate::TangentStepper for Gauss<S> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        crate::tangent::check_tangent_shape(psi, self.system.dof())?;
+        let (y0, z, iterations) = self.solve_stages(state, h)?;
+        let y1 = self.new_state(state.t, &y0, &z)?;
+        let out = self.stage_tangent(state.t, h, &y0, &z)?;
+        psi.copy_from(&out);
+        Ok(self.commit(state, h, (y0, y1, &z), iterations))
     }
 }

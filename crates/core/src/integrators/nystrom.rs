@@ -1202,6 +1202,68 @@ impl NystromPair for Rkn12 {
     const HERMITE: bool = true;
 }
 
+/// Ψ of the accepted Nyström step with its step size h frozen (as for [`Adaptive`](super::Adaptive)):
+/// the stages differentiated,
+///
+/// ```text
+/// ∂Q_i/∂y₀ = [I, c_i h I] + h² Σ_j a_ij K_j,   K_i = ∂k_i/∂y₀ = f_q(Q_i) ∂Q_i/∂y₀,
+/// ∂q₁/∂y₀ = [I, h I] + h² Σ_i b_i K_i,          ∂q̇₁/∂y₀ = [0, I] + h Σ_i b'_i K_i,
+/// ```
+///
+/// with f_q = ∂K/∂q the lower-left block of the [`LinearizedDynamics`](super::LinearizedDynamics)
+/// Jacobian (−M⁻¹∇²V for a natural system). The stages are evaluated again from y₀ (s more force
+/// evaluations and s Jacobians).
+impl<S: SplitDynamics + super::LinearizedDynamics, M: NystromPair> crate::TangentStepper for Nystrom<S, M> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut nalgebra::DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        use nalgebra::DMatrix;
+        let n = self.n;
+        crate::tangent::check_tangent_shape(psi, n)?;
+        crate::tangent::step_then_tangent(self, state, h, |m, st, info| {
+            let (h, t) = (info.h, st.t);
+            let (q0, v0) = (st.q.as_slice(), st.v.as_slice());
+            let s = M::C.len();
+            let mut jac = DMatrix::zeros(2 * n, 2 * n);
+            let mut ks: Vec<Vec<f64>> = Vec::with_capacity(s);
+            let mut dks: Vec<DMatrix<f64>> = Vec::with_capacity(s);
+            let mut qs = vec![0.0; n];
+            for i in 0..s {
+                let (a, c) = (M::A[i], M::C[i]);
+                let mut dq = DMatrix::zeros(n, 2 * n);
+                dq.view_mut((0, 0), (n, n)).fill_with_identity();
+                dq.view_mut((0, n), (n, n)).fill_diagonal(c * h);
+                for x in 0..n {
+                    let sum: f64 = a.iter().zip(&ks).map(|(aij, k)| aij * k[x]).sum();
+                    qs[x] = q0[x] + h * (c * v0[x] + h * sum);
+                }
+                for (aij, dk) in a.iter().zip(&dks) {
+                    dq += dk * (h * h * aij);
+                }
+                let mut k = vec![0.0; n];
+                m.system.kick_rate(&qs, &mut k)?;
+                m.system.jacobian(t, &qs, v0, &mut jac)?;
+                dks.push(jac.view((n, 0), (n, n)) * dq);
+                ks.push(k);
+            }
+            let mut out = DMatrix::identity(2 * n, 2 * n);
+            out.view_mut((0, n), (n, n)).fill_diagonal(h);
+            for ((dk, b), bp) in dks.iter().zip(M::B).zip(M::BP) {
+                let mut top = out.rows_mut(0, n);
+                top += dk * (h * h * b);
+                let mut bottom = out.rows_mut(n, n);
+                bottom += dk * (h * bp);
+            }
+            crate::error::check_result("step Jacobian Ψ", t, out.as_slice())?;
+            psi.copy_from(&out);
+            Ok(())
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

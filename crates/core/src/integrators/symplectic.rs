@@ -32,10 +32,15 @@
 
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len, check_result, check_step, finite_result};
+use crate::integrators::LinearizedDynamics;
 use crate::natural::{Natural, Potential};
+use crate::tangent::{check_tangent_shape, step_then_tangent};
 use crate::{
     Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper,
+    TangentStepper,
 };
+use nalgebra::DMatrix;
+use std::ops::AddAssign;
 
 /// A vector field split as q̇ = D(v), v̇ = K(q): what explicit symplectic methods need.
 pub trait SplitDynamics: Dynamics {
@@ -451,5 +456,115 @@ impl<S: SplitDynamics> Stepper for Composition<S> {
     }
     fn name(&self) -> &'static str {
         self.name
+    }
+}
+
+/// The replay of a split method's kicks and drifts from (t, q₀, v₀), carrying Ψ along:
+///
+/// ```text
+/// kick  K_c: v ← v + c K(q),  Ψ ← [[I, 0], [c ∂K/∂q(q), I]] Ψ   at the current q;
+/// drift D_c: q ← q + c D(v),  Ψ ← [[I, c ∂D/∂v(v)], [0, I]] Ψ   at the current v,
+/// ```
+///
+/// the blocks ∂K/∂q and ∂D/∂v taken from J = [[0, ∂D/∂v], [∂K/∂q, 0]] of [`LinearizedDynamics`]
+/// (for H = T(p) + V(q): ∂D/∂p = ∇²T, ∂K/∂q = −∇²V; on a natural system ∂D/∂v = I needs no call).
+struct SplitTangent<'a, S> {
+    system: &'a S,
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    f: Vec<f64>,
+    dq: Vec<f64>,
+    jac: DMatrix<f64>,
+    psi: DMatrix<f64>,
+}
+
+impl<'a, S: SplitDynamics + LinearizedDynamics> SplitTangent<'a, S> {
+    fn new(system: &'a S, state: &State<S::Partner>) -> Self {
+        let n = system.dof();
+        SplitTangent {
+            system,
+            t: state.t,
+            q: state.q.as_slice().to_vec(),
+            v: state.v.as_slice().to_vec(),
+            f: vec![0.0; n],
+            dq: vec![0.0; n],
+            jac: DMatrix::zeros(2 * n, 2 * n),
+            psi: DMatrix::identity(2 * n, 2 * n),
+        }
+    }
+    fn kick(&mut self, c: f64) -> Result<()> {
+        let n = self.q.len();
+        self.system.kick_rate(&self.q, &mut self.f)?;
+        self.system.jacobian(self.t, &self.q, &self.v, &mut self.jac)?;
+        let dv = self.jac.view((n, 0), (n, n)) * self.psi.rows(0, n) * c;
+        self.psi.rows_mut(n, n).add_assign(&dv);
+        self.v.iter_mut().zip(&self.f).for_each(|(v, f)| *v += c * f);
+        Ok(())
+    }
+    fn drift(&mut self, c: f64) -> Result<()> {
+        let n = self.q.len();
+        if self.system.drift_is_identity() {
+            let dq = self.psi.rows(n, n) * c;
+            self.psi.rows_mut(0, n).add_assign(&dq);
+            self.q.iter_mut().zip(&self.v).for_each(|(q, v)| *q += c * v);
+        } else {
+            self.system.drift_rate(&self.v, &mut self.dq)?;
+            self.system.jacobian(self.t, &self.q, &self.v, &mut self.jac)?;
+            let dq = self.jac.view((0, n), (n, n)) * self.psi.rows(n, n) * c;
+            self.psi.rows_mut(0, n).add_assign(&dq);
+            self.q.iter_mut().zip(&self.dq).for_each(|(q, d)| *q += c * d);
+        }
+        Ok(())
+    }
+    /// Ψ into `out` when finite.
+    fn finish(self, out: &mut DMatrix<f64>) -> Result<()> {
+        check_result("step Jacobian Ψ", self.t, self.psi.as_slice())?;
+        out.copy_from(&self.psi);
+        Ok(())
+    }
+}
+
+/// Ψ of symplectic Euler, kick then drift: Ψ = [[I, h D_v(v₁)], [0, I]] [[I, 0], [h K_q(q₀), I]]
+/// (see `SplitTangent` in the source for the blocks). Needs second derivatives: `S` must also be
+/// [`LinearizedDynamics`] (a separable Hamiltonian and a natural system are both).
+impl<S: SplitDynamics + LinearizedDynamics> TangentStepper for SymplecticEuler<S> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        check_tangent_shape(psi, self.system.dof())?;
+        step_then_tangent(self, state, h, |m, s, _| {
+            let mut w = SplitTangent::new(&m.system, s);
+            w.kick(h)?;
+            w.drift(h)?;
+            w.finish(psi)
+        })
+    }
+}
+
+/// Ψ of a composition of Störmer-Verlet steps: the product of the kick and drift Jacobians in the
+/// order the step applies them (K_{a₀h}, D_{b₁h}, K_{a₁h}, …, D_{b_s h}, K_{a_s h}), each at the
+/// point where the step evaluates it. For a [`SeparableHamiltonian`] every factor is symplectic, so
+/// det Ψ = 1 to rounding. Needs `S: LinearizedDynamics` (as [`SymplecticEuler`]).
+impl<S: SplitDynamics + LinearizedDynamics> TangentStepper for Composition<S> {
+    fn step_tangent(
+        &mut self,
+        state: &mut State<S::Partner>,
+        h: f64,
+        psi: &mut DMatrix<f64>,
+    ) -> Result<StepInfo> {
+        check_tangent_shape(psi, self.system.dof())?;
+        step_then_tangent(self, state, h, |m, s, _| {
+            let mut w = SplitTangent::new(&m.system, s);
+            for (a, b) in m.kicks.iter().zip(&m.drifts) {
+                w.kick(a * h)?;
+                w.drift(b * h)?;
+            }
+            w.kick(m.kicks[m.kicks.len() - 1] * h)?;
+            w.finish(psi)
+        })
     }
 }

@@ -1,7 +1,13 @@
 //! The derivative of the numerical flow (`TangentStepper`): each method's Ψ = ∂y₁/∂y₀ against central
 //! differences of the step itself, on nonlinear problems. One test binary, one module per family.
 
+mod adaptive;
 mod explicit;
+mod gauss;
+mod lagrangian;
+mod nystrom;
+mod run;
+mod symplectic;
 
 use nalgebra::DMatrix;
 use noether_core::prelude::*;
@@ -19,6 +25,22 @@ impl Hamiltonian for HenonHeiles {
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
             - q[1].powi(3) / 3.0
+    }
+}
+
+/// Hénon-Heiles as a separable H = T(p) + V(q), for the split methods.
+#[derive(Debug, Clone, Copy)]
+pub struct HhSeparable;
+
+impl Separable for HhSeparable {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        (q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1] - q[1].powi(3) / 3.0
     }
 }
 
@@ -49,4 +71,48 @@ where
     assert_eq!(s.q, plain.q, "the tangent step must take the same step");
     assert_eq!(s.v, plain.v, "the tangent step must take the same step");
     (psi - reference).abs().max()
+}
+
+/// The error contract of `step_tangent`: a wrongly shaped Ψ, a non-finite state and a non-finite step
+/// are typed errors, and each leaves the state and Ψ exactly as they were.
+pub fn error_contract<S: TangentStepper>(stepper: &mut S, state: &State<S::Partner>, h: f64)
+where
+    S::Partner: std::fmt::Debug,
+{
+    let n = stepper.dof();
+    let mut s = state.clone();
+    let mut bad = DMatrix::from_element(2 * n + 1, 2 * n, 7.0);
+    let err = stepper.step_tangent(&mut s, h, &mut bad).unwrap_err();
+    assert!(matches!(err, Error::Dimension { .. }), "{err}");
+    assert_eq!(&s, state);
+    assert_eq!(bad, DMatrix::from_element(2 * n + 1, 2 * n, 7.0));
+
+    let sentinel = DMatrix::from_element(2 * n, 2 * n, 7.0);
+    let mut psi = sentinel.clone();
+    let err = stepper.step_tangent(&mut s, f64::NAN, &mut psi).unwrap_err();
+    assert!(matches!(err, Error::InvalidStep { .. }), "{err}");
+    assert_eq!(&s, state);
+    assert_eq!(psi, sentinel);
+
+    let mut nan = state.clone();
+    nan.v[0] = f64::NAN;
+    let before = nan.clone();
+    let err = stepper.step_tangent(&mut nan, h, &mut psi).unwrap_err();
+    assert!(
+        matches!(err, Error::NonFinite { .. } | Error::NonFiniteState { .. }),
+        "{err}"
+    );
+    assert_eq!(nan.q, before.q);
+    assert!(nan.v[0].is_nan() && nan.t == before.t);
+    assert_eq!(psi, sentinel);
+}
+
+/// max |ΨᵀΩΨ − Ω| with Ω = [[0, I], [−I, 0]]: zero for a symplectic map on (q, p).
+pub fn symplecticity_defect(psi: &DMatrix<f64>) -> f64 {
+    let n = psi.nrows() / 2;
+    let mut omega = DMatrix::zeros(2 * n, 2 * n);
+    omega.view_mut((0, n), (n, n)).fill_with_identity();
+    omega.view_mut((n, 0), (n, n)).fill_with_identity();
+    omega.view_mut((n, 0), (n, n)).neg_mut();
+    (psi.transpose() * &omega * psi - omega).abs().max()
 }
