@@ -7,7 +7,7 @@
 //! | adaptive | [`adaptive`], [`dopri5`], [`dop853`] | Dormand-Prince 5(4) and 8(5,3), error control, dense output | any [`Dynamics`](crate::Dynamics) |
 //! | Runge-Kutta-Nyström | [`nystrom`] | Dormand-El-Mikkawy-Prince RKN 6(4), 8(6), 12(10), error control, dense output | [`SplitDynamics`] with q̇ = v: natural L, particles |
 //! | Gauss-Radau | [`ias15`] | IAS15: 15th-order predictor-corrector, adaptive steps, dense output | q̈ = f(q): [`SplitDynamics`] with identity drift |
-//! | implicit symplectic | [`gauss`] | implicit midpoint, Gauss-Legendre 4 and 6 (Newton) | [`LinearizedDynamics`]: any H, natural L |
+//! | implicit symplectic | [`gauss`] | implicit midpoint, Gauss-Legendre 4 and 6 (Newton) | [`LinearizedDynamics`]: any H, any L |
 //! | default | [`default_method`] | the method chosen from what the system declares | every system type |
 //! | symplectic | [`symplectic`] | symplectic Euler, Störmer-Verlet, compositions of order 4, 6, 8 | [`SplitDynamics`]: separable H or natural L |
 
