@@ -1,7 +1,7 @@
 //! Periodic orbits of autonomous systems by shooting, and their Floquet multipliers.
 //!
 //! A periodic orbit is a fixed point of the flow over one period, φ_T(y₀) = y₀. [`Shooting`] finds it
-//! with noether-core's Newton ([`solve_dense`](noether_core::newton::solve_dense)) on the unknowns
+//! with noether-core's Newton ([`noether_core::newton::solve_dense`]) on the unknowns
 //! (y₀, T, λ): the map it shoots with is the numerical one, N fixed steps h = T/N of any
 //! [`TangentStepper`], so the orbit found is an exact periodic orbit of the discrete map y ↦ Φ_h^N(y)
 //! (the flow's to the method's order, O(h^p)).
@@ -355,7 +355,7 @@ impl<S: TangentStepper> Shooting<S> {
         self
     }
 
-    /// Replaces the phase condition ⟨F(y*), y₀ − y*⟩ = 0 by y₀[`index`] = `value` (index into (q, v)):
+    /// Replaces the phase condition ⟨F(y*), y₀ − y*⟩ = 0 by y₀\[index\] = `value` (index into (q, v)):
     /// the orbit is started where that coordinate takes that value (a Poincaré section; the flow must
     /// cross it, ∂y_index/∂t ≠ 0 there, or the Jacobian is singular). Checked at `solve`: index < 2n.
     pub fn phase_coordinate(mut self, index: usize, value: f64) -> Self {
