@@ -161,6 +161,8 @@ examples! {
     top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
     gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
     rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
+    periodic_orbits: "periodic orbits by shooting: pendulum period vs 4K, Lyapunov orbits about L1 unstable with λ ≈ 2700",
+    figure_eight: "the figure-eight of three bodies by shooting from a rough guess vs the published orbit; linearly stable",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -277,3 +277,13 @@ fn closed_form_gibbs_appell() {
 fn closed_form_rolling_sphere() {
     assert_example_passes("rolling_sphere");
 }
+
+#[test]
+fn closed_form_periodic_orbits() {
+    assert_example_passes("periodic_orbits");
+}
+
+#[test]
+fn closed_form_figure_eight() {
+    assert_example_passes("figure_eight");
+}

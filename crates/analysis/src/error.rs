@@ -62,6 +62,56 @@ pub enum Error {
         /// Which matrix.
         what: &'static str,
     },
+
+    // ---- periodic orbits (periodic.rs) ----
+    /// A period that is not finite and positive (a guess, or where Newton drove it).
+    #[error("invalid period T = {period}: it must be finite and positive (a better guess of the period, or more steps per period)")]
+    InvalidPeriod {
+        /// The period.
+        period: f64,
+    },
+    /// The guess, or the point Newton converged to, is an equilibrium (a rest point is a trivial
+    /// solution of the periodicity equations for any period).
+    #[error(
+        "equilibrium instead of a periodic orbit (‖F(y)‖∞ = {rate_norm:e}): start on the orbit, and declare the \
+         first integrals (energy) of a conservative system"
+    )]
+    Equilibrium {
+        /// ‖F(y)‖∞ at the guess or the converged point.
+        rate_norm: f64,
+    },
+    /// The declared first integrals, symmetries and period do not give as many equations as unknowns.
+    #[error(
+        "shooting set-up has {unknowns} unknowns (y₀, T unless fixed, one unfolding parameter per first integral) \
+         but {equations} equations (periodicity, phase, one per fixed level and per symmetry): each first \
+         integral pairs with a fixed level, a symmetry or the fixed period"
+    )]
+    ShootingSetup {
+        /// Number of unknowns.
+        unknowns: usize,
+        /// Number of equations.
+        equations: usize,
+    },
+    /// The shooting Jacobian is singular at an iterate.
+    #[error(
+        "singular shooting Jacobian (smallest pivot {pivot_ratio:e} relative to its scale): a first integral or \
+         symmetry not declared, a degenerate orbit (a non-trivial multiplier at 1), or a guess too far off"
+    )]
+    DegenerateOrbit {
+        /// Smallest pivot relative to the scale of the Jacobian.
+        pivot_ratio: f64,
+    },
+    /// Newton did not find a periodic orbit.
+    #[error("no periodic orbit found: Newton stopped after {iterations} iterations with residual {residual:e} (tolerance {tolerance:e}); try a closer guess")]
+    ShootingDiverged {
+        /// Iterations performed.
+        iterations: usize,
+        /// Last residual max-norm.
+        residual: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    // ---- end periodic orbits ----
 }
 
 noether_core::crate_error_conversions!(Error);

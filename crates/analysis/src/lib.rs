@@ -31,9 +31,11 @@
 pub mod equilibria;
 pub mod error;
 pub mod modes;
+pub mod periodic;
 pub mod potential;
 
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
 pub use modes::{linear_stability, normal_modes, LinearStability, NormalModes, SmallOscillations};
+pub use periodic::{floquet, Floquet, PeriodicOrbit, Shooting, Stability};
 pub use potential::{EffectivePotential, Potential};
