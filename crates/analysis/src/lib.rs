@@ -30,10 +30,14 @@
 
 pub mod equilibria;
 pub mod error;
+pub mod lyapunov;
 pub mod modes;
 pub mod potential;
+pub mod sensitivity;
 
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
+pub use lyapunov::{Lyapunov, Spectrum};
 pub use modes::{linear_stability, normal_modes, LinearStability, NormalModes, SmallOscillations};
 pub use potential::{EffectivePotential, Potential};
+pub use sensitivity::{flow_jacobian, parameter_sensitivity, Parametric, ParametricHamiltonian, Sensitivity};
