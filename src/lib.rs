@@ -161,6 +161,8 @@ examples! {
     top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
     gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
     rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
+    lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
+    sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -277,3 +277,13 @@ fn closed_form_gibbs_appell() {
 fn closed_form_rolling_sphere() {
     assert_example_passes("rolling_sphere");
 }
+
+#[test]
+fn closed_form_lyapunov_spectrum() {
+    assert_example_passes("lyapunov_spectrum");
+}
+
+#[test]
+fn closed_form_sensitivity() {
+    assert_example_passes("sensitivity");
+}
