@@ -79,6 +79,9 @@ fn hh_state(e: f64, q2: f64) -> State<Momenta> {
     State::new(0.0, [0.0, q2], [p1, 0.0])
 }
 
+/// Benettin's method run with RK4 on Hamilton's equations of `H`.
+type Run<H> = Lyapunov<Rk4<HamiltonEquations<H>>>;
+
 /// Benettin's method with RK4 from `start` with all 2n vectors, to `t_end`.
 fn spectrum<H: Hamiltonian>(
     model: H,
@@ -86,7 +89,7 @@ fn spectrum<H: Hamiltonian>(
     h: f64,
     every: usize,
     t_end: f64,
-) -> Result<(Spectrum, Lyapunov<Rk4<HamiltonEquations<H>>>), BoxError> {
+) -> Result<(Spectrum, Run<H>), BoxError> {
     let n = model.dof();
     let mut lyap = Lyapunov::new(Rk4::new(HamiltonEquations::new(model)), start, 2 * n, h, every)?;
     lyap.advance_to(t_end)?;
