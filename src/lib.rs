@@ -163,6 +163,8 @@ examples! {
     rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
     periodic_orbits: "periodic orbits by shooting: pendulum period vs 4K, Lyapunov orbits about L1 unstable with λ ≈ 2700",
     figure_eight: "the figure-eight of three bodies by shooting from a rough guess vs the published orbit; linearly stable",
+    lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
+    sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

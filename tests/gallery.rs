@@ -287,3 +287,13 @@ fn closed_form_periodic_orbits() {
 fn closed_form_figure_eight() {
     assert_example_passes("figure_eight");
 }
+
+#[test]
+fn closed_form_lyapunov_spectrum() {
+    assert_example_passes("lyapunov_spectrum");
+}
+
+#[test]
+fn closed_form_sensitivity() {
+    assert_example_passes("sensitivity");
+}

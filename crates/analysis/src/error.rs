@@ -112,6 +112,45 @@ pub enum Error {
         tolerance: f64,
     },
     // ---- end periodic orbits ----
+    // --- Lyapunov spectra and sensitivities (issue 19, helper B1) ---
+    /// The number of tangent vectors asked for is not between 1 and the phase-space dimension 2n.
+    #[error("{requested} tangent vectors asked for: a Lyapunov spectrum takes 1 to {dimension} (the phase-space dimension 2n)")]
+    TangentVectors {
+        /// Vectors asked for.
+        requested: usize,
+        /// The phase-space dimension 2n.
+        dimension: usize,
+    },
+    /// The re-orthonormalisation interval m is zero.
+    #[error("re-orthonormalisation every {every} steps: the interval must be at least one step")]
+    ReorthonormalizationInterval {
+        /// The interval asked for.
+        every: usize,
+    },
+    /// A diagonal entry R_ii of the QR factorisation of the tangent vectors is not finite, or below 1e-10
+    /// times the largest vector: the vectors overflowed or collapsed onto each other (to rounding)
+    /// between two re-orthonormalisations, or were given dependent.
+    #[error(
+        "tangent vector {index} collapsed at t = {t}: |R_ii| = {r:e} in the QR factorisation \
+         (re-orthonormalise more often, or take a smaller step)"
+    )]
+    TangentCollapse {
+        /// Time of the re-orthonormalisation.
+        t: f64,
+        /// Which vector (0-based).
+        index: usize,
+        /// The offending diagonal entry of R.
+        r: f64,
+    },
+    /// The run is too short for the statistics asked of it.
+    #[error("{reorthonormalizations} re-orthonormalisations recorded: too few to split into {blocks} blocks (run longer or ask for fewer blocks, at least 2)")]
+    TooShort {
+        /// Re-orthonormalisations recorded so far.
+        reorthonormalizations: usize,
+        /// Blocks asked for.
+        blocks: usize,
+    },
+    // --- end of helper B1's section ---
 }
 
 noether_core::crate_error_conversions!(Error);

@@ -30,12 +30,16 @@
 
 pub mod equilibria;
 pub mod error;
+pub mod lyapunov;
 pub mod modes;
 pub mod periodic;
 pub mod potential;
+pub mod sensitivity;
 
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
+pub use lyapunov::{Lyapunov, Spectrum};
 pub use modes::{linear_stability, normal_modes, LinearStability, NormalModes, SmallOscillations};
 pub use periodic::{floquet, Floquet, PeriodicOrbit, Shooting, Stability};
 pub use potential::{EffectivePotential, Potential};
+pub use sensitivity::{parameter_sensitivity, Parametric, ParametricHamiltonian, Sensitivity};
