@@ -54,6 +54,7 @@
 
 use crate::{Error, Result};
 use nalgebra::DMatrix;
+use noether_core::tangent::propagate;
 use noether_core::{State, TangentStepper};
 
 /// Benettin's method running on one orbit: the stepper, the state, the tangent vectors and the
@@ -67,8 +68,6 @@ pub struct Lyapunov<S: TangentStepper> {
     /// Tangent vectors, 2n × k.
     w: DMatrix<f64>,
     /// Scratch: Ψ of the last step and Ψ W.
-    psi: DMatrix<f64>,
-    scratch: DMatrix<f64>,
     h: f64,
     every: usize,
     /// Steps since the last re-orthonormalisation.
@@ -130,8 +129,6 @@ impl<S: TangentStepper> Lyapunov<S> {
             stepper,
             t0: state.t,
             state,
-            psi: DMatrix::zeros(2 * n, 2 * n),
-            scratch: DMatrix::zeros(2 * n, vectors),
             w,
             h,
             every,
@@ -173,7 +170,6 @@ impl<S: TangentStepper> Lyapunov<S> {
             });
         }
         self.w = qr.q();
-        self.scratch = DMatrix::zeros(dim, k);
         self.t0 = t;
         self.since = 0;
         self.times.clear();
@@ -183,14 +179,15 @@ impl<S: TangentStepper> Lyapunov<S> {
 
     /// Takes `steps` steps, re-orthonormalising every m of them (the count carries over between calls).
     ///
-    /// On error the run stops at the last good step: the state, vectors and sums are those after it.
-    pub fn advance(&mut self, steps: usize) -> Result<()> {
-        for _ in 0..steps {
-            self.stepper
-                .step_tangent(&mut self.state, self.h, &mut self.psi)?;
-            self.psi.mul_to(&self.w, &mut self.scratch);
-            std::mem::swap(&mut self.w, &mut self.scratch);
-            self.since += 1;
+    /// The vectors are carried by core's [`propagate`] between re-orthonormalisations. On error the
+    /// run stops at the last re-orthonormalisation (or the start of this call, if later): the state,
+    /// vectors and sums are those there.
+    pub fn advance(&mut self, mut steps: usize) -> Result<()> {
+        while steps > 0 {
+            let chunk = steps.min(self.every - self.since);
+            propagate(&mut self.stepper, &mut self.state, self.h, chunk, &mut self.w)?;
+            self.since += chunk;
+            steps -= chunk;
             if self.since == self.every {
                 self.reorthonormalize()?;
             }

@@ -79,6 +79,7 @@
 use nalgebra::{Complex, DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
 use noether_core::newton::{solve_dense, DenseProblem};
+use noether_core::tangent::run_jacobian;
 use noether_core::{Hamiltonian, Newton, NewtonInfo, Scalar, State, TangentStepper};
 
 use crate::{Error, Result};
@@ -546,7 +547,6 @@ fn run<S: TangentStepper>(
     period: f64,
     tangent: bool,
 ) -> Result<(State<S::Partner>, DMatrix<f64>)> {
-    let n = stepper.dof();
     let h = period / steps as f64;
     let mut state = initial.clone();
     if !tangent {
@@ -555,14 +555,7 @@ fn run<S: TangentStepper>(
         }
         return Ok((state, DMatrix::zeros(0, 0)));
     }
-    let mut m = DMatrix::identity(2 * n, 2 * n);
-    let mut psi = DMatrix::zeros(2 * n, 2 * n);
-    let mut scratch = DMatrix::zeros(2 * n, 2 * n);
-    for _ in 0..steps {
-        stepper.step_tangent(&mut state, h, &mut psi)?;
-        psi.mul_to(&m, &mut scratch);
-        std::mem::swap(&mut m, &mut scratch);
-    }
+    let m = run_jacobian(stepper, &mut state, h, steps)?;
     Ok((state, m))
 }
 
