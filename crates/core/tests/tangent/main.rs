@@ -2,6 +2,7 @@
 //! differences of the step itself, on nonlinear problems. One test binary, one module per family.
 
 mod explicit;
+mod selfcheck;
 
 use nalgebra::DMatrix;
 use noether_core::prelude::*;
