@@ -277,3 +277,8 @@ fn closed_form_gibbs_appell() {
 fn closed_form_rolling_sphere() {
     assert_example_passes("rolling_sphere");
 }
+
+#[test]
+fn closed_form_symplecticity_check() {
+    assert_example_passes("symplecticity_check");
+}
