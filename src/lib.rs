@@ -165,6 +165,7 @@ examples! {
     figure_eight: "the figure-eight of three bodies by shooting from a rough guess vs the published orbit; linearly stable",
     lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
     sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
+    symplecticity_check: "self-checks of integrators: ‖ΨᵀΩΨ − Ω‖ (RK4 h⁶/72 on the oscillator, O(h⁵)), observed orders, reversibility",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

@@ -297,3 +297,8 @@ fn closed_form_lyapunov_spectrum() {
 fn closed_form_sensitivity() {
     assert_example_passes("sensitivity");
 }
+
+#[test]
+fn closed_form_symplecticity_check() {
+    assert_example_passes("symplecticity_check");
+}

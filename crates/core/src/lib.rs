@@ -43,6 +43,7 @@ pub mod natural;
 pub mod newton;
 pub mod roots;
 pub mod scalar;
+pub mod selfcheck;
 pub mod shorthand;
 pub mod state;
 pub mod stepper;

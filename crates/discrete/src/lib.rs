@@ -16,6 +16,9 @@
 //! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6 by
 //!   symmetric composition; [`Galerkin`]: orders 4 and 6 by a polynomial path and Gauss quadrature.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
+//! - [`tangent`]: the exact Jacobian Ψ = ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k) of a step
+//!   ([`DiscreteTangentFlow`], core's [`TangentStepper`](noether_core::TangentStepper)) by the
+//!   implicit-function theorem at the converged solution.
 //! - [`primary`]: for a degenerate Lagrangian (linear in q̇), a start whose momenta are off
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
@@ -57,6 +60,7 @@ pub mod mechanical_midpoint;
 pub mod momentum;
 pub mod primary;
 pub mod quadrature;
+pub mod tangent;
 pub mod verlet;
 
 pub use composition::Composition;
@@ -69,14 +73,15 @@ pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};
 pub use primary::OffPrimaryConstraint;
 pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
+pub use tangent::DiscreteTangentFlow;
 pub use verlet::Verlet;
 
 /// Everything needed to build and step a discrete model, in one import.
 pub mod prelude {
     pub use crate::momentum::{noether_momentum, PlanarRotation, Symmetry, Translation};
     pub use crate::{
-        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Galerkin,
-        LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator,
-        Verlet,
+        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, DiscreteTangentFlow,
+        FromLagrangian, Galerkin, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint,
+        Trapezoidal, VariationalIntegrator, Verlet,
     };
 }

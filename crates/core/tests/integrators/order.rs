@@ -50,15 +50,11 @@ pub fn errors<S: Stepper>(
     errors_vs(make, start, t_end, &exact(t_end), ns)
 }
 
-/// Least-squares slope of log(err) against log(h).
+/// Least-squares slope of log(err) against log(h) ([`noether_core::selfcheck::fit_order`]).
 pub fn fitted_order(e: &[(f64, f64)]) -> f64 {
-    let pts: Vec<(f64, f64)> = e.iter().map(|(h, err)| (h.ln(), err.ln())).collect();
-    let n = pts.len() as f64;
-    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-    sxy / sxx
+    noether_core::selfcheck::fit_order(e)
+        .expect("errors to fit")
+        .slope
 }
 
 pub fn assert_order(what: &str, nominal: u32, e: &[(f64, f64)]) {

@@ -7,6 +7,7 @@ mod gauss;
 mod lagrangian;
 mod nystrom;
 mod run;
+mod selfcheck;
 mod symplectic;
 
 use nalgebra::DMatrix;
@@ -107,12 +108,8 @@ where
     assert_eq!(psi, sentinel);
 }
 
-/// max |ΨᵀΩΨ − Ω| with Ω = [[0, I], [−I, 0]]: zero for a symplectic map on (q, p).
+/// max |ΨᵀΩΨ − Ω| with Ω = [[0, I], [−I, 0]] (core's selfcheck): zero for a symplectic map on (q, p).
 pub fn symplecticity_defect(psi: &DMatrix<f64>) -> f64 {
-    let n = psi.nrows() / 2;
-    let mut omega = DMatrix::zeros(2 * n, 2 * n);
-    omega.view_mut((0, n), (n, n)).fill_with_identity();
-    omega.view_mut((n, 0), (n, n)).fill_with_identity();
-    omega.view_mut((n, 0), (n, n)).neg_mut();
-    (psi.transpose() * &omega * psi - omega).abs().max()
+    use noether_core::selfcheck::{canonical_form, form_defect};
+    form_defect(psi, &canonical_form(psi.nrows() / 2))
 }

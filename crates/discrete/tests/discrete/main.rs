@@ -8,3 +8,4 @@ mod mechanical;
 mod models;
 mod order;
 mod regress;
+mod tangent;
