@@ -16,6 +16,8 @@
 //! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6 by
 //!   symmetric composition; [`Galerkin`]: orders 4 and 6 by a polynomial path and Gauss quadrature.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
+//! - [`boundary`]: boundary-value problems q(t₀) = a, q(t₁) = b by the discrete Hamilton principle
+//!   ([`BoundaryValue`]), with the conjugate points of the discrete Jacobi operator ([`ConjugatePoint`]).
 //! - [`primary`]: for a degenerate Lagrangian (linear in q̇), a start whose momenta are off
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
@@ -46,6 +48,7 @@
 //! assert!((l1 - l0).abs() < 1e-13); // angular momentum: a discrete Noether momentum
 //! ```
 
+pub mod boundary;
 pub mod chains;
 pub mod composition;
 pub mod flow;
@@ -59,6 +62,7 @@ pub mod primary;
 pub mod quadrature;
 pub mod verlet;
 
+pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, PathConstraint};
 pub use composition::Composition;
 pub use flow::DiscreteFlow;
 pub use galerkin::Galerkin;
