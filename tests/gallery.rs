@@ -277,3 +277,8 @@ fn closed_form_gibbs_appell() {
 fn closed_form_rolling_sphere() {
     assert_example_passes("rolling_sphere");
 }
+
+#[test]
+fn closed_form_boundary_value() {
+    assert_example_passes("boundary_value");
+}
