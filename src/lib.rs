@@ -166,6 +166,7 @@ examples! {
     lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
     sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
     symplecticity_check: "self-checks of integrators: ‖ΨᵀΩΨ − Ω‖ (RK4 h⁶/72 on the oscillator, O(h⁵)), observed orders, reversibility",
+    boundary_value: "boundary-value problems by the discrete Hamilton principle: projectile, oscillator conjugate points, sphere geodesic, figure-eight",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

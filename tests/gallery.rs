@@ -302,3 +302,8 @@ fn closed_form_sensitivity() {
 fn closed_form_symplecticity_check() {
     assert_example_passes("symplecticity_check");
 }
+
+#[test]
+fn closed_form_boundary_value() {
+    assert_example_passes("boundary_value");
+}

@@ -19,6 +19,8 @@
 //! - [`tangent`]: the exact Jacobian Ψ = ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k) of a step
 //!   ([`DiscreteTangentFlow`], core's [`TangentStepper`](noether_core::TangentStepper)) by the
 //!   implicit-function theorem at the converged solution.
+//! - [`boundary`]: boundary-value problems q(t₀) = a, q(t₁) = b by the discrete Hamilton principle
+//!   ([`BoundaryValue`]), with the conjugate points of the discrete Jacobi operator ([`ConjugatePoint`]).
 //! - [`primary`]: for a degenerate Lagrangian (linear in q̇), a start whose momenta are off
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
@@ -49,6 +51,7 @@
 //! assert!((l1 - l0).abs() < 1e-13); // angular momentum: a discrete Noether momentum
 //! ```
 
+pub mod boundary;
 pub mod chains;
 pub mod composition;
 pub mod flow;
@@ -63,6 +66,7 @@ pub mod quadrature;
 pub mod tangent;
 pub mod verlet;
 
+pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, PathConstraint};
 pub use composition::Composition;
 pub use flow::DiscreteFlow;
 pub use galerkin::Galerkin;

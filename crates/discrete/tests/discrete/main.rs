@@ -2,6 +2,7 @@
 //! conservation laws, regressions against hand-written equations, bad input.
 
 mod bad_input;
+mod boundary;
 mod conserves;
 mod degenerate;
 mod mechanical;
