@@ -53,7 +53,7 @@
 //! # On a cluster (feature `mpi`)
 //! With the feature `mpi` (rsmpi; it needs an MPI library and, to generate the bindings, libclang:
 //! `apt-get install libopenmpi-dev openmpi-bin libclang-dev` on Debian/Ubuntu, or `module load openmpi`
-//! on a cluster), [`Ensemble::reduce_mpi`] and [`Ensemble::run_mpi`] split the chunks across the ranks
+//! on a cluster), `Ensemble::reduce_mpi` and `Ensemble::run_mpi` split the chunks across the ranks
 //! of a communicator in contiguous blocks, each rank runs its block on its own cores with rayon, and
 //! rank 0 gathers the accumulators and merges them in the same tree: the result is bit-identical to
 //! [`Ensemble::reduce`] on one machine. Accumulators and outputs cross the network as bytes
