@@ -85,7 +85,7 @@ pub use members::{member_rng, Axis, Grid, MemberRng, Members, Sampler};
 pub use mpi;
 /// The random-number traits a [`Sampler`]'s closure uses (`rng.random()`, `rng.random_range(a..b)`).
 pub use rand;
-pub use reduce::{Counts, Fold, Histogram, Mean, Moments, Reducer};
+pub use reduce::{Counts, Fold, Histogram, Map, Max, Mean, Moments, Reducer};
 pub use wire::Wire;
 
 use rayon::prelude::*;

@@ -4,6 +4,7 @@
 //! so a floating-point reduction gives the same bits for any number of threads or ranks.
 
 use crate::{Error, Result};
+use std::marker::PhantomData;
 
 /// A reduction of member outputs `T` into an accumulator.
 ///
@@ -190,6 +191,34 @@ impl Reducer<f64> for Mean {
     }
 }
 
+/// The largest of scalar outputs (−∞ if none); a NaN output makes the result NaN (an error bound that
+/// met a NaN is not a bound).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Max;
+
+impl Max {
+    fn larger(a: f64, b: f64) -> f64 {
+        if a.is_nan() || b.is_nan() {
+            f64::NAN
+        } else {
+            a.max(b)
+        }
+    }
+}
+
+impl Reducer<f64> for Max {
+    type Acc = f64;
+    fn identity(&self) -> f64 {
+        f64::NEG_INFINITY
+    }
+    fn fold(&self, acc: &mut f64, _index: usize, x: f64) {
+        *acc = Max::larger(*acc, x);
+    }
+    fn merge(&self, left: f64, right: f64) -> f64 {
+        Max::larger(left, right)
+    }
+}
+
 /// A reduction from three closures: `identity()`, `fold(&mut acc, index, value)`, `merge(left, right)`.
 ///
 /// ```
@@ -252,6 +281,40 @@ impl<T: Clone, R1: Reducer<T>, R2: Reducer<T>> Reducer<T> for (R1, R2) {
     }
     fn merge(&self, l: Self::Acc, r: Self::Acc) -> Self::Acc {
         (self.0.merge(l.0, r.0), self.1.merge(l.1, r.1))
+    }
+}
+
+/// Another reduction of a function of the outputs: `Map::new(|x: (f64, f64)| x.0, Histogram::new(..)?)`
+/// histograms the first of two numbers each member returns.
+#[derive(Debug, Clone, Copy)]
+pub struct Map<G, R, U> {
+    map: G,
+    reducer: R,
+    // The mapped type (`fn() -> U`: Send and Sync whatever U is).
+    _mapped: PhantomData<fn() -> U>,
+}
+
+impl<G, R, U> Map<G, R, U> {
+    /// `reducer` applied to `map(output)`.
+    pub fn new(map: G, reducer: R) -> Self {
+        Map {
+            map,
+            reducer,
+            _mapped: PhantomData,
+        }
+    }
+}
+
+impl<T, U, G: Fn(T) -> U + Sync, R: Reducer<U>> Reducer<T> for Map<G, R, U> {
+    type Acc = R::Acc;
+    fn identity(&self) -> R::Acc {
+        self.reducer.identity()
+    }
+    fn fold(&self, acc: &mut R::Acc, index: usize, value: T) {
+        self.reducer.fold(acc, index, (self.map)(value))
+    }
+    fn merge(&self, left: R::Acc, right: R::Acc) -> R::Acc {
+        self.reducer.merge(left, right)
     }
 }
 

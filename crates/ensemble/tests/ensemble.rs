@@ -5,8 +5,8 @@
 use noether_core::prelude::*;
 use noether_ensemble::rand::Rng;
 use noether_ensemble::{
-    member_rng, Axis, Counts, Ensemble, Error, Fold, Grid, Histogram, Mean, Members, Moments, Reducer,
-    Sampler, Wire,
+    member_rng, Axis, Counts, Ensemble, Error, Fold, Grid, Histogram, Map, Max, Mean, Members, Moments,
+    Reducer, Sampler, Wire,
 };
 
 /// Pendulum, L = ½ θ̇² + cos θ (g/l = 1).
@@ -303,6 +303,28 @@ fn histogram_edges_and_bins() {
     let c = Ensemble::new(xs, |_, x: &f64| Ok::<_, ()>(*x)).reduce(&h).value;
     assert_eq!(c.counts, vec![1, 2, 0, 1]);
     assert_eq!((c.below, c.above, c.nan, c.total()), (1, 1, 1, 7));
+}
+
+#[test]
+fn max_and_map() {
+    let pairs = vec![(1.0, 0.5), (3.0, -1.0), (2.0, 7.0)];
+    let ens = Ensemble::new(pairs, |_, p: &(f64, f64)| Ok::<_, String>(*p));
+    let r = (
+        Map::new(|p: (f64, f64)| p.0, Max),
+        Map::new(|p: (f64, f64)| p.1, Mean),
+    );
+    let (max, mean) = on_threads(2, || ens.reduce(&r)).into_value().expect("no failure");
+    assert_eq!(max, 3.0);
+    assert_eq!(mean.n, 3);
+    assert!((mean.mean - 6.5 / 3.0).abs() < 1e-15);
+    let with_nan = Ensemble::new(vec![1.0, f64::NAN, 2.0], |_, x: &f64| Ok::<_, String>(*x)).chunk_size(1);
+    assert!(with_nan.expect("chunk").reduce(&Max).value.is_nan());
+    assert_eq!(
+        Ensemble::new(Vec::<f64>::new(), |_, x: &f64| Ok::<_, String>(*x))
+            .reduce(&Max)
+            .value,
+        f64::NEG_INFINITY
+    );
 }
 
 #[test]
