@@ -161,6 +161,8 @@ examples! {
     top_quaternion: "heavy top in quaternions (LGVI): turning points and precession as in Euler angles, sleeping and over the vertical",
     gibbs_appell: "quasi-velocities and the Gibbs-Appell equations: Euler's equations, the rolling disk without multipliers",
     rolling_sphere: "sphere rolling without slipping (Gibbs-Appell): turntable orbit at 2Ω/7, periods in a bowl",
+    scattering_monte_carlo: "Rutherford scattering as a Monte Carlo ensemble: 4·10⁵ random impact parameters, dσ/dΩ per bin vs (κ/4E)²/sin⁴(Θ/2), χ²",
+    flip_map: "double pendulum: time to first flip over a grid of (θ₁, θ₂) (an ensemble), none where the energy forbids it",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.
