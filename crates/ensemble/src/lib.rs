@@ -194,7 +194,7 @@ impl<A, E: std::fmt::Display> Reduced<A, E> {
 /// (and ranks) balance their load, and a chunk size that depends on `n` alone.
 pub const DEFAULT_CHUNKS: usize = 1024;
 
-/// An ensemble: members and the run of one member (see the [crate](crate) docs).
+/// An ensemble: members and the run of one member (see the [crate] docs).
 #[derive(Debug, Clone)]
 pub struct Ensemble<M, F> {
     members: M,
@@ -326,7 +326,7 @@ impl<M: Members, F> Ensemble<M, F> {
 
     /// Reduces every member's output with `reducer`, keeping none of them: the chunks run in
     /// parallel on rayon's current pool, and the result is bit-identical for any number of threads
-    /// (see the [crate](crate) docs).
+    /// (see the [crate] docs).
     pub fn reduce<S, E, R>(&self, reducer: &R) -> Reduced<R::Acc, E>
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
