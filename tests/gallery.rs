@@ -307,3 +307,27 @@ fn closed_form_symplecticity_check() {
 fn closed_form_boundary_value() {
     assert_example_passes("boundary_value");
 }
+
+#[test]
+/// The gallery example counts 4·10⁵ particles (`cargo run --release --example scattering_monte_carlo`);
+/// the test counts 5·10⁴, the same checks (their statistical bounds scale with the counts).
+#[test]
+fn closed_form_scattering_monte_carlo() {
+    let report = gallery::examples::scattering_monte_carlo::run_members(50_000, &Options::default())
+        .expect("scattering_monte_carlo runs");
+    for c in &report.checks {
+        eprintln!("{c}");
+    }
+    assert_report_passes("scattering_monte_carlo", &report);
+}
+
+/// The gallery example maps a 120 × 120 grid to t = 30 (`cargo run --release --example flip_map`); the
+/// test maps 40 × 40 to t = 20, the same checks.
+#[test]
+fn energy_bound_flip_map() {
+    let report = gallery::examples::flip_map::run_grid(40, 20.0, &Options::default()).expect("flip_map runs");
+    for c in &report.checks {
+        eprintln!("{c}");
+    }
+    assert_report_passes("flip_map", &report);
+}

@@ -3,7 +3,7 @@
 //! Pictures of noether runs, written as SVG by `plotters`: a [`Figure`] of named line series with a
 //! legend and axis labels whose ticks tell neighbouring values apart, and the usual pictures of a
 //! [`Solution`](noether_core::Solution) in one call ([`time_series`], [`phase_portrait`],
-//! [`observed`], [`relative_drift`]).
+//! [`observed`], [`relative_drift`]), and a [`Heatmap`] of values on a grid (an ensemble's scan).
 //!
 //! ```no_run
 //! use noether_plot::Figure;
@@ -21,7 +21,10 @@
 //!     .unwrap();
 //! ```
 
+mod heatmap;
 mod solution;
+
+pub use heatmap::Heatmap;
 
 pub use solution::{observed, phase_portrait, relative_drift, time_series};
 
@@ -44,6 +47,15 @@ pub enum Error {
     NoSuchSeries {
         /// What was asked for.
         what: String,
+    },
+    /// A heat map's grid does not fit its values (centres not sorted or not finite, or not
+    /// x.len() × y.len() values).
+    #[error("heat map '{title}': {reason}")]
+    Shape {
+        /// Title of the figure.
+        title: String,
+        /// What does not fit.
+        reason: &'static str,
     },
     /// The drawing backend failed (file system, font).
     #[error("drawing failed: {0}")]

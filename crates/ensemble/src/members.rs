@@ -1,0 +1,281 @@
+//! The members of an ensemble: a list, a grid (the Cartesian product of axes), or a seeded random
+//! sampler. Member `i` is a pure function of `i`, so every member can be built on any thread or rank,
+//! in any order, and comes out the same.
+
+use crate::{Error, Result};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+/// The members of an ensemble, indexed 0..len: member `i`'s parameters are a pure function of `i`
+/// (the same on every thread and every MPI rank).
+pub trait Members: Sync {
+    /// The parameters of one member (handed to the run closure by reference).
+    type Param: Send;
+    /// Number of members.
+    fn len(&self) -> usize;
+    /// Whether there are no members.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The parameters of member `index` (< [`len`](Self::len)).
+    fn member(&self, index: usize) -> Self::Param;
+}
+
+/// A list of members, given one by one.
+impl<P: Clone + Send + Sync> Members for Vec<P> {
+    type Param = P;
+    fn len(&self) -> usize {
+        Vec::len(self)
+    }
+    fn member(&self, index: usize) -> P {
+        self[index].clone()
+    }
+}
+
+/// A list of members, given one by one (borrowed).
+impl<P: Clone + Send + Sync> Members for &[P] {
+    type Param = P;
+    fn len(&self) -> usize {
+        <[P]>::len(self)
+    }
+    fn member(&self, index: usize) -> P {
+        self[index].clone()
+    }
+}
+
+/// The values of one axis of a [`Grid`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    values: Vec<f64>,
+}
+
+impl Axis {
+    /// `n` equally spaced values from `lo` to `hi`, both included (`n = 1` gives `lo`).
+    pub fn linspace(lo: f64, hi: f64, n: usize) -> Result<Self> {
+        check_range(lo, hi, n)?;
+        let step = if n > 1 { (hi - lo) / (n - 1) as f64 } else { 0.0 };
+        Ok(Axis {
+            values: (0..n)
+                .map(|i| {
+                    if i + 1 == n && n > 1 {
+                        hi
+                    } else {
+                        lo + step * i as f64
+                    }
+                })
+                .collect(),
+        })
+    }
+
+    /// The centres of `n` equal cells that tile [lo, hi]: lo + (i + ½)(hi − lo)/n (a heat map's pixels).
+    pub fn centres(lo: f64, hi: f64, n: usize) -> Result<Self> {
+        check_range(lo, hi, n)?;
+        let step = (hi - lo) / n as f64;
+        Ok(Axis {
+            values: (0..n).map(|i| lo + step * (i as f64 + 0.5)).collect(),
+        })
+    }
+
+    /// The given values (finite, at least one).
+    pub fn values(values: Vec<f64>) -> Result<Self> {
+        if values.is_empty() {
+            return Err(Error::InvalidParameter {
+                name: "axis values",
+                value: 0.0,
+                reason: "an axis needs at least one value",
+            });
+        }
+        if let Some(&v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(Error::InvalidParameter {
+                name: "axis value",
+                value: v,
+                reason: "axis values must be finite",
+            });
+        }
+        Ok(Axis { values })
+    }
+
+    /// The values along this axis.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// Number of values.
+    pub fn len(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Always false: an axis has at least one value.
+    pub fn is_empty(&self) -> bool {
+        self.values.is_empty()
+    }
+}
+
+fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
+    if n == 0 {
+        return Err(Error::InvalidParameter {
+            name: "axis points",
+            value: 0.0,
+            reason: "an axis needs at least one point",
+        });
+    }
+    for v in [lo, hi] {
+        if !v.is_finite() {
+            return Err(Error::InvalidParameter {
+                name: "axis bound",
+                value: v,
+                reason: "axis bounds must be finite",
+            });
+        }
+    }
+    if hi < lo {
+        return Err(Error::InvalidParameter {
+            name: "axis upper bound",
+            value: hi,
+            reason: "the upper bound must not be below the lower one",
+        });
+    }
+    Ok(())
+}
+
+/// The Cartesian product of axes: member `i` is the point whose multi-index is `i` in row-major order
+/// (the last axis varies fastest), given as a `Vec<f64>` with one coordinate per axis.
+///
+/// ```
+/// use noether_ensemble::{Axis, Grid, Members};
+/// let grid = Grid::new(vec![Axis::linspace(0.0, 1.0, 3)?, Axis::values(vec![10.0, 20.0])?])?;
+/// assert_eq!(grid.len(), 6);
+/// assert_eq!(grid.member(1), vec![0.0, 20.0]);
+/// assert_eq!(grid.member(4), vec![1.0, 10.0]);
+/// assert_eq!(grid.multi_index(5), vec![2, 1]);
+/// # Ok::<(), noether_ensemble::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    axes: Vec<Axis>,
+    len: usize,
+}
+
+impl Grid {
+    /// The product of `axes` (at least one; the number of points must fit in a `usize`).
+    pub fn new(axes: Vec<Axis>) -> Result<Self> {
+        if axes.is_empty() {
+            return Err(Error::InvalidParameter {
+                name: "grid axes",
+                value: 0.0,
+                reason: "a grid needs at least one axis",
+            });
+        }
+        let len = axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.len()))
+            .ok_or(Error::InvalidParameter {
+                name: "grid points",
+                value: f64::INFINITY,
+                reason: "the number of grid points overflows usize",
+            })?;
+        Ok(Grid { axes, len })
+    }
+
+    /// The axes.
+    pub fn axes(&self) -> &[Axis] {
+        &self.axes
+    }
+
+    /// The number of values on each axis.
+    pub fn shape(&self) -> Vec<usize> {
+        self.axes.iter().map(Axis::len).collect()
+    }
+
+    /// The multi-index (one index per axis) of member `index`.
+    pub fn multi_index(&self, index: usize) -> Vec<usize> {
+        let mut rest = index;
+        let mut idx = vec![0; self.axes.len()];
+        for (k, a) in self.axes.iter().enumerate().rev() {
+            idx[k] = rest % a.len();
+            rest /= a.len();
+        }
+        idx
+    }
+
+    /// The member index of a multi-index (`None` if it is out of the grid or of the wrong length).
+    pub fn index_of(&self, multi: &[usize]) -> Option<usize> {
+        if multi.len() != self.axes.len() {
+            return None;
+        }
+        let mut i = 0usize;
+        for (&m, a) in multi.iter().zip(&self.axes) {
+            if m >= a.len() {
+                return None;
+            }
+            i = i * a.len() + m;
+        }
+        Some(i)
+    }
+}
+
+impl Members for Grid {
+    type Param = Vec<f64>;
+    fn len(&self) -> usize {
+        self.len
+    }
+    fn member(&self, index: usize) -> Vec<f64> {
+        self.multi_index(index)
+            .iter()
+            .zip(&self.axes)
+            .map(|(&m, a)| a.values[m])
+            .collect()
+    }
+}
+
+/// The random number generator a [`Sampler`] hands to its closure: ChaCha8 keyed by the sampler's
+/// seed, on the member's own stream (stream = member index). Its output is fixed by (seed, index)
+/// alone — not by the thread, the rank or the order members run in — and is portable across
+/// platforms and versions of rand_chacha (unlike `StdRng`).
+pub type MemberRng = ChaCha8Rng;
+
+/// `n` random members: member `i` is `draw(rng)` with `rng` the [`MemberRng`] of (seed, i).
+///
+/// ```
+/// use noether_ensemble::{rand::Rng, Members, Sampler};
+/// let s = Sampler::new(1000, 42, |rng| rng.random_range(0.0..1.0));
+/// assert_eq!(s.member(7), s.member(7)); // a function of (seed, index)
+/// assert_ne!(s.member(7), s.member(8));
+/// ```
+#[derive(Debug, Clone)]
+pub struct Sampler<F> {
+    n: usize,
+    seed: u64,
+    draw: F,
+}
+
+impl<P: Send, F: Fn(&mut MemberRng) -> P + Sync> Sampler<F> {
+    /// `n` members drawn by `draw` from the seed `seed`.
+    pub fn new(n: usize, seed: u64, draw: F) -> Self {
+        Sampler { n, seed, draw }
+    }
+
+    /// The seed.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+}
+
+/// The generator of member `index` of an ensemble seeded with `seed`: ChaCha8 keyed by `seed`, on
+/// stream `index` (what a [`Sampler`] hands its closure; also for members that draw random numbers
+/// while they run).
+pub fn member_rng(seed: u64, index: usize) -> MemberRng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(index as u64);
+    rng
+}
+
+impl<P: Send, F: Fn(&mut MemberRng) -> P + Sync> Members for Sampler<F> {
+    type Param = P;
+    fn len(&self) -> usize {
+        self.n
+    }
+    fn member(&self, index: usize) -> P {
+        (self.draw)(&mut member_rng(self.seed, index))
+    }
+}
