@@ -308,7 +308,6 @@ fn closed_form_boundary_value() {
     assert_example_passes("boundary_value");
 }
 
-#[test]
 /// The gallery example counts 4·10⁵ particles (`cargo run --release --example scattering_monte_carlo`);
 /// the test counts 5·10⁴, the same checks (their statistical bounds scale with the counts).
 #[test]
