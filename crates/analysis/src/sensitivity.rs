@@ -2,7 +2,7 @@
 //! initial point y₀ and on the model's parameters θ, exact to rounding for the map the method computes.
 //!
 //! **Initial conditions.** ∂y_N/∂y₀ = Ψ_{N−1} ⋯ Ψ₁ Ψ₀, the product of the step Jacobians of a
-//! [`TangentStepper`] (core's [`run_jacobian`](noether_core::tangent::run_jacobian)).
+//! [`TangentStepper`] (core's [`run_jacobian`]).
 //!
 //! **Parameters.** A model that declares its parameters differentiable implements
 //! [`ParametricHamiltonian`]: H(t, q, p; θ) generic over the scalar in θ as in q and p. The adapter
