@@ -17,7 +17,7 @@
 //! J_r = μ/sqrt(−2E) − L, J_r + L = sqrt(μ a) (the Delaunay action), and the two frequencies of the
 //! separated problem (r and φ) are both 2π/T with T = 2π sqrt(a³/μ).
 //!
-//! Run: `cargo run --release --example action_angle` (the picture J(E) goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example action_angle` (the picture J(E) goes to `gallery-out/`).
 
 use noether::canonical::{ActionAngle, Orbit, Separated, SeparatedActions};
 use noether::plot::Figure;

@@ -10,7 +10,7 @@
 //! E/ω. Checks: E grows by ω(end)/ω(0) = 4; the largest excursion of J halves when ε halves (O(ε));
 //! what is left after the ramp, where dω/dt vanishes again, falls four-fold (O(ε²)).
 //!
-//! Run: `cargo run --release --example adiabatic_invariant` (E(t) and J(t) go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example adiabatic_invariant` (E(t) and J(t) go to `gallery-out/`).
 
 use noether::canonical::ActionAngle;
 use noether::plot::Figure;

@@ -10,7 +10,7 @@
 //! The period is measured from an event "x crosses zero upwards" (the bead passing the bottom), which
 //! the driver locates inside each step.
 //!
-//! Run: `cargo run --release --example bead_cycloid`.
+//! Run: `cargo run --release --features examples --example bead_cycloid`.
 
 use noether::prelude::*;
 use noether_gallery::examples::bead_rotating_hoop::period;

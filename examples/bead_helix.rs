@@ -6,7 +6,7 @@
 //! has an inward part m b φ̇² (centripetal) and a part m g b/sqrt(a² + b²) along the binormal, so
 //! |N|² = (m b φ̇²)² + m² g² b²/(a² + b²).
 //!
-//! Run: `cargo run --release --example bead_helix`.
+//! Run: `cargo run --release --features examples --example bead_helix`.
 
 use noether::prelude::*;
 /// A point mass in 3D, z up: L = ½ m |ṙ|² − m g z.

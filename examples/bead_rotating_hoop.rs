@@ -21,7 +21,7 @@
 //! The bead's equilibria and its small oscillations about them are the example `hoop_equilibria`, which
 //! uses this model.
 //!
-//! Run: `cargo run --release --example bead_rotating_hoop`.
+//! Run: `cargo run --release --features examples --example bead_rotating_hoop`.
 
 use noether::prelude::*;
 use noether_gallery::measure::mean_period;

@@ -24,7 +24,7 @@
 //! Integrator: Yoshida's 4th-order symmetric composition of Störmer-Verlet: H = ½|p|² + V(q) is
 //! separable, the orbits are long, and a symplectic method keeps the energy error bounded.
 //!
-//! Run: `cargo run --release --example bertrand`.
+//! Run: `cargo run --release --features examples --example bertrand`.
 
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

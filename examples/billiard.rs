@@ -11,7 +11,7 @@
 //! The contact's start and end are events of the driver (the gap between the centres crossing re),
 //! located inside their steps.
 //!
-//! Run: `cargo run --release --example billiard`.
+//! Run: `cargo run --release --features examples --example billiard`.
 
 use noether::particles::laws::Billiard;
 use noether::prelude::*;

@@ -5,7 +5,7 @@
 //! M = 2π t/T = E − e sin E (Kepler's equation) and r = a (cos E − e, sqrt(1 − e²) sin E). The centre
 //! of mass stays at rest; E = −G m1 m2/(2a) and |L| = m1 m2/(m1 + m2) sqrt(μ a (1 − e²)).
 //!
-//! Run: `cargo run --release --example binary_star`.
+//! Run: `cargo run --release --features examples --example binary_star`.
 
 use noether::particles::laws::Gravity;
 use noether::prelude::*;

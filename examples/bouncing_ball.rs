@@ -8,7 +8,7 @@
 //! tₙ₊₁ = t₁ + 2 (v₁/g) (e + e² + … + eⁿ); the n-th apex is at height e²ⁿ h₀; all impacts end at
 //! t∞ = t₁ (1 + e)/(1 − e).
 //!
-//! Run: `cargo run --release --example bouncing_ball` (the height against time goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example bouncing_ball` (the height against time goes to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

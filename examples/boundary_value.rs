@@ -16,7 +16,7 @@
 //!   the symmetric choreographies of period T = 6.32591398, against the published initial conditions
 //!   (Chenciner & Montgomery 2000, Simó): O(h²).
 //!
-//! Run: `cargo run --release --example boundary_value` (pictures in `gallery-out/`).
+//! Run: `cargo run --release --features examples --example boundary_value` (pictures in `gallery-out/`).
 
 use noether::discrete::boundary::{straight_line, BoundaryValue, ConjugatePoint, PathConstraint};
 use noether::discrete::{DiscreteDerivatives, Midpoint};

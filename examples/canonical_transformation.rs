@@ -4,7 +4,7 @@
 //! F₃ = −(p_x r cos θ + p_y r sin θ)), and the time-dependent transformation to a rotating frame with
 //! F₂ = P·R(−ωt) q, whose new Hamiltonian is K = H − ω L_z.
 //!
-//! Run: `cargo run --release --example canonical_transformation` (the rotating-frame picture goes to
+//! Run: `cargo run --release --features examples --example canonical_transformation` (the rotating-frame picture goes to
 //! `gallery-out/`).
 
 use noether::canonical::generating::{Generated, GeneratingFunction, Kind, Transformed};

@@ -17,7 +17,7 @@
 //!
 //! The driver saves every step and an observer records the velocity v = (p − eA)/m beside each state.
 //!
-//! Run: `cargo run --release --example charged_particle` (the trajectories go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example charged_particle` (the trajectories go to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

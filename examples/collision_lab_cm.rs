@@ -26,7 +26,7 @@
 //! spans four decades, and the controller sets the step. The run stops at a terminal event when the
 //! separation is back at its starting value R.
 //!
-//! Run: `cargo run --release --example collision_lab_cm`.
+//! Run: `cargo run --release --features examples --example collision_lab_cm`.
 
 use noether::particles::Coulomb;
 use noether::plot::Figure;

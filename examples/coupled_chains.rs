@@ -26,7 +26,7 @@
 //! - Figs. 10–12 (the "heat" model: positions, energy of each chain, power spectra): the example
 //!   `coupled_chains_heat`.
 //!
-//! Run: `cargo run --release --example coupled_chains` (the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example coupled_chains` (the pictures go to `gallery-out/`).
 
 use noether::core::Newton;
 use noether::discrete::chains::CoupledChains;

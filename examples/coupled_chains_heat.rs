@@ -16,7 +16,7 @@
 //! → `coupled_chains_heat_energy.svg`; Fig. 12 (power spectra |q̂_t¹|², |q̂_b¹|² of the first mass of
 //! each chain) → `coupled_chains_spectrum.svg`.
 //!
-//! Run: `cargo run --release --example coupled_chains_heat` (the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example coupled_chains_heat` (the pictures go to `gallery-out/`).
 
 use noether::discrete::chains::CoupledChains;
 use noether::plot::Figure;

@@ -8,7 +8,7 @@
 //!   symmetry of the model, checked to rounding: `coupled_chains_com_frame.svg`.
 //! - Fig. 7: the momentum of each chain through the collision: `coupled_chains_chain_momenta.svg`.
 //!
-//! Run: `cargo run --release --example coupled_chains_momentum` (the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example coupled_chains_momentum` (the pictures go to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether_gallery::examples::coupled_chains::{collision, paper_samples};

@@ -19,7 +19,7 @@
 //! 1.1e-8 at 1), much faster than the 1/v the paper suggests: the impulse of a smooth bump crossed at
 //! constant speed integrates to zero at first order in k2.
 //!
-//! Run: `cargo run --release --example coupled_chains_transfer` (the picture goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example coupled_chains_transfer` (the picture goes to `gallery-out/`).
 
 use noether::discrete::chains::CoupledChains;
 use noether::plot::Figure;

@@ -19,7 +19,7 @@
 //! The driver saves every step; observers record the deviations of the radius, the energy function
 //! and p_φ from their starting values, and the turning angle is summed over the saved velocities.
 //!
-//! Run: `cargo run --release --example cyclotron`.
+//! Run: `cargo run --release --features examples --example cyclotron`.
 
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -16,7 +16,7 @@
 //! The driver records the energy with an observer every 0.01 time units and counts the lower rod's
 //! flips over the top with an event (θ₂ passing an odd multiple of π, where cos(θ₂/2) changes sign).
 //!
-//! Run: `cargo run --release --example double_pendulum` (the path and the energy error go to
+//! Run: `cargo run --release --features examples --example double_pendulum` (the path and the energy error go to
 //! `gallery-out/`).
 
 use noether::plot::Figure;

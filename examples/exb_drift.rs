@@ -13,7 +13,7 @@
 //! with a relative frequency error ≈ 1e-5 (ωh)⁶ = 6e-13 that the drift inherits (measured 6.1e-13
 //! along E×B, 2.4e-12 of v_d across: 1e-11 for both, 16x and 4x). The energy: measured 7.1e-15, 2e-14.
 //!
-//! Run: `cargo run --release --example exb_drift` (the trajectory goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example exb_drift` (the trajectory goes to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

@@ -5,7 +5,7 @@
 //! Closed form: x(t) = x₀ cos ω₁t, y(t) = (v_y0/ω₂) sin ω₂t, and the energy function
 //! h = ½ m (ẋ² + ẏ²) + ½ m (ω₁² x² + ω₂² y²) is constant.
 //!
-//! Run: `cargo run --release --example export_trajectory` (the CSV and the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example export_trajectory` (the CSV and the pictures go to `gallery-out/`).
 
 use noether::plot::{phase_portrait, relative_drift, Figure};
 use noether::prelude::*;

@@ -8,7 +8,7 @@
 //! DOP853 at tolerances 1e-14 with the minima of θ as events θ̇ = 0 on its dense output, so the mean
 //! rate is measured over whole nutations between exact turning times.
 //!
-//! Run: `cargo run --release --example fast_top`.
+//! Run: `cargo run --release --features examples --example fast_top`.
 
 use noether::prelude::*;
 use noether_gallery::examples::heavy_top::{

@@ -16,7 +16,7 @@
 //! put them), an unfolding parameter per first integral (momentum, angular momentum), the energy held
 //! at a level, and the time phase x₃ = 0 (body 3 at the centre, where the published values are given).
 //!
-//! Run: `cargo run --release --example figure_eight` (the orbit goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example figure_eight` (the orbit goes to `gallery-out/`).
 
 use noether::analysis::periodic::{Energy, FirstIntegral, Integral, Shooting, Stability};
 use noether::core::ad::Field;

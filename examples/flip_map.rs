@@ -25,7 +25,7 @@
 //! at the same time. The grid's centres are mirrored only to rounding (~10⁻¹⁶), which the chaos
 //! amplifies over time, so the check takes the mirror pairs that flip early (t < 10 √(l/g)).
 //!
-//! Run: `cargo run --release --example flip_map` (a 120 × 120 grid to t = 30 √(l/g); the picture goes to
+//! Run: `cargo run --release --features examples --example flip_map` (a 120 × 120 grid to t = 30 √(l/g); the picture goes to
 //! `gallery-out/`). The test runs a 40 × 40 grid to t = 20.
 
 use noether::ensemble::{Axis, Ensemble, Grid, Members};

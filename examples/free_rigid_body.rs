@@ -10,7 +10,7 @@
 //! parameter m = k² = (I₂ − I₁)(2EI₃ − L²)/((I₃ − I₂)(L² − 2EI₁)); Ω returns after T = 4K(k)/(dτ/dt).
 //! A symmetric body I₁ = I₂ is the limit k = 0: Ω₁ + iΩ₂ turns at Ω = (I₃ − I₁)ω₃/I₁.
 //!
-//! Run: `cargo run --release --example free_rigid_body` (the picture of Ω(t) goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example free_rigid_body` (the picture of Ω(t) goes to `gallery-out/`).
 
 use noether::nalgebra::{UnitQuaternion, Vector3};
 use noether::plot::Figure;

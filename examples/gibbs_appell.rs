@@ -16,7 +16,7 @@
 //!    Both give the same accelerations, and the closed form θ̇(t) = θ̇₀ − 2 g' (sin φ − sin φ₀)/(3 R φ̇)
 //!    with φ = φ₀ + φ̇ t (θ̈ = −m g' R cos φ/(m R² + I), I = ½ m R², φ̈ = 0).
 //!
-//! Run: `cargo run --release --example gibbs_appell`.
+//! Run: `cargo run --release --features examples --example gibbs_appell`.
 
 use noether::constraints::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
 use noether::nalgebra::{Matrix3, Vector3};

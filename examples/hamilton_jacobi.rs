@@ -10,7 +10,7 @@
 //! closed form is the branch p_r > 0: the motion is followed over the outgoing arc from pericentre to
 //! apocentre (the ingoing arc is the other sign of the root).
 //!
-//! Run: `cargo run --release --example hamilton_jacobi` (r(t) goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example hamilton_jacobi` (r(t) goes to `gallery-out/`).
 
 use noether::canonical::hamilton_jacobi::{self, betas, constants, position, CompleteIntegral};
 use noether::canonical::transform::newton_to_rounding;

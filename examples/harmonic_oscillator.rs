@@ -10,7 +10,7 @@
 //! Each method is run by the driver at a fixed step, with the energy error (and, for the order-8
 //! method, the error against the exact solution) recorded by observers at every step.
 //!
-//! Run: `cargo run --release --example harmonic_oscillator` (the energy-error plot goes to
+//! Run: `cargo run --release --features examples --example harmonic_oscillator` (the energy-error plot goes to
 //! `gallery-out/`).
 
 use noether::plot::Figure;

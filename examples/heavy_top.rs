@@ -28,7 +28,7 @@
 //! The file reads top-down: the model, the closed forms (constants, the nutation cubic and its
 //! quadrature, used by `top_nutation` and `fast_top`), the Euler-angle run, the experiment, and [`run`].
 //!
-//! Run: `cargo run --release --example heavy_top`.
+//! Run: `cargo run --release --features examples --example heavy_top`.
 
 use noether::core::ChartGuard;
 use noether::prelude::*;

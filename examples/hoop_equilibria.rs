@@ -14,7 +14,7 @@
 //! at rest at an equilibrium it stays there, and released a little off it oscillates at Ω, measured from
 //! an event "θ crosses its rest angle upwards" handed to the driver.
 //!
-//! Run: `cargo run --release --example hoop_equilibria`.
+//! Run: `cargo run --release --features examples --example hoop_equilibria`.
 
 use noether::prelude::*;
 use noether_gallery::examples::bead_rotating_hoop::{angle_of, hoop, period, stepper, HoopAngle};

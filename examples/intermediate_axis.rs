@@ -7,7 +7,7 @@
 //! The body starts at Ω = (0, ω₂, ε): on the elliptic solution that is τ = K, where sn = 1, cn = 0,
 //! dn = k′, so Ω(t) is the closed form at t + K/(dτ/dt).
 //!
-//! Run: `cargo run --release --example intermediate_axis` (the picture of Ω(t) goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example intermediate_axis` (the picture of Ω(t) goes to `gallery-out/`).
 
 use noether::nalgebra::{UnitQuaternion, Vector3};
 use noether::plot::Figure;

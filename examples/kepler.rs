@@ -8,7 +8,7 @@
 //! The period is measured as an event: y crossing zero upwards (at periapsis), located by the driver
 //! inside each fixed step on the cubic Hermite interpolant of the step.
 //!
-//! Run: `cargo run --release --example kepler` (the orbit and the energy-error plot go to
+//! Run: `cargo run --release --features examples --example kepler` (the orbit and the energy-error plot go to
 //! `gallery-out/`).
 
 use noether::plot::Figure;

@@ -15,7 +15,7 @@
 //! Σ m|v|: 5e-15).
 //! The energy is an observer of the driver, recorded at 1000 evenly spaced steps.
 //!
-//! Run: `cargo run --release --example lj_cluster` (10⁵ steps, ~4 s on an idle core; the test suite
+//! Run: `cargo run --release --features examples --example lj_cluster` (10⁵ steps, ~4 s on an idle core; the test suite
 //! calls [`run_steps`] with 2·10⁴).
 
 use noether::particles::laws::LennardJones;

@@ -10,7 +10,7 @@
 //! λ₁ against the classical two-trajectory estimate on the same orbit; the Hamiltonian pairing
 //! λ_i + λ_{2n+1−i} = 0.
 //!
-//! Run: `cargo run --release --example lyapunov_spectrum` (the running estimates λ₁(t) go to
+//! Run: `cargo run --release --features examples --example lyapunov_spectrum` (the running estimates λ₁(t) go to
 //! `gallery-out/`).
 
 use noether::analysis::{Lyapunov, Spectrum};

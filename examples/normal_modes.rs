@@ -11,7 +11,7 @@
 //! modes). The bead on a rotating hoop, whose bottom turns from a minimum into a maximum, is the example
 //! `hoop_equilibria`.
 //!
-//! Run: `cargo run --release --example normal_modes`.
+//! Run: `cargo run --release --features examples --example normal_modes`.
 
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

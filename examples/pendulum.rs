@@ -4,7 +4,7 @@
 //! The period is measured the way a user would: an event "θ crosses zero upwards" handed to the
 //! driver, which locates it inside each step on DOP853's continuous extension.
 //!
-//! Run: `cargo run --release --example pendulum` (the phase portrait goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example pendulum` (the phase portrait goes to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

@@ -7,7 +7,7 @@
 //! The constrained variational integrator (RATTLE type) gives the tension too, from the impulses of
 //! the half steps on either side of each time, to O(h²).
 //!
-//! Run: `cargo run --release --example pendulum_cartesian`.
+//! Run: `cargo run --release --features examples --example pendulum_cartesian`.
 
 use noether::prelude::*;
 use noether_gallery::examples::pendulum::Pendulum;

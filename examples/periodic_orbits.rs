@@ -8,7 +8,7 @@
 //! multipliers are the eigenvalues of M. The L1 orbits are continued in amplitude from the linear
 //! solution x = x_L − A cos ωt, y = kA sin ωt.
 //!
-//! Run: `cargo run --release --example periodic_orbits` (the L1 family goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example periodic_orbits` (the L1 family goes to `gallery-out/`).
 
 use noether::analysis::periodic::{Energy, FirstIntegral, Shooting, Stability};
 use noether::plot::Figure;

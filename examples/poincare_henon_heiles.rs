@@ -11,7 +11,7 @@
 //! and on the plane; for two uncoupled oscillators the points lie on the ellipse their second
 //! integral E_y = (p_y² + ω₂² y²)/2 predicts.
 //!
-//! Run: `cargo run --release --example poincare_henon_heiles` (two pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example poincare_henon_heiles` (two pictures go to `gallery-out/`).
 
 use noether::canonical::section::{section, Plane};
 use noether::plot::Figure;

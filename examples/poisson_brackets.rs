@@ -4,7 +4,7 @@
 //! closes the orbits), the algebra {A_x, A_y} = −2mH L_z, Jacobi's identity, and a constant of the
 //! motion that depends on time explicitly (df/dt = {f, H} + ∂f/∂t).
 //!
-//! Run: `cargo run --release --example poisson_brackets`.
+//! Run: `cargo run --release --features examples --example poisson_brackets`.
 
 use noether::canonical::poisson::{self, BracketOf, PhaseFunction};
 use noether::canonical::{bracket, constant_of_motion, time_derivative};

@@ -6,7 +6,7 @@
 //! closed forms hold all the same: its energy is conserved, and for small motions it swings at the
 //! pendulum frequency sqrt(g / (l₀ + m g / k)) and bounces at the spring frequency sqrt(k/m).
 //!
-//! Run: `cargo run --release --example quickstart`.
+//! Run: `cargo run --release --features examples --example quickstart`.
 
 use noether::prelude::*;
 use std::f64::consts::PI;

@@ -12,7 +12,7 @@
 //! stay constant, and the contact point runs on a circle of radius R θ̇/φ̇ about the centre
 //! (x₀, y₀) + (R θ̇/φ̇)(−sin φ₀, cos φ₀). The energy is conserved (the constraint forces do no work).
 //!
-//! Run: `cargo run --release --example rolling_disk`.
+//! Run: `cargo run --release --features examples --example rolling_disk`.
 
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -17,7 +17,7 @@
 //! a pendulum of length ρ in the gravity 5g/7: the period is 4 K(sin(θ₀/2)) sqrt(7ρ/(5g)), and small
 //! oscillations have the angular frequency sqrt(5g/(7(R_b − a))).
 //!
-//! Run: `cargo run --release --example rolling_sphere`.
+//! Run: `cargo run --release --features examples --example rolling_sphere`.
 
 use noether::constraints::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
 use noether::prelude::*;

@@ -10,7 +10,7 @@
 //!   cubic in cos θ and, with φ and ψ reconstructed, reproduces the full three-angle model's turning
 //!   points and precession.
 //!
-//! Run: `cargo run --release --example routh_reduction` (θ(t) and φ(t) go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example routh_reduction` (θ(t) and φ(t) go to `gallery-out/`).
 
 use noether::canonical::Routh;
 use noether::core::roots::bracketed_root;

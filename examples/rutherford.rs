@@ -26,7 +26,7 @@
 //! need. The return to R is a terminal event of the driver, "|r| − R crosses zero upwards", located
 //! on DOP853's continuous extension, so the final velocity is read exactly at R.
 //!
-//! Run: `cargo run --release --example rutherford`.
+//! Run: `cargo run --release --features examples --example rutherford`.
 
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

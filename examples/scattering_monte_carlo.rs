@@ -32,7 +32,7 @@
 //! straight asymptotes are missed by 2ε = κb/(2ER²) ≤ 2.5·10⁻⁸ rad, and DOP853 at tolerance 10⁻¹⁰ adds
 //! about 10⁻¹⁰: both far below the spread of angles a bin's edge could feel.
 //!
-//! Run: `cargo run --release --example scattering_monte_carlo` (4·10⁵ members; the picture goes to
+//! Run: `cargo run --release --features examples --example scattering_monte_carlo` (4·10⁵ members; the picture goes to
 //! `gallery-out/`). The test runs 5·10⁴.
 
 use noether::ensemble::{Ensemble, Histogram, Map, Max, Sampler};

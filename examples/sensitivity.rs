@@ -15,7 +15,7 @@
 //! the amplitude-dependent frequency (Lindstedt) included, so the residual is the third harmonic,
 //! relative O(θ₀²/64).
 //!
-//! Run: `cargo run --release --example sensitivity` (the sensitivities along the run go to
+//! Run: `cargo run --release --features examples --example sensitivity` (the sensitivities along the run go to
 //! `gallery-out/`).
 
 use noether::analysis::{parameter_sensitivity, Parametric, ParametricHamiltonian};

@@ -15,7 +15,7 @@
 //! within one step of the crossing time the quadrature of the cubic gives. Both run RK4 with a fixed step;
 //! the driver observes the tilt at every step.
 //!
-//! Run: `cargo run --release --example sleeping_top`.
+//! Run: `cargo run --release --features examples --example sleeping_top`.
 
 use noether::core::ChartGuard;
 use noether::prelude::*;

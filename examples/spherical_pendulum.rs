@@ -12,7 +12,7 @@
 //! of rotations about the vertical, which respect the rod — is conserved to rounding, and the energy
 //! error stays bounded (no drift) over many periods.
 //!
-//! Run: `cargo run --release --example spherical_pendulum`.
+//! Run: `cargo run --release --features examples --example spherical_pendulum`.
 
 use noether::core::roots::bracketed_root;
 use noether::prelude::*;

@@ -14,7 +14,7 @@
 //! In 2 and 3 the rod is the free rod of 1 (centre (x, y), angle θ from the x axis) and the pivot, the
 //! caught end and the peg are constraints that act during the instant.
 //!
-//! Run: `cargo run --release --example struck_rod`.
+//! Run: `cargo run --release --features examples --example struck_rod`.
 
 use noether::constraints::impulse::{Impact, StruckPoints};
 use noether::prelude::*;

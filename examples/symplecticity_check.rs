@@ -13,7 +13,7 @@
 //! - Reversibility: one step, p → −p, one step, p → −p is the identity for a symmetric method on a
 //!   reversible system: the midpoint integrator comes back to the start within rounding.
 //!
-//! Run: `cargo run --release --example symplecticity_check` (the error-vs-h plot goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example symplecticity_check` (the error-vs-h plot goes to `gallery-out/`).
 
 use noether::core::selfcheck::{observed_order, reversibility, symplecticity};
 use noether::plot::Figure;

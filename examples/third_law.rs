@@ -8,7 +8,7 @@
 //! What remains is the rounding of 10⁴ steps, ~ sqrt(10⁴) · 1e-16 relative (measured, over the three
 //! seeds, ≤ 2.3e-15 of Σ m|v| for P and ≤ 1.4e-15 of Σ m|r||v| for L): we require 5e-15 and 3e-15.
 //!
-//! Run: `cargo run --release --example third_law`.
+//! Run: `cargo run --release --features examples --example third_law`.
 
 use noether::particles::laws::{GaussianCoupling, Spring};
 use noether::prelude::*;

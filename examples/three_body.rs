@@ -17,7 +17,7 @@
 //!   by the eigenvalues. Orbits started near L4 on both sides of Routh's limit, with the Jacobi integral
 //!   along them, are the example `trojan_orbits`, which uses this model.
 //!
-//! Run: `cargo run --release --example three_body`.
+//! Run: `cargo run --release --features examples --example three_body`.
 
 use noether::core::roots::bracketed_root;
 use noether::nalgebra::Complex;

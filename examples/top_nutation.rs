@@ -10,7 +10,7 @@
 //! against acos u₁ and acos u₂; the third root above 1; the mean time between maxima against T. Two
 //! pictures: the apex of the axis looping between the two nutation circles, and θ(t) between the roots.
 //!
-//! Run: `cargo run --release --example top_nutation` (the pictures go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example top_nutation` (the pictures go to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

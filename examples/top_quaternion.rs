@@ -8,7 +8,7 @@
 //! the nutation; one nutation period T and the precession Δφ in it by the quadrature of `heavy_top`.
 //! With p_φ = p_ψ the cubic has the root u = 1: θ reaches 0, the axis passes over the vertical.
 //!
-//! Run: `cargo run --release --example top_quaternion` (the picture goes to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example top_quaternion` (the picture goes to `gallery-out/`).
 
 use noether::nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use noether::plot::Figure;

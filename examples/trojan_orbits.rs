@@ -15,7 +15,7 @@
 //! distance from L4 with observers, and ends an unstable run with a terminal event when the orbit
 //! gets 0.5 away from L4.
 //!
-//! Run: `cargo run --release --example trojan_orbits` (the orbits go to `gallery-out/`).
+//! Run: `cargo run --release --features examples --example trojan_orbits` (the orbits go to `gallery-out/`).
 
 use noether::plot::Figure;
 use noether::prelude::*;

@@ -8,7 +8,7 @@
 //! The springs are two-body [`Spring`]s; the wall spring is the same law with one end fixed
 //! ([`FixedEnd`], the seed's `one_from_two`).
 //!
-//! Run: `cargo run --release --example two_springs`.
+//! Run: `cargo run --release --features examples --example two_springs`.
 
 use noether::particles::laws::{FixedEnd, Spring};
 use noether::prelude::*;

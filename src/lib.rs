@@ -2,7 +2,7 @@
 //!
 //! The worked examples of noether, each a complete program in `examples/` that runs a textbook system
 //! and checks it against closed forms. `cargo run --release` runs them all and prints one table;
-//! `cargo run --release --example pendulum` runs one. This library is what they share: the [`Check`]
+//! `cargo run --release --features examples --example pendulum` runs one. This library is what they share: the [`Check`]
 //! of a computed value against its closed form, the [`Report`] of an example, the registry [`all`],
 //! and a few closed forms and measurements.
 //!

@@ -14,7 +14,8 @@
 //! - **collection**: [`Ensemble::run`] gives every member's result in member order ([`Runs`]);
 //!   [`Ensemble::reduce`] folds them into a histogram, a mean, or any [`Reducer`], without keeping them
 //!   ([`Reduced`]). A member that fails is reported with its index and error while the others
-//!   complete.
+//!   complete. A member's closure should return its failures as errors: a panic inside it is not
+//!   caught (rayon re-raises it in the caller) and ends the whole run.
 //!
 //! ```
 //! use noether_core::prelude::*;
