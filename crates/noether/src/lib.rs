@@ -14,7 +14,7 @@
 //! | [`analysis`] | noether-analysis | equilibria and normal modes |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
-//! | [`ensemble`] | noether-ensemble | many runs on every core and across MPI ranks (feature `mpi`): grids, random samples, reductions bit-identical for any thread count |
+//! | `ensemble` (feature `ensemble`) | noether-ensemble | many runs on every core, and across MPI ranks (feature `mpi`): grids, random samples, reductions bit-identical for any thread count |
 //! | `plot` (feature `plot`) | noether-plot | SVG pictures of a run |
 //!
 //! ```
@@ -43,6 +43,7 @@ pub use noether_canonical as canonical;
 pub use noether_constraints as constraints;
 pub use noether_core as core;
 pub use noether_discrete as discrete;
+#[cfg(feature = "ensemble")]
 pub use noether_ensemble as ensemble;
 pub use noether_particles as particles;
 #[cfg(feature = "plot")]
@@ -72,6 +73,7 @@ pub mod prelude {
         Translation, Trapezoidal, VariationalIntegrator, Verlet,
     };
     pub use noether_discrete::Composition as DiscreteComposition;
+    #[cfg(feature = "ensemble")]
     pub use noether_ensemble::{Ensemble, Members, Reducer};
     pub use noether_particles::prelude::{
         AllPairs, Body, External, ExternalForce, Internal, InternalForce, Method, OneBodyForce, OnePotential,
