@@ -404,10 +404,13 @@ pub fn propagate<S: TangentStepper>(
     crate::error::check_finite("tangent vectors W", w.as_slice())?;
     let mut s = state.clone();
     let mut out = w.clone();
+    // W ← ΨW into a second buffer and swap: no allocation per step on this hot path.
+    let mut next = w.clone();
     let mut psi = DMatrix::zeros(2 * n, 2 * n);
     for _ in 0..steps {
         stepper.step_tangent(&mut s, h, &mut psi)?;
-        out = &psi * out;
+        psi.mul_to(&out, &mut next);
+        std::mem::swap(&mut out, &mut next);
     }
     *state = s;
     w.copy_from(&out);
