@@ -61,8 +61,12 @@ impl<P: Potential + ?Sized> Field for PotentialField<'_, P> {
 /// The constant mass matrix of a [`Natural`] system.
 #[derive(Debug, Clone)]
 enum Mass {
-    /// M = diag(m), M⁻¹ = diag(1/m).
-    Diagonal { m: DVector<f64>, inv: DVector<f64> },
+    /// M = diag(m), M⁻¹ = diag(1/m); `unit` when every mᵢ = 1 (no scaling to do).
+    Diagonal {
+        m: DVector<f64>,
+        inv: DVector<f64>,
+        unit: bool,
+    },
     /// Dense SPD M with its Cholesky factor and explicit inverse (for T(p) with dual numbers).
     Dense {
         m: DMatrix<f64>,
@@ -81,6 +85,65 @@ enum Mass {
 pub struct Natural<P> {
     potential: P,
     mass: Mass,
+    /// The force kernel for this dof, chosen once (see [`force_kernel`]).
+    forces: ForceKernel<P>,
+}
+
+/// The force kernel of one dof: out = −∇V(q), times the diagonal M⁻¹ when given; returns V plus
+/// Σ 0·outᵢ, which is V when every entry is finite and NaN otherwise (one check of the result). The
+/// caller has checked the lengths.
+type ForceKernel<P> = fn(&P, &[f64], &mut [f64], Option<&[f64]>) -> f64;
+
+/// The force kernel for exactly W coordinates (see [`ForceKernel`]): the gradient by one
+/// [`ad::gradient_exact`] evaluation, negated and scaled in registers.
+#[inline]
+fn forces_exact<P: Potential, const W: usize>(
+    p: &P,
+    q: &[f64; W],
+    out: &mut [f64; W],
+    inv: Option<&[f64]>,
+) -> f64 {
+    let mut g = [0.0; W];
+    let value = ad::gradient_exact::<_, W>(&PotentialField(p), 0.0, q, &mut g);
+    match inv.map(<&[f64; W]>::try_from) {
+        Some(Ok(inv)) => (0..W).for_each(|i| out[i] = -(g[i] * inv[i])),
+        Some(Err(_)) => return f64::NAN,
+        None => (0..W).for_each(|i| out[i] = -g[i]),
+    }
+    out.iter().fold(value, |c, x| c + x * 0.0)
+}
+
+/// The force kernel for n degrees of freedom: up to [`ad::MAX_FIXED`], one fixed-width dual
+/// evaluation with every length a constant ([`ad::gradient_exact`]), so that the model inlines into
+/// it and the arguments, the gradient and the scaling stay in registers; beyond, the general
+/// gradient (chunks or the tape). Chosen at construction: a call pays no dispatch on the length
+/// (`--bench rates`: the Hénon-Heiles q̈ 23.8 → 5.0 ns, docs/benchmarks.md).
+fn force_kernel<P: Potential>(n: usize) -> ForceKernel<P> {
+    fn exact<P: Potential, const W: usize>(p: &P, q: &[f64], out: &mut [f64], inv: Option<&[f64]>) -> f64 {
+        match (<&[f64; W]>::try_from(q), <&mut [f64; W]>::try_from(out)) {
+            (Ok(q), Ok(out)) => forces_exact(p, q, out, inv),
+            // Unreachable (chosen for this length, lengths checked first); reported as a
+            // non-finite result, never a panic.
+            _ => f64::NAN,
+        }
+    }
+    fn general<P: Potential>(p: &P, q: &[f64], out: &mut [f64], inv: Option<&[f64]>) -> f64 {
+        let value = ad::gradient(&PotentialField(p), 0.0, q, &[], Block::X, out);
+        match inv {
+            Some(inv) => out.iter_mut().zip(inv).for_each(|(x, i)| *x = -(*x * i)),
+            None => out.iter_mut().for_each(|x| *x = -*x),
+        }
+        out.iter().fold(value, |c, x| c + x * 0.0)
+    }
+    macro_rules! widths {
+        ($($w:literal)*) => {
+            match n {
+                $($w => exact::<P, $w>,)*
+                _ => general::<P>,
+            }
+        };
+    }
+    widths!(1 2 3 4 5 6 7 8 9 10 11 12)
 }
 
 impl<P: Potential> Natural<P> {
@@ -97,9 +160,11 @@ impl<P: Potential> Natural<P> {
         }
         let m = DVector::from_column_slice(masses);
         let inv = m.map(|x| 1.0 / x);
+        let unit = masses.iter().all(|&m| m == 1.0);
         Ok(Natural {
+            forces: force_kernel::<P>(potential.dof()),
             potential,
-            mass: Mass::Diagonal { m, inv },
+            mass: Mass::Diagonal { m, inv, unit },
         })
     }
 
@@ -107,10 +172,12 @@ impl<P: Potential> Natural<P> {
     pub fn unit(potential: P) -> Self {
         let n = potential.dof();
         Natural {
+            forces: force_kernel::<P>(n),
             potential,
             mass: Mass::Diagonal {
                 m: DVector::from_element(n, 1.0),
                 inv: DVector::from_element(n, 1.0),
+                unit: true,
             },
         }
     }
@@ -143,6 +210,7 @@ impl<P: Potential> Natural<P> {
             Some(chol) => {
                 let inv = chol.inverse();
                 Ok(Natural {
+                    forces: force_kernel::<P>(n),
                     potential,
                     mass: Mass::Dense {
                         m: mass,
@@ -190,8 +258,49 @@ impl<P: Potential> Natural<P> {
     }
 
     /// Accelerations q̈ = −M⁻¹ ∇V(q) into `a`.
+    #[inline]
     pub fn accelerations(&self, q: &[f64], a: &mut [f64]) -> Result<()> {
         self.force_field(q, a, true)
+    }
+
+    /// [`accelerations`](Self::accelerations) for exactly W coordinates, by value, the kernel called
+    /// directly (not through the pointer chosen at construction), so that it inlines into a caller
+    /// that knows W and q and q̈ stay in registers: the fixed-size loops of the compositions. Same
+    /// result and errors as `accelerations`.
+    #[inline]
+    pub(crate) fn accelerations_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
+        let inv = match self.diagonal_inverse(true) {
+            Some(inv) if W == self.dof() && W <= ad::MAX_FIXED => inv,
+            _ => return self.accelerations_cold(q),
+        };
+        let mut a = [0.0; W];
+        if forces_exact(&self.potential, &q, &mut a, inv).is_finite() {
+            Ok(a)
+        } else {
+            self.accelerations_cold(q)
+        }
+    }
+
+    /// `accelerations` out of the fixed-size loops' way: a dense M, or the error of a non-finite
+    /// result named as the general path names it. Cold, and taking q by value, so that the loop
+    /// keeps its variables in registers.
+    #[cold]
+    #[inline(never)]
+    fn accelerations_cold<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
+        let mut a = [0.0; W];
+        self.accelerations(&q, &mut a)?;
+        Ok(a)
+    }
+
+    /// The scaling of −∇V that the force kernels apply: `Some(None)` for none (forces, or unit masses),
+    /// `Some(Some(M⁻¹))` for a diagonal M, `None` for a dense M (solved afterwards).
+    #[inline]
+    fn diagonal_inverse(&self, accelerate: bool) -> Option<Option<&[f64]>> {
+        match (&self.mass, accelerate) {
+            (_, false) | (Mass::Diagonal { unit: true, .. }, true) => Some(None),
+            (Mass::Diagonal { inv, .. }, true) => Some(Some(inv.as_slice())),
+            (Mass::Dense { .. }, true) => None,
+        }
     }
 
     /// −∇V(q), times M⁻¹ when `accelerate`, into `out`: the hot path of every integrator on a natural
@@ -211,17 +320,14 @@ impl<P: Potential> Natural<P> {
             out,
             n,
         )?;
-        let value = ad::gradient(&PotentialField(&self.potential), 0.0, q, &[], Block::X, out);
-        match (&self.mass, accelerate) {
-            (Mass::Diagonal { inv, .. }, true) => out.iter_mut().zip(inv.iter()).for_each(|(x, i)| *x *= -i),
-            (Mass::Dense { .. }, true) => {
-                out.iter_mut().for_each(|x| *x = -*x);
-                self.apply_inverse_mass(out);
-            }
-            (_, false) => out.iter_mut().for_each(|x| *x = -*x),
+        let scale = self.diagonal_inverse(accelerate);
+        let mut check = (self.forces)(&self.potential, q, out, scale.flatten());
+        if scale.is_none() {
+            self.apply_inverse_mass(out);
+            check = out.iter().fold(check, |c, x| c + x * 0.0);
         }
         // The value too: where V itself is infinite there is no force to return.
-        if !value.is_finite() || check_result("potential forces", f64::NAN, out).is_err() {
+        if !check.is_finite() {
             check_finite("q", q)?;
             // A natural system does not depend on t: no time to name.
             return Err(Error::NonFiniteResult {
@@ -419,10 +525,12 @@ impl<P: Potential> Dynamics for Natural<P> {
     fn dof(&self) -> usize {
         Natural::dof(self)
     }
+    #[inline]
     fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
         check_len("q̇", v, self.dof())?;
         check_len("q̇ (output)", dq, self.dof())?;
-        dq.copy_from_slice(v);
+        // An element loop: a few entries, no call to memcpy.
+        dq.iter_mut().zip(v).for_each(|(d, x)| *d = *x);
         self.accelerations(q, dv).map_err(|e| match e {
             Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
             other => other,

@@ -57,48 +57,74 @@ pub trait EmbeddedPair {
     fn dense_eval(theta: f64, y0: &[f64], coeffs: &[Vec<f64>], out: &mut [f64]);
 }
 
-/// The stages of one step, stored by component: the values k_0,i … k_{S−1},i of component i of all
-/// S stages are contiguous, so that every weighted sum of stages is one contiguous dot product per
-/// component (for a 2-dof system the stage-by-stage layout spent more on the loops than on the sums).
+/// The stages of one step, stage after stage: k_j is the slice k[j·m .. (j+1)·m] for a state of m
+/// components, which the vector field writes in place. A weighted sum of stages is an axpy per stage
+/// with a nonzero weight ([`combine_stages`]); for small m the width is a constant and the sum stays in
+/// registers.
 #[derive(Debug, Clone, Copy)]
 pub struct Stages<'a> {
     k: &'a [f64],
-    stride: usize,
+    m: usize,
 }
 
 impl<'a> Stages<'a> {
-    /// Component `i` of every stage, k_0,i … k_{S−1},i.
+    /// The stages stored one after the other in `k`, each of `m` components.
     #[inline]
-    pub fn of(&self, i: usize) -> &'a [f64] {
-        &self.k[i * self.stride..(i + 1) * self.stride]
+    pub fn new(k: &'a [f64], m: usize) -> Self {
+        Stages { k, m }
     }
     /// Component `i` of stage `j`, k_j,i.
     #[inline]
     pub fn get(&self, j: usize, i: usize) -> f64 {
-        self.k[i * self.stride + j]
+        self.k[j * self.m + i]
     }
     /// Σ_j w_j k_j,i: component i of a weighted sum of the stages (j over the weights given).
     #[inline]
     pub fn weighted(&self, w: &[f64], i: usize) -> f64 {
-        dot(w, self.of(i))
+        w.iter()
+            .zip(self.k[i..].iter().step_by(self.m))
+            .fold(0.0, |s, (w, k)| s + w * k)
     }
 }
 
-/// Σ_j a_j b_j over the shorter of a, b, in four interleaved partial sums (the stage sums of the
-/// high-order methods run over up to 16 terms: one chain of dependent additions would dominate them).
+/// outₓ = finish(x, Σ_j w_j k_j,ₓ) for every component x, over the stages k_j = k[j·m .. (j+1)·m]
+/// (m = `out.len()`) whose weight is nonzero (the high-order tableaux are sparse: 32 of DOP853's 78
+/// aᵢⱼ are 0). For m up to 12 the sums are formed in a fixed-length array, so that the loop over the
+/// components is unrolled and kept in registers (for a 2-dof system, loops of run-time length cost
+/// more than the sums: docs/benchmarks.md). `finish` makes the stage argument, e.g. y₀ + h Σ.
 #[inline]
-pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    let mut acc = [0.0; 4];
-    for (x, y) in ca.zip(cb) {
-        acc[0] += x[0] * y[0];
-        acc[1] += x[1] * y[1];
-        acc[2] += x[2] * y[2];
-        acc[3] += x[3] * y[3];
+pub(super) fn combine_stages(k: &[f64], w: &[f64], out: &mut [f64], finish: impl Fn(usize, f64) -> f64) {
+    #[inline(always)]
+    fn fixed<const M: usize>(k: &[f64], w: &[f64], out: &mut [f64], finish: impl Fn(usize, f64) -> f64) {
+        let Ok(out) = <&mut [f64; M]>::try_from(out) else {
+            return;
+        };
+        let mut acc = [0.0; M];
+        for (kj, &a) in k.chunks_exact(M).zip(w) {
+            if a != 0.0 {
+                (0..M).for_each(|x| acc[x] += a * kj[x]);
+            }
+        }
+        (0..M).for_each(|x| out[x] = finish(x, acc[x]));
     }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+    let m = out.len();
+    macro_rules! widths {
+        ($($m:literal)*) => {
+            match m {
+                $($m => fixed::<$m>(k, w, out, finish),)*
+                _ => {
+                    out.fill(0.0);
+                    for (kj, &a) in k.chunks_exact(m.max(1)).zip(w) {
+                        if a != 0.0 {
+                            out.iter_mut().zip(kj).for_each(|(s, k)| *s += a * k);
+                        }
+                    }
+                    out.iter_mut().enumerate().for_each(|(x, s)| *s = finish(x, *s));
+                }
+            }
+        };
+    }
+    widths!(1 2 3 4 5 6 8 10 12)
 }
 
 /// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
@@ -211,7 +237,8 @@ pub(super) fn check_underflow(t: f64, h: f64, h_min: f64, last_err: f64) -> Resu
 #[inline]
 pub(super) fn finite_stage(r: Result<()>, out: &[f64]) -> Result<bool> {
     match r {
-        Ok(()) => Ok(out.iter().all(|x| x.is_finite())),
+        // No early exit: a few entries, one vectorised pass.
+        Ok(()) => Ok(out.iter().fold(true, |ok, x| ok & x.is_finite())),
         Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
         Err(e) => Err(e),
     }
@@ -282,12 +309,9 @@ pub struct Adaptive<S: Dynamics, M> {
     dense_allowed: bool,
     dense_requested: bool,
     n: usize,
-    /// The stages by component (see [`Stages`]): k[x·S + j] is component x of stage j.
+    /// The stages one after the other (see [`Stages`]): k[j·2n + x] is component x of stage j, for
+    /// the main stages, F(t + h, y₁) and the dense stages.
     k: Vec<f64>,
-    /// S: main stages, F(t + h, y₁), dense stages.
-    stride: usize,
-    /// One evaluation of the vector field, before it is stored as a stage.
-    f: Vec<f64>,
     y0: Vec<f64>,
     y1: Vec<f64>,
     tmp: Vec<f64>,
@@ -314,8 +338,6 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             dense_requested: true,
             n,
             k: vec![0.0; 2 * n * stages],
-            stride: stages,
-            f: vec![0.0; 2 * n],
             y0: vec![0.0; 2 * n],
             y1: vec![0.0; 2 * n],
             tmp: vec![0.0; 2 * n],
@@ -372,39 +394,31 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
 
     /// The stages of the current step.
     fn stages(&self) -> Stages<'_> {
-        Stages {
-            k: &self.k,
-            stride: self.stride,
-        }
+        Stages::new(&self.k, 2 * self.n)
     }
 
     /// F at (t, y) into stage j; Ok(false) when the value is not finite.
+    /// F at (t, y) written in place as stage j; Ok(false) when the value is not finite.
     fn eval(&mut self, j: usize, t: f64, from_tmp: bool) -> Result<bool> {
-        let n = self.n;
+        let (n, m) = (self.n, 2 * self.n);
         let y = if from_tmp { &self.tmp } else { &self.y0 };
-        let (dq, dv) = self.f.split_at_mut(n);
+        let kj = &mut self.k[j * m..(j + 1) * m];
+        let (dq, dv) = kj.split_at_mut(n);
         self.evaluations += 1;
         let r = self.system.rates(t, &y[..n], &y[n..], dq, dv);
-        let ok = finite_stage(r, &self.f)?;
-        let s = self.stride;
-        self.f
-            .iter()
-            .enumerate()
-            .for_each(|(x, f)| self.k[x * s + j] = *f);
-        Ok(ok)
+        finite_stage(r, kj)
     }
 
-    /// Stage j as one vector.
-    fn stage(&self, j: usize) -> Vec<f64> {
-        (0..2 * self.n).map(|x| self.k[x * self.stride + j]).collect()
+    /// Stage j.
+    fn stage(&self, j: usize) -> &[f64] {
+        let m = 2 * self.n;
+        &self.k[j * m..(j + 1) * m]
     }
 
     /// tmp = y0 + h Σ_j row_j k_j.
     fn combine(&mut self, h: f64, row: &[f64]) {
-        let s = self.stride;
-        for (x, y) in self.tmp.iter_mut().enumerate() {
-            *y = self.y0[x] + h * dot(row, &self.k[x * s..x * s + row.len()]);
-        }
+        let y0 = &self.y0;
+        combine_stages(&self.k, row, &mut self.tmp, |x, sum| y0[x] + h * sum);
     }
 
     /// One trial step of size h from (t, y0); returns the error norm (∞ for non-finite stages).
@@ -471,9 +485,9 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
             });
         }
         let y0 = self.y0.clone();
-        let k0 = self.stage(0);
+        let k0 = self.stage(0).to_vec();
         let mut f1 = vec![0.0; n2];
-        let last = self.stride - 1;
+        let last = M::C.len() + M::DENSE_STAGES.len();
         let (atol, rtol) = (self.atol, self.rtol);
         let h = initial_step_size(M::ORDER, atol, rtol, &y0, &k0, &mut f1, |h, f1| {
             self.tmp
@@ -481,15 +495,13 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
                 .enumerate()
                 .for_each(|(i, y)| *y = y0[i] + h * k0[i]);
             let ok = self.eval(last, state.t + h, true)?;
-            f1.copy_from_slice(&self.f);
+            f1.copy_from_slice(self.stage(last));
             Ok(ok)
         })?;
         // F(t, y₀) is the first stage of the first step (as in Hairer's codes, which evaluate it
         // once): keep it where a step looks for the FSAL stage.
-        let (s, stride) = (M::C.len(), self.stride);
-        k0.iter()
-            .enumerate()
-            .for_each(|(x, k)| self.k[x * stride + s] = *k);
+        let s = M::C.len();
+        self.k[s * n2..(s + 1) * n2].copy_from_slice(&k0);
         self.y1.copy_from_slice(&self.y0);
         self.fsal = Some(state.t);
         Ok(h)
@@ -518,8 +530,8 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             && self.y1[self.n..] == *state.v.as_slice();
         self.load(state);
         if reuse {
-            let s = M::C.len();
-            self.k.chunks_exact_mut(self.stride).for_each(|kx| kx[0] = kx[s]);
+            let (s, m) = (M::C.len(), 2 * self.n);
+            self.k.copy_within(s * m..(s + 1) * m, 0);
         } else if !self.eval(0, t, false)? {
             return Err(Error::NonFiniteResult { what: "rates", t });
         }

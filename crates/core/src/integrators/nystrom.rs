@@ -61,7 +61,8 @@
 //!   (Nyström methods, order conditions).
 
 use super::adaptive::{
-    check_tolerances, check_underflow, dot, error_scale, finite_stage, initial_step_size, Controller,
+    check_tolerances, check_underflow, combine_stages, error_scale, finite_stage, initial_step_size,
+    Controller, Stages,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -101,14 +102,13 @@ pub trait NystromPair {
     const HERMITE: bool;
 
     /// The dense polynomial y(θ) = y₀ + θ Σ_m `out[m]` θ^m on y = (q, q̇) (each `out[m]` of length 2n)
-    /// of a step of size h from (q₀, v₀) to (q₁, v₁), from the stages `k` (by component: `k[x·s + j]`
-    /// is component x of stage j) and
-    /// a₁ = f(q₁). The default is the quintic Hermite interpolant of q through q, q̇, q̈ at both ends
+    /// of a step of size h from (q₀, v₀) to (q₁, v₁), from the stages `k` (`k.get(j, x)` is
+    /// component x of stage j) and a₁ = f(q₁). The default is the quintic Hermite interpolant of q through q, q̇, q̈ at both ends
     /// and its derivative for q̇ (order 4; see the [module](self) docs).
     #[allow(clippy::too_many_arguments)]
     fn dense_coefficients(
         h: f64,
-        k: &[f64],
+        k: Stages<'_>,
         q0: &[f64],
         v0: &[f64],
         q1: &[f64],
@@ -117,14 +117,13 @@ pub trait NystromPair {
         out: &mut [Vec<f64>],
     ) {
         let n = q0.len();
-        let s = Self::C.len();
         let h2 = h * h;
         // q(θ) = q₀ + d₁θ + d₂θ² + d₃θ³ + d₄θ⁴ + d₅θ⁵ with d₁ = h q̇₀, d₂ = h² q̈₀/2 and d₃..d₅ from
         // q(1) = q₁, q'(1) = h q̇₁, q''(1) = h² q̈₁: with the residuals Δ = q₁ − q₀ − d₁ − d₂,
         // V = h(q̇₁ − q̇₀) − h² q̈₀, A = h²(q̈₁ − q̈₀): d₃ = 10Δ − 4V + A/2, d₄ = −15Δ + 7V − A,
         // d₅ = 6Δ − 3V + A/2. q̇(θ) = q'(θ)/h = q̇₀ + θ Σ_{m≥0} (m+2) d_{m+2}/h θ^m.
         for i in 0..n {
-            let a0 = k[i * s];
+            let a0 = k.get(0, i);
             let d1 = h * v0[i];
             let d2 = 0.5 * h2 * a0;
             let delta = q1[i] - q0[i] - d1 - d2;
@@ -193,7 +192,7 @@ pub struct Nystrom<S: SplitDynamics, M> {
     dense_allowed: bool,
     dense_requested: bool,
     n: usize,
-    /// The s stage accelerations by component: k[x·s + j] is component x of stage j.
+    /// The s stage accelerations one after the other: k[j·n + x] is component x of stage j.
     k: Vec<f64>,
     q0: Vec<f64>,
     v0: Vec<f64>,
@@ -201,7 +200,6 @@ pub struct Nystrom<S: SplitDynamics, M> {
     v1: Vec<f64>,
     /// Stage positions and accelerations.
     qs: Vec<f64>,
-    acc: Vec<f64>,
     /// f(q₁) after an accepted step (valid when `fsal`).
     a1: Vec<f64>,
     /// Start (q, q̇, q̈) and size of the previous accepted step when the current one continues it
@@ -249,7 +247,6 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             q1: vec![0.0; n],
             v1: vec![0.0; n],
             qs: vec![0.0; n],
-            acc: vec![0.0; n],
             a1: vec![0.0; n],
             qp: vec![0.0; n],
             vp: vec![0.0; n],
@@ -316,29 +313,27 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
     fn attempt(&mut self, h: f64) -> Result<f64> {
         let n = self.n;
         let s = M::C.len();
-        // The stages are stored by component (k[x·s + j]): each weighted sum is one contiguous dot
-        // product per component, and the four sums of the solution and the estimate share one pass.
+        // Stage i's argument q₀ + h(cᵢ q̇₀ + h Σ_j a_ij k_j) by `combine_stages` (fixed width for small
+        // n), and f written in place as stage i.
         for i in 1..s {
             let (a, c) = (M::A[i], M::C[i]);
-            for x in 0..n {
-                let kx = &self.k[x * s..x * s + i];
-                let sum = dot(a, kx);
-                self.qs[x] = self.q0[x] + h * (c * self.v0[x] + h * sum);
-            }
-            if !Self::accel(&self.system, &mut self.evaluations, &self.qs, &mut self.acc)? {
+            let (q0, v0) = (&self.q0, &self.v0);
+            combine_stages(&self.k, a, &mut self.qs, |x, sum| {
+                q0[x] + h * (c * v0[x] + h * sum)
+            });
+            let ki = &mut self.k[i * n..(i + 1) * n];
+            if !Self::accel(&self.system, &mut self.evaluations, &self.qs, ki)? {
                 return Ok(f64::INFINITY);
-            }
-            for x in 0..n {
-                self.k[x * s + i] = self.acc[x];
             }
         }
         let (atol, rtol, h2) = (self.atol, self.rtol, h * h);
         let mut sq = 0.0;
         for x in 0..n {
-            let kx = &self.k[x * s..(x + 1) * s];
+            // The four sums of the solution and the estimate in one pass over the stages.
+            let kx = self.k[x..].iter().step_by(n.max(1));
             let (mut b, mut bp, mut be, mut bpe) = (0.0, 0.0, 0.0, 0.0);
             let weights = M::B.iter().zip(M::BP).zip(M::B_ERR).zip(M::BP_ERR);
-            for (k, (((wb, wbp), wbe), wbpe)) in kx.iter().zip(weights) {
+            for (k, (((wb, wbp), wbe), wbpe)) in kx.zip(weights) {
                 b += wb * k;
                 bp += wbp * k;
                 be += wbe * k;
@@ -379,7 +374,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         y0[n..].copy_from_slice(&self.v0);
         M::dense_coefficients(
             h,
-            &self.k,
+            Stages::new(&self.k, n),
             &self.q0,
             &self.v0,
             &self.q1,
@@ -483,9 +478,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         if self.prev {
             self.qp.copy_from_slice(&self.q0);
             self.vp.copy_from_slice(&self.v0);
-            for x in 0..n {
-                self.ap[x] = self.k[x * s];
-            }
+            self.ap.copy_from_slice(&self.k[..n]);
             self.hp = self.h_last;
         }
         self.fsal = false;
@@ -497,9 +490,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                 t,
             });
         }
-        for x in 0..n {
-            self.k[x * s] = self.a1[x];
-        }
+        self.k[..n].copy_from_slice(&self.a1);
         let c = self.controller;
         let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
         let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
@@ -509,9 +500,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
             if err <= 1.0 {
                 let dense = self.dense_allowed && self.dense_requested;
                 if M::FSAL {
-                    for x in 0..n {
-                        self.a1[x] = self.k[x * s + s - 1];
-                    }
+                    self.a1.copy_from_slice(&self.k[(s - 1) * n..s * n]);
                     self.fsal = true;
                 } else if dense {
                     if !Self::accel(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
@@ -780,7 +769,7 @@ impl NystromPair for Rkn6 {
     /// q(θ) = q₀ + hθ(q̇₀ + hθ Σ_i b_i(θ) k_i), q̇(θ) = q̇₀ + hθ Σ_i b'_i(θ) k_i (k₆ = f(q₁)).
     fn dense_coefficients(
         h: f64,
-        k: &[f64],
+        k: Stages<'_>,
         _q0: &[f64],
         v0: &[f64],
         _q1: &[f64],
@@ -796,7 +785,7 @@ impl NystromPair for Rkn6 {
             for m in 0..5 {
                 let (mut bq, mut bv) = (0.0, 0.0);
                 for i in 0..6 {
-                    let ki = k[x * 6 + i];
+                    let ki = k.get(i, x);
                     bq += R6[i][m] * ki;
                     bv += RP6[i][m] * ki;
                 }

@@ -5,6 +5,7 @@
 mod adaptive;
 mod bad_input;
 mod conserves;
+mod fixed;
 mod ias15;
 mod implicit;
 mod nystrom;
