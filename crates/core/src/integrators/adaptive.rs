@@ -59,7 +59,7 @@ pub trait EmbeddedPair {
 
 /// The stages of one step, stage after stage: k_j is the slice k[j·m .. (j+1)·m] for a state of m
 /// components, which the vector field writes in place. A weighted sum of stages is an axpy per stage
-/// with a nonzero weight ([`combine_stages`]); for small m the width is a constant and the sum stays in
+/// with a nonzero weight; for small m the width is a constant and the sum stays in
 /// registers.
 #[derive(Debug, Clone, Copy)]
 pub struct Stages<'a> {
@@ -132,6 +132,84 @@ pub(super) fn combine_stages(k: &[f64], w: &[f64], out: &mut [f64], finish: impl
 pub(super) fn error_scale(atol: f64, rtol: f64, y0: f64, y1: f64) -> f64 {
     atol + rtol * y0.abs().max(y1.abs())
 }
+
+/// The settings the embedded pairs ([`Adaptive`], [`Nystrom`](super::Nystrom)) share, set by the
+/// builder methods of `settings_methods!`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Settings {
+    pub(super) atol: f64,
+    pub(super) rtol: f64,
+    pub(super) h_min: f64,
+    pub(super) controller: Controller,
+    /// Fixed steps: no error control.
+    pub(super) fixed: bool,
+    /// The user allows a dense output (`with_dense_output`), and the driver asks for one.
+    pub(super) dense_allowed: bool,
+    pub(super) dense_requested: bool,
+}
+
+impl Settings {
+    /// atol = rtol = 1e-9, h_min = 1e-14, error control on, dense output allowed and requested.
+    pub(super) fn new(controller: Controller) -> Self {
+        Settings {
+            atol: 1e-9,
+            rtol: 1e-9,
+            h_min: 1e-14,
+            controller,
+            fixed: false,
+            dense_allowed: true,
+            dense_requested: true,
+        }
+    }
+}
+
+/// The builder methods of an embedded pair (a struct with fields `settings`, `system` and
+/// `evaluations`, and a method type `M` with `CONTROL_ORDER`); `$f` names what is evaluated.
+macro_rules! settings_methods {
+    ($f:literal) => {
+        /// Sets the absolute and relative tolerances: finite, ≥ 0, not both 0.
+        pub fn tolerances(mut self, atol: f64, rtol: f64) -> Result<Self> {
+            super::adaptive::check_tolerances(atol, rtol, self.settings.h_min)?;
+            self.settings.atol = atol;
+            self.settings.rtol = rtol;
+            Ok(self)
+        }
+        /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14; finite,
+        /// ≥ 0).
+        pub fn h_min(mut self, h_min: f64) -> Result<Self> {
+            super::adaptive::check_tolerances(self.settings.atol, self.settings.rtol, h_min)?;
+            self.settings.h_min = h_min;
+            Ok(self)
+        }
+        /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max < ∞,
+        /// 0 ≤ β < 4/(3q)).
+        pub fn controller(mut self, controller: super::adaptive::Controller) -> Result<Self> {
+            self.settings.controller = controller.checked(M::CONTROL_ORDER)?;
+            Ok(self)
+        }
+        /// Fixed steps: every step is accepted with the size asked for (no error control); for
+        /// convergence studies and for users who want a plain high-order method.
+        pub fn fixed_step(mut self, fixed: bool) -> Self {
+            self.settings.fixed = fixed;
+            self
+        }
+        /// Allows (default) or forbids the dense output; without it the driver interpolates output
+        /// times and events by cubic Hermite (order 3) instead of the method's own extension.
+        pub fn with_dense_output(mut self, on: bool) -> Self {
+            self.settings.dense_allowed = on;
+            self
+        }
+        /// The system stepped.
+        pub fn system(&self) -> &S {
+            &self.system
+        }
+        #[doc = concat!("Evaluations of ", $f, " since construction.")]
+        pub fn evaluations(&self) -> usize {
+            self.evaluations
+        }
+    };
+}
+pub(super) use settings_methods;
 
 /// Step-size controller parameters (Hairer's `safe`, `fac1`, `fac2`, `beta`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -300,14 +378,7 @@ pub(super) fn initial_step_size(
 /// ```
 pub struct Adaptive<S: Dynamics, M> {
     system: S,
-    atol: f64,
-    rtol: f64,
-    h_min: f64,
-    controller: Controller,
-    fixed: bool,
-    /// The user allows a dense output (`with_dense_output`), and the driver asks for one.
-    dense_allowed: bool,
-    dense_requested: bool,
+    settings: Settings,
     n: usize,
     /// The stages one after the other (see [`Stages`]): k[j·2n + x] is component x of stage j, for
     /// the main stages, F(t + h, y₁) and the dense stages.
@@ -329,13 +400,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let stages = M::C.len() + 1 + M::DENSE_STAGES.len();
         Adaptive {
             system,
-            atol: 1e-9,
-            rtol: 1e-9,
-            h_min: 1e-14,
-            controller: M::CONTROLLER,
-            fixed: false,
-            dense_allowed: true,
-            dense_requested: true,
+            settings: Settings::new(M::CONTROLLER),
             n,
             k: vec![0.0; 2 * n * stages],
             y0: vec![0.0; 2 * n],
@@ -349,47 +414,10 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         }
     }
 
-    /// Sets the absolute and relative tolerances: finite, ≥ 0, not both 0.
-    pub fn tolerances(mut self, atol: f64, rtol: f64) -> Result<Self> {
-        self.atol = atol;
-        self.rtol = rtol;
-        self.check_parameters()?;
-        Ok(self)
-    }
-    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14; finite, ≥ 0).
-    pub fn h_min(mut self, h_min: f64) -> Result<Self> {
-        self.h_min = h_min;
-        self.check_parameters()?;
-        Ok(self)
-    }
-    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max < ∞, 0 ≤ β < 4/(3q)).
-    pub fn controller(mut self, controller: Controller) -> Result<Self> {
-        self.controller = controller.checked(M::CONTROL_ORDER)?;
-        Ok(self)
-    }
-    /// Fixed steps: every step is accepted with the size asked for (no error control); for
-    /// convergence studies and for users who want a plain high-order Runge-Kutta method.
-    pub fn fixed_step(mut self, fixed: bool) -> Self {
-        self.fixed = fixed;
-        self
-    }
-    /// Allows (default) or forbids the dense output; without it the driver interpolates output times and
-    /// events by cubic Hermite (order 3) instead of the method's own extension.
-    pub fn with_dense_output(mut self, on: bool) -> Self {
-        self.dense_allowed = on;
-        self
-    }
-    /// The system stepped.
-    pub fn system(&self) -> &S {
-        &self.system
-    }
-    /// Evaluations of the vector field since construction.
-    pub fn evaluations(&self) -> usize {
-        self.evaluations
-    }
+    settings_methods!("the vector field");
 
     fn check_parameters(&self) -> Result<()> {
-        check_tolerances(self.atol, self.rtol, self.h_min)
+        check_tolerances(self.settings.atol, self.settings.rtol, self.settings.h_min)
     }
 
     /// The stages of the current step.
@@ -435,10 +463,17 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         if !self.eval(s, t + h, true)? {
             return Ok(f64::INFINITY);
         }
-        if self.fixed {
+        if self.settings.fixed {
             return Ok(0.0);
         }
-        let err = M::error_norm(h, self.stages(), &self.y0, &self.y1, self.atol, self.rtol);
+        let err = M::error_norm(
+            h,
+            self.stages(),
+            &self.y0,
+            &self.y1,
+            self.settings.atol,
+            self.settings.rtol,
+        );
         Ok(if err.is_nan() { f64::INFINITY } else { err })
     }
 
@@ -488,7 +523,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let k0 = self.stage(0).to_vec();
         let mut f1 = vec![0.0; n2];
         let last = M::C.len() + M::DENSE_STAGES.len();
-        let (atol, rtol) = (self.atol, self.rtol);
+        let (atol, rtol) = (self.settings.atol, self.settings.rtol);
         let h = initial_step_size(M::ORDER, atol, rtol, &y0, &k0, &mut f1, |h, f1| {
             self.tmp
                 .iter_mut()
@@ -536,14 +571,14 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             return Err(Error::NonFiniteResult { what: "rates", t });
         }
         self.fsal = None;
-        let c = self.controller;
+        let c = self.settings.controller;
         let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
         let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
         loop {
-            check_underflow(t, h, self.h_min, last_err)?;
+            check_underflow(t, h, self.settings.h_min, last_err)?;
             let err = self.attempt(t, h)?;
             if err <= 1.0 {
-                let mut h_next = if self.fixed {
+                let mut h_next = if self.settings.fixed {
                     h
                 } else {
                     h / c.accepted_divisor(err, self.err_prev, alpha)
@@ -552,7 +587,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                     h_next = h_next.min(h);
                 }
                 self.err_prev = err.max(1e-4);
-                if self.dense_allowed && self.dense_requested {
+                if self.settings.dense_allowed && self.settings.dense_requested {
                     self.build_dense(t, h)?;
                 } else {
                     self.dense = None;
@@ -565,7 +600,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                     .with_control(rejected, h_next)
                     .with_evaluations(self.evaluations - evaluations));
             }
-            if self.fixed {
+            if self.settings.fixed {
                 return Err(Error::NonFiniteResult { what: "rates", t });
             }
             rejected += 1;
@@ -583,7 +618,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         M::NAME
     }
     fn is_adaptive(&self) -> bool {
-        !self.fixed
+        !self.settings.fixed
     }
     /// Hairer's `hinit`: h such that the explicit Euler step and the second-derivative estimate give a
     /// local error ≈ 0.01 in the scaled norm.
@@ -591,7 +626,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
         self.hinit(state).map(Some)
     }
     fn request_dense_output(&mut self, on: bool) {
-        self.dense_requested = on;
+        self.settings.dense_requested = on;
     }
     fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
         self.dense.as_ref()

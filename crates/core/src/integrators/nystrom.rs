@@ -62,7 +62,7 @@
 
 use super::adaptive::{
     check_tolerances, check_underflow, combine_stages, error_scale, finite_stage, initial_step_size,
-    Controller, Stages,
+    settings_methods, Controller, Settings, Stages,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -184,13 +184,7 @@ fn dense_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
 /// ```
 pub struct Nystrom<S: SplitDynamics, M> {
     system: S,
-    atol: f64,
-    rtol: f64,
-    h_min: f64,
-    controller: Controller,
-    fixed: bool,
-    dense_allowed: bool,
-    dense_requested: bool,
+    settings: Settings,
     n: usize,
     /// The s stage accelerations one after the other: k[j·n + x] is component x of stage j.
     k: Vec<f64>,
@@ -233,13 +227,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         let s = M::C.len();
         Ok(Nystrom {
             system,
-            atol: 1e-9,
-            rtol: 1e-9,
-            h_min: 1e-14,
-            controller: M::CONTROLLER,
-            fixed: false,
-            dense_allowed: true,
-            dense_requested: true,
+            settings: Settings::new(M::CONTROLLER),
             n,
             k: vec![0.0; s * n],
             q0: vec![0.0; n],
@@ -263,43 +251,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         })
     }
 
-    /// Sets the absolute and relative tolerances: finite, ≥ 0, not both 0.
-    pub fn tolerances(mut self, atol: f64, rtol: f64) -> Result<Self> {
-        check_tolerances(atol, rtol, self.h_min)?;
-        self.atol = atol;
-        self.rtol = rtol;
-        Ok(self)
-    }
-    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14; finite, ≥ 0).
-    pub fn h_min(mut self, h_min: f64) -> Result<Self> {
-        check_tolerances(self.atol, self.rtol, h_min)?;
-        self.h_min = h_min;
-        Ok(self)
-    }
-    /// Sets the step-size controller (safety in (0, 1], 0 < fac_min ≤ 1 ≤ fac_max < ∞, 0 ≤ β < 4/(3q)).
-    pub fn controller(mut self, controller: Controller) -> Result<Self> {
-        self.controller = controller.checked(M::CONTROL_ORDER)?;
-        Ok(self)
-    }
-    /// Fixed steps: every step is accepted with the size asked for (no error control).
-    pub fn fixed_step(mut self, fixed: bool) -> Self {
-        self.fixed = fixed;
-        self
-    }
-    /// Allows (default) or forbids the dense output; without it the driver interpolates output times and
-    /// events by cubic Hermite (order 3) instead.
-    pub fn with_dense_output(mut self, on: bool) -> Self {
-        self.dense_allowed = on;
-        self
-    }
-    /// The system stepped.
-    pub fn system(&self) -> &S {
-        &self.system
-    }
-    /// Evaluations of f since construction.
-    pub fn evaluations(&self) -> usize {
-        self.evaluations
-    }
+    settings_methods!("f");
 
     /// f(q) into `out`; Ok(false) when not finite.
     #[inline]
@@ -326,7 +278,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
                 return Ok(f64::INFINITY);
             }
         }
-        let (atol, rtol, h2) = (self.atol, self.rtol, h * h);
+        let (atol, rtol, h2) = (self.settings.atol, self.settings.rtol, h * h);
         let mut sq = 0.0;
         for x in 0..n {
             // The four sums of the solution and the estimate in one pass over the stages.
@@ -355,7 +307,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         if self.q1.iter().chain(&self.v1).any(|x| !x.is_finite()) {
             return Ok(f64::INFINITY);
         }
-        if self.fixed || n == 0 {
+        if self.settings.fixed || n == 0 {
             return Ok(0.0);
         }
         let err = (sq / (2 * n) as f64).sqrt();
@@ -472,8 +424,8 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         self.prev = M::HERMITE
             && reuse
             && self.h_last > 0.0
-            && self.dense_allowed
-            && self.dense_requested
+            && self.settings.dense_allowed
+            && self.settings.dense_requested
             && self.v1 == *state.v.as_slice();
         if self.prev {
             self.qp.copy_from_slice(&self.q0);
@@ -491,14 +443,14 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
             });
         }
         self.k[..n].copy_from_slice(&self.a1);
-        let c = self.controller;
+        let c = self.settings.controller;
         let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
         let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
         loop {
-            check_underflow(t, h, self.h_min, last_err)?;
+            check_underflow(t, h, self.settings.h_min, last_err)?;
             let err = self.attempt(h)?;
             if err <= 1.0 {
-                let dense = self.dense_allowed && self.dense_requested;
+                let dense = self.settings.dense_allowed && self.settings.dense_requested;
                 if M::FSAL {
                     self.a1.copy_from_slice(&self.k[(s - 1) * n..s * n]);
                     self.fsal = true;
@@ -511,7 +463,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                     }
                     self.fsal = true;
                 }
-                let mut h_next = if self.fixed {
+                let mut h_next = if self.settings.fixed {
                     h
                 } else {
                     h / c.accepted_divisor(err, self.err_prev, alpha)
@@ -533,7 +485,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                     .with_control(rejected, h_next)
                     .with_evaluations(self.evaluations - evaluations));
             }
-            if self.fixed {
+            if self.settings.fixed {
                 return Err(Error::NonFiniteResult {
                     what: "accelerations",
                     t,
@@ -554,12 +506,12 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         M::NAME
     }
     fn is_adaptive(&self) -> bool {
-        !self.fixed
+        !self.settings.fixed
     }
     /// Hairer's `hinit` on y = (q, q̇), y' = (q̇, f(q)) (see [`Adaptive`](super::Adaptive)); f(q₀) is
     /// kept as the first stage of the first step.
     fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
-        check_tolerances(self.atol, self.rtol, self.h_min)?;
+        check_tolerances(self.settings.atol, self.settings.rtol, self.settings.h_min)?;
         state.validate(self.n)?;
         let n = self.n;
         self.fsal = false;
@@ -579,20 +531,28 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         f0[n..].copy_from_slice(&self.a1);
         let mut f1 = vec![0.0; 2 * n];
         let (system, evaluations, qs) = (&self.system, &mut self.evaluations, &mut self.qs);
-        let h = initial_step_size(M::ORDER, self.atol, self.rtol, &y0, &f0, &mut f1, |h, f1| {
-            // F(y₀ + hF₀) = (q̇₀ + h f(q₀), f(q₀ + h q̇₀)).
-            for x in 0..n {
-                qs[x] = y0[x] + h * f0[x];
-                f1[x] = f0[n + x] * h + y0[n + x];
-            }
-            Self::accel(system, evaluations, qs, &mut f1[n..])
-        })?;
+        let h = initial_step_size(
+            M::ORDER,
+            self.settings.atol,
+            self.settings.rtol,
+            &y0,
+            &f0,
+            &mut f1,
+            |h, f1| {
+                // F(y₀ + hF₀) = (q̇₀ + h f(q₀), f(q₀ + h q̇₀)).
+                for x in 0..n {
+                    qs[x] = y0[x] + h * f0[x];
+                    f1[x] = f0[n + x] * h + y0[n + x];
+                }
+                Self::accel(system, evaluations, qs, &mut f1[n..])
+            },
+        )?;
         self.q1.copy_from_slice(&self.q0);
         self.fsal = true;
         Ok(Some(h))
     }
     fn request_dense_output(&mut self, on: bool) {
-        self.dense_requested = on;
+        self.settings.dense_requested = on;
     }
     fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
         self.dense.as_ref()
