@@ -124,7 +124,7 @@ pub(super) fn combine_stages(k: &[f64], w: &[f64], out: &mut [f64], finish: impl
             }
         };
     }
-    widths!(1 2 3 4 5 6 8 10 12)
+    widths!(1 2 3 4 5 6 8 12)
 }
 
 /// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
