@@ -62,7 +62,7 @@
 
 use super::adaptive::{
     check_tolerances, check_underflow, combine_stages, error_scale, finite_stage, initial_step_size,
-    settings_methods, Controller, Settings, Stages,
+    settings_methods, Controller, Settings, StageArgument, Stages,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -269,10 +269,13 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         // n), and f written in place as stage i.
         for i in 1..s {
             let (a, c) = (M::A[i], M::C[i]);
-            let (q0, v0) = (&self.q0, &self.v0);
-            combine_stages(&self.k, a, &mut self.qs, |x, sum| {
-                q0[x] + h * (c * v0[x] + h * sum)
-            });
+            let arg = StageArgument::Nystrom {
+                q0: &self.q0,
+                v0: &self.v0,
+                c,
+                h,
+            };
+            combine_stages(&self.k, a, arg, &mut self.qs);
             let ki = &mut self.k[i * n..(i + 1) * n];
             if !Self::accel(&self.system, &mut self.evaluations, &self.qs, ki)? {
                 return Ok(f64::INFINITY);
