@@ -9,10 +9,9 @@
 //! - [`directional_gradient`]: ∇_b (∂_t f·δt + ∇_x f·δx + ∇_y f·δy), a Hessian-vector product by one
 //!   `HyperDualSVec64<1, W>` evaluation per chunk — never forming the Hessian.
 //!
-//! The chunk width W is chosen at run time from the block length n: W ≥ n from 1, 2, 3, 4, 6, 8, 12 for
-//! n ≤ 12 (one evaluation, everything on the stack; see `with_width!`), W = 8 with ⌈n/8⌉ chunks
-//! beyond. Models of any size therefore use `Copy`
-//! duals and no allocation per arithmetic operation.
+//! The chunk width W is chosen at run time from the block length n: W = n up to 6, the next of 8, 10, 12
+//! up to 12 (one evaluation, everything on the stack; see `with_width!`), W = 8 with ⌈n/8⌉ chunks
+//! beyond. Models of any size therefore use `Copy` duals and no allocation per arithmetic operation.
 //!
 //! Forward chunks make a gradient cost ⌈n/8⌉ evaluations and a Hessian ⌈n/8⌉² of them, so large blocks
 //! go to reverse mode instead: one evaluation recorded on a tape ([`TapeVar`]) and one sweep
@@ -87,11 +86,12 @@ pub const DIRECTIONAL_TAPE_FROM: usize = 16;
 /// Chunk width used for blocks longer than [`MAX_FIXED`].
 pub const CHUNK: usize = 8;
 
-/// Calls `$f::<…, W>` with the chunk width W for a block of length `$n`: the smallest of 1, 2, 3, 4, 6,
-/// 8, 12 that holds n for n ≤ [`MAX_FIXED`] (the unused lanes carry zero derivatives), W = [`CHUNK`]
-/// beyond. Seven widths, not twelve: every kernel is compiled once per width and model, and the
-/// widths 5, 7, 9, 10 and 11 cost the gallery a third more code for at most 20 % (n = 5 in a
-/// width-6 jet; docs/benchmarks.md). Exported for the vector-valued kernels of other noether crates.
+/// Calls `$f::<…, W>` with the chunk width W for a block of length `$n`: W = n for n ≤ 6, the smallest
+/// of 8, 10, 12 that holds n up to [`MAX_FIXED`] (the unused lanes carry zero derivatives), W =
+/// [`CHUNK`] beyond. Nine widths, not twelve: every kernel is compiled once per width and model, and
+/// the odd widths above 6 cost the gallery's build more than they gain (a Hessian at n = 7, 9, 11 pays
+/// at most (8/7)² = 1.3× in its padded jet; docs/benchmarks.md). Exported for the vector-valued kernels
+/// of other noether crates.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! with_width {
@@ -101,9 +101,11 @@ macro_rules! with_width {
             2 => $f::<$($g,)* 2>($($a),*),
             3 => $f::<$($g,)* 3>($($a),*),
             4 => $f::<$($g,)* 4>($($a),*),
-            5 | 6 => $f::<$($g,)* 6>($($a),*),
+            5 => $f::<$($g,)* 5>($($a),*),
+            6 => $f::<$($g,)* 6>($($a),*),
             7 | 8 => $f::<$($g,)* 8>($($a),*),
-            9..=12 => $f::<$($g,)* 12>($($a),*),
+            9 | 10 => $f::<$($g,)* 10>($($a),*),
+            11 | 12 => $f::<$($g,)* 12>($($a),*),
             _ => $f::<$($g,)* { $crate::ad::CHUNK }>($($a),*),
         }
     };
@@ -122,9 +124,11 @@ pub enum Buf<D, const S: usize> {
 impl<D: Scalar, const S: usize> Buf<D, S> {
     /// The buffer `[f(0), …, f(n-1)]`.
     ///
-    /// Plain index loops, not `array::from_fn` and `collect`: this is instantiated for every dual type,
-    /// width and model, and the iterator machinery made up a third of the gallery's LLVM IR
-    /// (`cargo llvm-lines`, docs/benchmarks.md).
+    /// On the stack an index loop into a zeroed array, not `array::from_fn`: this is instantiated for
+    /// every dual type, width, model and call site, and `from_fn`'s machinery was a tenth of the
+    /// gallery's LLVM IR (`cargo llvm-lines`, docs/benchmarks.md). On the heap `collect`: a `push`
+    /// loop or index writes into `vec![zero; n]` made the RATTLE step of the 10-link chain 15–25 %
+    /// slower.
     #[inline]
     pub fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
         if n <= S {
@@ -135,11 +139,7 @@ impl<D: Scalar, const S: usize> Buf<D, S> {
             }
             Buf::Stack(a, n)
         } else {
-            let mut v = Vec::with_capacity(n);
-            for i in 0..n {
-                v.push(f(i));
-            }
-            Buf::Heap(v)
+            Buf::Heap((0..n).map(f).collect())
         }
     }
 }

@@ -117,7 +117,7 @@ fn forces_exact<P: Potential, const W: usize>(
 /// evaluation with every length a constant ([`ad::gradient_exact`]), so that the model inlines into
 /// it and the arguments, the gradient and the scaling stay in registers; beyond, the general
 /// gradient (chunks or the tape). Chosen at construction: a call pays no dispatch on the length
-/// (`--bench rates`: the Hénon-Heiles q̈ 23.8 → 5.0 ns, docs/benchmarks.md).
+/// (`--bench rates`: the Hénon-Heiles q̈ 23.8 → 4.8 ns, docs/benchmarks.md).
 fn force_kernel<P: Potential>(n: usize) -> ForceKernel<P> {
     fn exact<P: Potential, const W: usize>(p: &P, q: &[f64], out: &mut [f64], inv: Option<&[f64]>) -> f64 {
         match (<&[f64; W]>::try_from(q), <&mut [f64; W]>::try_from(out)) {
