@@ -20,21 +20,8 @@ use std::process::ExitCode;
 
 const NAME: &str = "periodic_orbits";
 
-/// The pendulum H = p²/2 − g cos q (m = l = 1).
-#[derive(Debug, Clone, Copy)]
-pub struct Pendulum {
-    /// Gravitational acceleration.
-    pub g: f64,
-}
-
-impl Hamiltonian for Pendulum {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        p[0] * p[0] * 0.5 - q[0].cos() * self.g
-    }
-}
+/// The pendulum H = p²/2 − g cos q (m = l = 1), the model of the action-angle example.
+pub use noether_gallery::examples::action_angle::Pendulum;
 
 /// The circular restricted three-body problem in the rotating frame (primaries 1 − μ at (−μ, 0) and
 /// μ at (1 − μ, 0)): H = ½(p_x² + p_y²) + y p_x − x p_y − (1 − μ)/r₁ − μ/r₂ = −C/2.
