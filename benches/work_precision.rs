@@ -24,17 +24,12 @@ use noether::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
 
-/// Kepler, μ = 1: V = −1/|q|.
-struct Kepler;
-impl Potential for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
+#[path = "../crates/core/benches/common/kepler.rs"]
+mod kepler;
+use kepler::{start as kepler_start, Kepler, KeplerRhs};
+#[path = "../crates/core/benches/common/peer.rs"]
+mod peer;
+use peer::ode_solvers_end;
 
 /// Hénon-Heiles: V = ½(x² + y²) + x²y − y³/3.
 struct HenonHeiles;
@@ -49,26 +44,7 @@ impl Potential for HenonHeiles {
     }
 }
 
-const E: f64 = 0.6;
 const ORBITS: f64 = 100.0;
-
-/// Kepler's start at pericentre with a = 1: q = (1 − e, 0), q̇ = (0, sqrt((1 + e)/(1 − e))).
-fn kepler_start() -> ([f64; 2], [f64; 2]) {
-    ([1.0 - E, 0.0], [0.0, ((1.0 + E) / (1.0 - E)).sqrt()])
-}
-
-/// The hand-written right-hand side for ode_solvers.
-struct KeplerRhs;
-impl ode_solvers::System<f64, SVector<f64, 4>> for KeplerRhs {
-    fn system(&self, _t: f64, y: &SVector<f64, 4>, dy: &mut SVector<f64, 4>) {
-        let r2 = y[0] * y[0] + y[1] * y[1];
-        let r3 = r2 * r2.sqrt();
-        dy[0] = y[2];
-        dy[1] = y[3];
-        dy[2] = -y[0] / r3;
-        dy[3] = -y[1] / r3;
-    }
-}
 
 /// Minimum over `reps` interleaved runs of each closure, in ms, with the last result of each.
 fn race<const K: usize>(reps: usize, mut runs: [&mut dyn FnMut() -> f64; K]) -> [(f64, f64); K] {
@@ -135,39 +111,11 @@ fn noether_kl8(per_orbit: f64) -> f64 {
     kepler_error(sol.last().q.as_slice())
 }
 
-/// ode_solvers' DOP853 from y0 at t = 0 to `t_end` with atol = rtol = `tol` and Hairer's default
-/// controller (the one noether's DOP853 uses), no output but the end; the state at `t_end`.
-fn ode_solvers_end<F, const N: usize>(rhs: F, y0: SVector<f64, N>, t_end: f64, tol: f64) -> SVector<f64, N>
-where
-    F: ode_solvers::System<f64, SVector<f64, N>>,
-{
-    let mut s = ode_solvers::Dop853::from_param(
-        rhs,
-        0.0,
-        t_end,
-        t_end,
-        y0,
-        tol,
-        tol,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        t_end,
-        0.0,
-        u32::MAX,
-        1000,
-        ode_solvers::dop_shared::OutputType::Sparse,
-    );
-    s.integrate().expect("ode_solvers run");
-    *s.y_out().last().expect("a state")
-}
-
 fn ode_solvers_dop853(tol: f64) -> f64 {
     let (q, v) = kepler_start();
     let t_end = 2.0 * std::f64::consts::PI * ORBITS;
     let y0 = SVector::<f64, 4>::new(q[0], q[1], v[0], v[1]);
-    let y = ode_solvers_end(KeplerRhs, y0, t_end, tol);
+    let (y, _) = ode_solvers_end(KeplerRhs, y0, t_end, tol);
     kepler_error(&[y[0], y[1]])
 }
 
@@ -392,6 +340,7 @@ struct SolarRhs {
     gm: [f64; 6],
 }
 impl ode_solvers::System<f64, SVector<f64, 36>> for SolarRhs {
+    #[inline]
     fn system(&self, _t: f64, y: &SVector<f64, 36>, dy: &mut SVector<f64, 36>) {
         for k in 0..18 {
             dy[k] = y[18 + k];
@@ -424,7 +373,7 @@ fn solar_ode_solvers(tol: f64, reference: &[f64]) -> f64 {
         }
     }
     let gm = SOLAR.map(|b| G_SOLAR * b.0);
-    let y = ode_solvers_end(SolarRhs { gm }, y0, SOLAR_T, tol);
+    let (y, _) = ode_solvers_end(SolarRhs { gm }, y0, SOLAR_T, tol);
     solar_error(&y.as_slice()[..18], reference)
 }
 
@@ -544,6 +493,7 @@ fn chain_start() -> [f64; LINKS] {
 /// The hand-derived equations of motion (Cholesky of the hand-built mass matrix) for ode_solvers.
 struct ChainRhs(Chain<LINKS>);
 impl ode_solvers::System<f64, SVector<f64, { 2 * LINKS }>> for ChainRhs {
+    #[inline]
     fn system(&self, _t: f64, y: &SVector<f64, { 2 * LINKS }>, dy: &mut SVector<f64, { 2 * LINKS }>) {
         let q: [f64; LINKS] = std::array::from_fn(|k| y[k]);
         let v: [f64; LINKS] = std::array::from_fn(|k| y[LINKS + k]);
@@ -560,7 +510,7 @@ fn chain_ode_solvers(tol: f64) -> Vec<f64> {
     for (k, q) in chain_start().iter().enumerate() {
         y0[k] = *q;
     }
-    let y = ode_solvers_end(ChainRhs(Chain::default()), y0, CHAIN_T, tol);
+    let (y, _) = ode_solvers_end(ChainRhs(Chain::default()), y0, CHAIN_T, tol);
     y.as_slice()[..LINKS].to_vec()
 }
 

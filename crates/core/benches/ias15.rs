@@ -11,27 +11,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use noether_core::prelude::*;
-use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Duration;
 
-/// V(q) = −1/|q|.
-struct Kepler;
-impl Potential for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
-
-const E: f64 = 0.6;
-const T_END: f64 = 200.0 * PI;
-
-fn start() -> State {
-    State::new(0.0, [1.0 - E, 0.0], [0.0, ((1.0 + E) / (1.0 - E)).sqrt()])
-}
+#[path = "common/kepler.rs"]
+mod kepler;
+use kepler::{start_state as start, Kepler, T_END};
 
 /// Runs `stepper` over 100 orbits: (error |q(200π) − q₀|, stats).
 fn run<S: Stepper<Partner = Velocities>>(stepper: S) -> (f64, noether_core::Stats) {

@@ -9,22 +9,9 @@
 use noether_core::prelude::*;
 use std::time::{Duration, Instant};
 
-/// V(q) = −1/|q| (μ = 1).
-struct Kepler;
-impl Potential for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
-
-const E: f64 = 0.6;
-
-fn start() -> State {
-    State::new(0.0, [1.0 - E, 0.0], [0.0, ((1.0 + E) / (1.0 - E)).sqrt()])
-}
+#[path = "common/kepler.rs"]
+mod kepler;
+use kepler::{start_state as start, Kepler, E};
 
 /// (error, time, stats) of one method, the fastest of several repetitions.
 fn measure<S: Stepper<Partner = Velocities>>(

@@ -28,17 +28,10 @@ fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// V = −1/|q| (μ = 1), with `#[inline]`.
-struct Kepler;
-impl Potential for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
+#[path = "common/kepler.rs"]
+mod kepler;
+use kepler::Kepler;
+
 impl Separable for Kepler {
     fn dof(&self) -> usize {
         2

@@ -22,6 +22,24 @@ pub trait Dynamics {
     /// The conserved energy of autonomous systems: h = q̇·∂L/∂q̇ − L, or H.
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64>;
 
+    /// (q̇, v̇) of [`rates`](Dynamics::rates) for a system of exactly N degrees of freedom, by value,
+    /// and only when every value is finite (else an error, [`Error::NonFiniteResult`](crate::Error)
+    /// when `rates` gave none): what the fixed-size trial step of the adaptive Runge-Kutta methods
+    /// calls for small systems. The default forwards to `rates` and checks; [`Natural`](crate::Natural)
+    /// calls its fixed-width force kernel directly, so that the model inlines into the step, the
+    /// stages stay in registers and one test covers the result.
+    #[inline]
+    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])>
+    where
+        Self: Sized,
+    {
+        let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
+        self.rates(t, &q, &v, &mut dq, &mut dv)?;
+        crate::error::check_result("rates", t, &dq)?;
+        crate::error::check_result("rates", t, &dv)?;
+        Ok((dq, dv))
+    }
+
     /// Checks that (t, q, v) is a state this system may be stepped from. Every continuous stepper of
     /// core calls it on the state at the start of a step (not on its intermediate stages). The
     /// default accepts every state; a system with constraints (noether-constraints' `Constrained`)
@@ -76,7 +94,8 @@ impl<H: Hamiltonian> Dynamics for HamiltonEquations<H> {
     }
 }
 
-impl<S: Dynamics + ?Sized> Dynamics for &S {
+// `S: Sized` (no `&dyn Dynamics`): the fixed-size rates forward to the system's own.
+impl<S: Dynamics> Dynamics for &S {
     type Partner = S::Partner;
     fn dof(&self) -> usize {
         (**self).dof()
@@ -92,5 +111,9 @@ impl<S: Dynamics + ?Sized> Dynamics for &S {
     }
     fn position_rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
         (**self).position_rates(t, q, v, dq)
+    }
+    #[inline]
+    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
+        (**self).rates_fixed(t, q, v)
     }
 }

@@ -175,6 +175,16 @@ impl Error {
         Error::Model(ModelError(Arc::new(error)))
     }
 
+    /// This error with the time of a [`Error::NonFiniteResult`] set to `t` (a model evaluated by a
+    /// function without time reports NaN there; the integrator calling it knows t). Other errors
+    /// unchanged.
+    pub fn at_time(self, t: f64) -> Self {
+        match self {
+            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
+            other => other,
+        }
+    }
+
     /// The error of type `E` carried by [`Error::Model`], if this is one.
     ///
     /// ```

@@ -269,16 +269,26 @@ impl<P: Potential> Natural<P> {
     /// result and errors as `accelerations`.
     #[inline]
     pub(crate) fn accelerations_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
+        match self.accelerations_fast(q, 0.0) {
+            Some(a) => Ok(a),
+            None => self.accelerations_cold(q),
+        }
+    }
+
+    /// q̈ by the fixed-width kernel when it applies (a diagonal M, W = n ≤ [`ad::MAX_FIXED`]) and
+    /// V + Σ 0·q̈ᵢ + `also` is finite: one test covers the potential, the accelerations and whatever
+    /// the caller folds into `also` (0 times the values it returns with q̈). `None` otherwise, for
+    /// the cold path to name the error.
+    #[inline(always)]
+    fn accelerations_fast<const W: usize>(&self, q: [f64; W], also: f64) -> Option<[f64; W]> {
         let inv = match self.diagonal_inverse(true) {
             Some(inv) if W == self.dof() && W <= ad::MAX_FIXED => inv,
-            _ => return self.accelerations_cold(q),
+            _ => return None,
         };
         let mut a = [0.0; W];
-        if forces_exact(&self.potential, &q, &mut a, inv).is_finite() {
-            Ok(a)
-        } else {
-            self.accelerations_cold(q)
-        }
+        (forces_exact(&self.potential, &q, &mut a, inv) + also)
+            .is_finite()
+            .then_some(a)
     }
 
     /// `accelerations` out of the fixed-size loops' way: a dense M, or the error of a non-finite
@@ -290,6 +300,15 @@ impl<P: Potential> Natural<P> {
         let mut a = [0.0; W];
         self.accelerations(&q, &mut a)?;
         Ok(a)
+    }
+
+    /// `rates` out of the fixed-size loops' way (see [`accelerations_cold`](Self::accelerations_cold)).
+    #[cold]
+    #[inline(never)]
+    fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
+        let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
+        Dynamics::rates(self, t, &q, &v, &mut dq, &mut dv)?;
+        Ok((dq, dv))
     }
 
     /// The scaling of −∇V that the force kernels apply: `Some(None)` for none (forces, or unit masses),
@@ -531,18 +550,22 @@ impl<P: Potential> Dynamics for Natural<P> {
         check_len("q̇ (output)", dq, self.dof())?;
         // An element loop: a few entries, no call to memcpy.
         dq.iter_mut().zip(v).for_each(|(d, x)| *d = *x);
-        self.accelerations(q, dv).map_err(|e| match e {
-            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
-            other => other,
-        })?;
+        self.accelerations(q, dv).map_err(|e| e.at_time(t))?;
         // q̇ = v is returned as given: one check of it, after the work (the error still names it).
         check_finite("q̇", v)
     }
+    /// q̇ = v and q̈ from the fixed-width force kernel, called directly: the same values and errors
+    /// as [`rates`](Dynamics::rates).
+    #[inline(always)]
+    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
+        // q̇ = v is returned as given: its check joins the kernel's one test.
+        match self.accelerations_fast(q, v.iter().fold(0.0, |c, x| c + x * 0.0)) {
+            Some(a) => Ok((v, a)),
+            None => self.rates_cold(t, q, v),
+        }
+    }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
-        Natural::energy(self, q, v).map_err(|e| match e {
-            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
-            other => other,
-        })
+        Natural::energy(self, q, v).map_err(|e| e.at_time(t))
     }
     fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
         check_len("q̇", v, self.dof())?;

@@ -30,8 +30,7 @@ use nalgebra::{DefaultAllocator, Dim, OVector};
 use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
     impl_comparisons, impl_derivatives, impl_dual_struct, impl_first_derivatives, impl_float_const,
-    impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_num, impl_scalar_op, impl_signed,
-    impl_zero_one,
+    impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_num, impl_signed, impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -301,7 +300,61 @@ where
 impl_first_derivatives!(GradJet, [eps], [D], [D]);
 impl_from_f!(GradJet, [eps], [D], [D]);
 impl_zero_one!(GradJet, [D], [D]);
-impl_scalar_op!(GradJet, [eps], [D], [D]);
+
+/// Arithmetic with a plain number c, written out rather than taken from num-dual's macro for two
+/// reasons: a structurally zero gradient is left alone (not multiplied by c, which may be infinite),
+/// and a division scales the gradient by 1/c, one reciprocal and multiplies instead of a division per
+/// entry. The value is still divided, so f64 and the jet agree on it; the gradient is within an
+/// ulp of the quotient's. A model's `x / 3.0` then costs one multiply per entry (Hénon-Heiles'
+/// −y³/3 put a 13-cycle division on every stage of a Kahan-Li step; `--bench rates`,
+/// docs/benchmarks.md).
+macro_rules! scalar_op {
+    ($trt:ident, $mth:ident, $atrt:ident, $amth:ident, |$s:ident, $c:ident| $body:block) => {
+        impl<T: DualNum<F>, F: DualNumFloat, D: Dim> $atrt<F> for GradJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<D>,
+        {
+            #[inline(always)]
+            fn $amth(&mut self, $c: F) {
+                let $s = self;
+                $body
+            }
+        }
+        impl<T: DualNum<F>, F: DualNumFloat, D: Dim> $trt<F> for GradJet<T, F, D>
+        where
+            DefaultAllocator: Allocator<D>,
+        {
+            type Output = Self;
+            #[inline(always)]
+            fn $mth(mut self, c: F) -> Self {
+                self.$amth(c);
+                self
+            }
+        }
+    };
+}
+
+scalar_op!(Add, add, AddAssign, add_assign, |s, c| {
+    s.re += c;
+});
+scalar_op!(Sub, sub, SubAssign, sub_assign, |s, c| {
+    s.re -= c;
+});
+scalar_op!(Mul, mul, MulAssign, mul_assign, |s, c| {
+    s.re *= c;
+    if s.active {
+        s.eps *= T::from(c);
+    }
+});
+scalar_op!(Div, div, DivAssign, div_assign, |s, c| {
+    s.re /= c;
+    if s.active {
+        s.eps *= T::from(F::one() / c);
+    }
+});
+scalar_op!(Rem, rem, RemAssign, rem_assign, |_s, _c| {
+    unimplemented!("remainder of a dual number")
+});
 impl_inv!(GradJet, [D], [D]);
 impl_iterator!(GradJet, [D], [D]);
 impl_from_primitive!(GradJet, [D], [D]);
@@ -316,3 +369,29 @@ const _: fn() = || {
     fn is_scalar<S: Scalar>() {}
     is_scalar::<GradJet64<2>>();
 };
+
+#[cfg(test)]
+mod tests {
+    use super::GradJet64;
+
+    /// Arithmetic with a plain number: x/c scales the gradient by the rounded 1/c (within an ulp of
+    /// the quotient 1/c itself, here equal to it), x·c by c, x ± c leaves it; a constant's gradient
+    /// stays structurally zero even when c is infinite or c = 0 is divided by (no 0·∞ = NaN).
+    #[test]
+    fn scalar_operations_on_the_gradient() {
+        let x = GradJet64::<2>::variable(0.7, 0);
+        let q = x / 3.0;
+        assert_eq!((q.re, q.eps[0], q.eps[1]), (0.7 / 3.0, 1.0 / 3.0, 0.0));
+        let p = x * 3.0 + 1.0 - 2.0;
+        assert_eq!((p.re, p.eps[0], p.eps[1]), (0.7 * 3.0 + 1.0 - 2.0, 3.0, 0.0));
+        let c = GradJet64::<2>::from_re(2.0);
+        for d in [c * f64::INFINITY, c / 0.0] {
+            assert!(
+                d.re.is_infinite() && !d.active && d.eps.iter().all(|e| *e == 0.0),
+                "{d}"
+            );
+        }
+        // A variable's gradient is still multiplied: d(x·∞) is infinite, not hidden.
+        assert!((x * f64::INFINITY).eps[0].is_infinite());
+    }
+}

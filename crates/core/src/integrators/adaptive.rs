@@ -16,7 +16,15 @@
 //! controller order (5 for DOPRI5, 8 for DOP853). A rejected step is retried with a smaller h; when h
 //! falls below `h_min` (or below 10 ulps of t) the step fails with [`Error::StepSizeUnderflow`].
 //! Stage values that are not finite count as a rejected step (the step is too large), so a solution
-//! running into a singularity ends in a step-size underflow rather than a NaN state.
+//! running into a singularity ends in a step-size underflow rather than a NaN state. F(t + h, y₁),
+//! the first stage of the next step, is evaluated before the error estimate only when the estimate
+//! weighs it (DOPRI5); DOP853's does not, and a rejected trial does not pay for it (as in Hairer's
+//! code: 11 evaluations per trial, 1 more per accepted step).
+//!
+//! Systems of up to 6 degrees of freedom are stepped on arrays of their length, the vector field
+//! taken by value ([`Dynamics::rates_fixed`]): for [`Natural`](crate::Natural) the model's gradient
+//! then inlines into the stage loop and the stages stay in registers. The result is the same to the
+//! bit as on vectors (DOP853 on Kepler, 100 orbits at tol 1e-10: 2.11 → 1.42 ms; docs/benchmarks.md).
 //!
 //! After every accepted step a continuous extension ([`DenseOutput`]) gives y(t) inside the step to
 //! the method's dense order (4 for DOPRI5, 7 for DOP853), on which the [`Driver`](crate::Driver)
@@ -49,8 +57,12 @@ pub trait EmbeddedPair {
     const DENSE_LEN: usize;
     /// Dense order (of the continuous extension).
     const DENSE_ORDER: u32;
-    /// The scaled error norm; `k` holds the s main stages and k_s = F(t + h, y₁).
-    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64;
+    /// Weights of the error estimates, one or two rows: estimate r is h Σ_j `ERROR[r][j]` k_j over
+    /// the s main stages and k_s = F(t + h, y₁).
+    const ERROR: &'static [&'static [f64]];
+    /// The scaled error norm of a step of size h from the sums S_r = Σ_i (Σ_j `ERROR[r][j]` k_j,i /
+    /// sk_i)² over the m components of y, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
+    fn error_norm(h: f64, sums: [f64; 2], m: usize) -> f64;
     /// Coefficients of the dense polynomial from all stages (main, F(t+h,y₁), dense extra).
     fn dense_coefficients(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], out: &mut [Vec<f64>]);
     /// y(t₀ + θh) from the coefficients.
@@ -78,16 +90,25 @@ impl<'a> Stages<'a> {
     pub fn get(&self, j: usize, i: usize) -> f64 {
         self.k[j * self.m + i]
     }
-    /// Σ_j w_j k_j,i: component i of a weighted sum of the stages (j over the weights given).
+    /// Σ_j w_j k_j,i: component i of a weighted sum of the stages (j over the weights given, zero
+    /// weights left out).
     #[inline]
     pub fn weighted(&self, w: &[f64], i: usize) -> f64 {
         w.iter()
             .zip(self.k[i..].iter().step_by(self.m))
+            .filter(|(w, _)| **w != 0.0)
             .fold(0.0, |s, (w, k)| s + w * k)
     }
 }
 
 /// The argument of a stage, from the weighted sum σ = Σ_j w_j k_j of the stages before it.
+///
+/// The last stage k_l of the row (the one just computed) enters after the others: the argument is
+/// (y₀ + h Σ_{j<l} w_j k_j) + (h w_l) k_l, so that one multiply and one add separate a stage from
+/// the next one's argument, against four for y₀ + h (Σ_{j<l} w_j k_j + w_l k_l): the stages of an
+/// explicit method are a chain, each waiting for the last (DOP853 on Kepler, 100 orbits at tol
+/// 1e-10: 1.62 → 1.58 ms). The result differs from the textbook order by one rounding at the scale
+/// of y (the increment is added in two parts).
 #[derive(Debug, Clone, Copy)]
 pub(super) enum StageArgument<'a> {
     /// y₀ + h σ (a Runge-Kutta stage on y).
@@ -101,6 +122,38 @@ pub(super) enum StageArgument<'a> {
     },
 }
 
+impl StageArgument<'_> {
+    /// The factor of the last stage: h for y, h² for q in a Nyström stage.
+    #[inline(always)]
+    fn last_factor(&self) -> f64 {
+        match *self {
+            StageArgument::Y { h, .. } => h,
+            StageArgument::Nystrom { h, .. } => h * h,
+        }
+    }
+
+    /// The argument for M components from the stages k_j = k[j·M .. (j+1)·M] and the weights `w`
+    /// (see [`StageArgument`]), in arrays; `None` when a length does not fit M.
+    #[inline(always)]
+    pub(super) fn fixed<const M: usize>(self, k: &[f64], w: &[f64]) -> Option<[f64; M]> {
+        let (&last, rest) = w.split_last()?;
+        let sum = stage_sum::<M>(k, rest);
+        let k_last = <&[f64; M]>::try_from(k.get(rest.len() * M..w.len() * M)?).ok()?;
+        let c = self.last_factor() * last;
+        let partial: [f64; M] = match self {
+            StageArgument::Y { y0, h } => {
+                let y0 = <&[f64; M]>::try_from(y0).ok()?;
+                std::array::from_fn(|x| y0[x] + h * sum[x])
+            }
+            StageArgument::Nystrom { q0, v0, c, h } => {
+                let (q0, v0) = (<&[f64; M]>::try_from(q0).ok()?, <&[f64; M]>::try_from(v0).ok()?);
+                std::array::from_fn(|x| q0[x] + h * (c * v0[x] + h * sum[x]))
+            }
+        };
+        Some(std::array::from_fn(|x| partial[x] + c * k_last[x]))
+    }
+}
+
 /// The stage argument (see [`StageArgument`]) into `out`, from the stages k_j = k[j·m .. (j+1)·m]
 /// (m = `out.len()`) whose weight w_j is nonzero (the high-order tableaux are sparse: 32 of DOP853's
 /// 78 aᵢⱼ are 0). For m up to 12 everything is held in fixed-length arrays, so that the loops over
@@ -110,34 +163,11 @@ pub(super) enum StageArgument<'a> {
 /// replaced (`--bench nystrom`, docs/benchmarks.md).
 #[inline]
 pub(super) fn combine_stages(k: &[f64], w: &[f64], arg: StageArgument<'_>, out: &mut [f64]) {
-    #[inline(always)]
-    fn fixed<const M: usize>(k: &[f64], w: &[f64], arg: StageArgument<'_>, out: &mut [f64; M]) -> bool {
-        let mut sum = [0.0; M];
-        for (kj, &a) in k.chunks_exact(M).zip(w) {
-            if a != 0.0 {
-                (0..M).for_each(|x| sum[x] += a * kj[x]);
-            }
-        }
-        match arg {
-            StageArgument::Y { y0, h } => {
-                let Ok(y0) = <&[f64; M]>::try_from(y0) else {
-                    return false;
-                };
-                *out = std::array::from_fn(|x| y0[x] + h * sum[x]);
-            }
-            StageArgument::Nystrom { q0, v0, c, h } => {
-                let (Ok(q0), Ok(v0)) = (<&[f64; M]>::try_from(q0), <&[f64; M]>::try_from(v0)) else {
-                    return false;
-                };
-                *out = std::array::from_fn(|x| q0[x] + h * (c * v0[x] + h * sum[x]));
-            }
-        }
-        true
-    }
     fn any(k: &[f64], w: &[f64], arg: StageArgument<'_>, out: &mut [f64]) {
         let m = out.len();
+        let (last, rest) = w.split_last().map_or((0.0, w), |(l, r)| (*l, r));
         out.fill(0.0);
-        for (kj, &a) in k.chunks_exact(m.max(1)).zip(w) {
+        for (kj, &a) in k.chunks_exact(m.max(1)).zip(rest) {
             if a != 0.0 {
                 out.iter_mut().zip(kj).for_each(|(s, k)| *s += a * k);
             }
@@ -150,13 +180,17 @@ pub(super) fn combine_stages(k: &[f64], w: &[f64], arg: StageArgument<'_>, out: 
                 }
             }
         }
+        let c = arg.last_factor() * last;
+        let k_last = k.chunks_exact(m.max(1)).nth(rest.len()).unwrap_or(&[]);
+        out.iter_mut().zip(k_last).for_each(|(s, k)| *s += c * k);
     }
     macro_rules! widths {
         ($($m:literal)*) => {
             match out.len() {
                 $($m => {
                     if let Ok(o) = <&mut [f64; $m]>::try_from(&mut *out) {
-                        if fixed::<$m>(k, w, arg, o) {
+                        if let Some(y) = arg.fixed(k, w) {
+                            *o = y;
                             return;
                         }
                     }
@@ -167,6 +201,19 @@ pub(super) fn combine_stages(k: &[f64], w: &[f64], arg: StageArgument<'_>, out: 
         };
     }
     widths!(1 2 3 4 5 6 8 12)
+}
+
+/// σ = Σ_j w_j k_j in an array of M components, over the stages k_j = k[j·M .. (j+1)·M] whose weight
+/// is nonzero (the same operations in the same order as the general loop of [`combine_stages`]).
+#[inline(always)]
+pub(super) fn stage_sum<const M: usize>(k: &[f64], w: &[f64]) -> [f64; M] {
+    let mut sum = [0.0; M];
+    for (kj, &a) in k.chunks_exact(M.max(1)).zip(w) {
+        if a != 0.0 {
+            (0..M).for_each(|x| sum[x] += a * kj[x]);
+        }
+    }
+    sum
 }
 
 /// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
@@ -303,7 +350,7 @@ impl Controller {
             } else {
                 err_prev.powf(self.beta)
             };
-            let f = err.powf(alpha) / pi / self.safety;
+            let f = power(err, alpha) / pi / self.safety;
             f.clamp(1.0 / self.fac_max, 1.0 / self.fac_min)
         }
     }
@@ -312,10 +359,23 @@ impl Controller {
     /// err^α / safety (α = 1/q − 0.75β, the accepted step's exponent), at most by 1/fac_min.
     pub(super) fn rejected_divisor(&self, err: f64, alpha: f64) -> f64 {
         if err.is_finite() {
-            (err.powf(alpha) / self.safety).min(1.0 / self.fac_min)
+            (power(err, alpha) / self.safety).min(1.0 / self.fac_min)
         } else {
             1.0 / self.fac_min
         }
+    }
+}
+
+/// x^α for the controller: three square roots for α = 1/8 (DOP853's exponent), `powf` otherwise.
+/// The roots are each correctly rounded and land within 1 ulp of `powf` (measured on 1.1·10⁷
+/// arguments from 1e-300 to 1e300) in 17 ns instead of 24 ns of latency, which the next trial's
+/// stages wait for (DOP853 on Kepler at tol 1e-10: 5 % of the run).
+#[inline]
+fn power(x: f64, alpha: f64) -> f64 {
+    if alpha == 0.125 {
+        x.sqrt().sqrt().sqrt()
+    } else {
+        x.powf(alpha)
     }
 }
 
@@ -491,8 +551,103 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         combine_stages(&self.k, row, arg, &mut self.tmp);
     }
 
-    /// One trial step of size h from (t, y0); returns the error norm (∞ for non-finite stages).
+    /// One trial step of size h from (t, y0); returns the error norm (∞ for non-finite stages). Up to
+    /// 6 degrees of freedom on arrays of that fixed length ([`attempt_fixed`](Self::attempt_fixed)),
+    /// otherwise on the vectors.
     fn attempt(&mut self, t: f64, h: f64) -> Result<f64> {
+        macro_rules! dofs {
+            ($(($n:literal, $w:literal))*) => {
+                match self.n {
+                    $($n => self.attempt_fixed::<$n, $w>(t, h),)*
+                    _ => self.attempt_any(t, h),
+                }
+            };
+        }
+        dofs!((1, 2)(2, 4)(3, 6)(4, 8)(5, 10)(6, 12))
+    }
+
+    /// [`attempt_any`](Self::attempt_any) for N degrees of freedom, y and every stage in arrays of
+    /// W = 2N components and the vector field by [`Dynamics::rates_fixed`]: the same operations in
+    /// the same order (the same bits), but the stage arguments, the stages and the error sums stay in
+    /// registers, and a system whose fixed-size rates inline (`Natural`) is evaluated in place.
+    fn attempt_fixed<const N: usize, const W: usize>(&mut self, t: f64, h: f64) -> Result<f64> {
+        let s = M::C.len();
+        let y0 = match <[f64; W]>::try_from(self.y0.as_slice()) {
+            Ok(y0) if W == 2 * N && self.k.len() >= (s + 1) * W => y0,
+            _ => return self.attempt_any(t, h),
+        };
+        let mut y = y0;
+        for i in 1..=s {
+            let (row, c) = if i < s { (M::A[i], M::C[i]) } else { (M::B, 1.0) };
+            let arg = StageArgument::Y { y0: &y0, h };
+            y = match arg.fixed(&self.k, row) {
+                Some(y) => y,
+                None => return self.attempt_any(t, h),
+            };
+            if i < s && !self.eval_fixed::<N, W>(i, t + c * h, y)? {
+                return Ok(f64::INFINITY);
+            }
+        }
+        // The last argument is y₁; F(t + h, y₁) first when the error estimate needs it.
+        self.y1.copy_from_slice(&y);
+        let fsal_first = Self::fsal_in_error() || self.settings.fixed;
+        if fsal_first && !self.eval_fixed::<N, W>(s, t + h, y)? {
+            return Ok(f64::INFINITY);
+        }
+        if self.settings.fixed {
+            return Ok(0.0);
+        }
+        let (atol, rtol) = (self.settings.atol, self.settings.rtol);
+        let mut sums = [0.0; 2];
+        for (sum, row) in sums.iter_mut().zip(M::ERROR) {
+            let e = stage_sum::<W>(&self.k, row);
+            for x in 0..W {
+                let z = e[x] / error_scale(atol, rtol, y0[x], y[x]);
+                *sum += z * z;
+            }
+        }
+        let err = Self::checked_error(M::error_norm(h, sums, W));
+        if err <= 1.0 && !fsal_first && !self.eval_fixed::<N, W>(s, t + h, y)? {
+            return Ok(f64::INFINITY);
+        }
+        Ok(err)
+    }
+
+    /// F(t, y) by [`Dynamics::rates_fixed`] (which checks that it is finite) written as stage j;
+    /// Ok(false) when it is not finite.
+    #[inline(always)]
+    fn eval_fixed<const N: usize, const W: usize>(&mut self, j: usize, t: f64, y: [f64; W]) -> Result<bool> {
+        self.evaluations += 1;
+        let q = std::array::from_fn(|x| y[x]);
+        let v = std::array::from_fn(|x| y[N + x]);
+        let (dq, dv) = match self.system.rates_fixed::<N>(t, q, v) {
+            Ok(r) => r,
+            Err(Error::NonFiniteResult { .. } | Error::NonFinite { .. }) => return Ok(false),
+            Err(e) => return Err(e),
+        };
+        let kj: [f64; W] = std::array::from_fn(|x| if x < N { dq[x] } else { dv[x - N] });
+        self.k[j * W..(j + 1) * W].copy_from_slice(&kj);
+        Ok(true)
+    }
+
+    /// Whether the error estimate weighs F(t + h, y₁) (DOPRI5's does, DOP853's does not): only then
+    /// is it evaluated before the step is accepted; otherwise a rejected trial does not pay for it,
+    /// as in Hairer's codes.
+    fn fsal_in_error() -> bool {
+        M::ERROR.iter().any(|row| row.len() > M::C.len())
+    }
+
+    /// A NaN error norm (from non-finite stages) as ∞: the trial is rejected.
+    fn checked_error(err: f64) -> f64 {
+        if err.is_nan() {
+            f64::INFINITY
+        } else {
+            err
+        }
+    }
+
+    /// One trial step on the vectors (any number of degrees of freedom).
+    fn attempt_any(&mut self, t: f64, h: f64) -> Result<f64> {
         let s = M::C.len();
         for i in 1..s {
             self.combine(h, M::A[i]);
@@ -502,21 +657,27 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         }
         self.combine(h, M::B);
         self.y1.copy_from_slice(&self.tmp);
-        if !self.eval(s, t + h, true)? {
+        let fsal_first = Self::fsal_in_error() || self.settings.fixed;
+        if fsal_first && !self.eval(s, t + h, true)? {
             return Ok(f64::INFINITY);
         }
         if self.settings.fixed {
             return Ok(0.0);
         }
-        let err = M::error_norm(
-            h,
-            self.stages(),
-            &self.y0,
-            &self.y1,
-            self.settings.atol,
-            self.settings.rtol,
-        );
-        Ok(if err.is_nan() { f64::INFINITY } else { err })
+        let (atol, rtol, k) = (self.settings.atol, self.settings.rtol, self.stages());
+        let mut sums = [0.0; 2];
+        for x in 0..self.y0.len() {
+            let sk = error_scale(atol, rtol, self.y0[x], self.y1[x]);
+            for (sum, row) in sums.iter_mut().zip(M::ERROR) {
+                let z = k.weighted(row, x) / sk;
+                *sum += z * z;
+            }
+        }
+        let err = Self::checked_error(M::error_norm(h, sums, self.y0.len()));
+        if err <= 1.0 && !fsal_first && !self.eval(s, t + h, true)? {
+            return Ok(f64::INFINITY);
+        }
+        Ok(err)
     }
 
     fn build_dense(&mut self, t: f64, h: f64) -> Result<()> {

@@ -12,7 +12,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.,
 //!   II.5 and II.10 (code DOP853, error estimate (10.x), dense output).
 
-use super::adaptive::{error_scale, Adaptive, Controller, EmbeddedPair, Stages};
+use super::adaptive::{Adaptive, Controller, EmbeddedPair, Stages};
 
 /// The DOP853 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -330,22 +330,16 @@ impl EmbeddedPair for Dp853 {
     const DENSE_LEN: usize = 7;
     const DENSE_ORDER: u32 = 7;
 
-    /// err = |h| ‖e₅‖² / sqrt(n (‖e₅‖² + 0.01 ‖e₃‖²)) with e₅ = Σ E5_j k_j, e₃ = Σ (b_j − BHH_j) k_j
-    /// measured in the scaled norm (Hairer's DOP853 estimate).
-    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
-        let n = y0.len();
-        let (mut err5, mut err3) = (0.0, 0.0);
-        for i in 0..n {
-            let sk = error_scale(atol, rtol, y0[i], y1[i]);
-            let e5 = k.weighted(&E5, i);
-            let e3 = k.weighted(&E3, i);
-            err5 += (e5 / sk) * (e5 / sk);
-            err3 += (e3 / sk) * (e3 / sk);
-        }
+    const ERROR: &'static [&'static [f64]] = &[&E5, &E3];
+
+    /// err = |h| ‖e₅‖² / sqrt(m (‖e₅‖² + 0.01 ‖e₃‖²)) with e₅ = Σ E5_j k_j, e₃ = Σ (b_j − BHH_j) k_j
+    /// measured in the scaled norm (Hairer's DOP853 estimate), from S₀ = ‖e₅‖², S₁ = ‖e₃‖².
+    fn error_norm(h: f64, sums: [f64; 2], m: usize) -> f64 {
+        let [err5, err3] = sums;
         if err5 == 0.0 && err3 == 0.0 {
             return 0.0;
         }
-        h.abs() * err5 / (n as f64 * (err5 + 0.01 * err3)).sqrt()
+        h.abs() * err5 / (m as f64 * (err5 + 0.01 * err3)).sqrt()
     }
 
     /// F₀ = Δy, F₁ = h k₁ − Δy, F₂ = 2Δy − h (k₁ + k₁₃), F₃..₆ = h Σ_j D_rj k_j (Δy = y₁ − y₀).

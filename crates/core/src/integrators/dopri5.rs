@@ -8,7 +8,7 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., Table
 //!   II.5.2 (coefficients), II.6 (dense output, code DOPRI5).
 
-use super::adaptive::{error_scale, Adaptive, Controller, EmbeddedPair, Stages};
+use super::adaptive::{Adaptive, Controller, EmbeddedPair, Stages};
 
 /// The DOPRI5 tableau (see the [module](self) docs).
 #[derive(Debug, Clone, Copy)]
@@ -81,17 +81,13 @@ impl EmbeddedPair for Dp5 {
     const DENSE_LEN: usize = 4;
     const DENSE_ORDER: u32 = 4;
 
-    /// err = sqrt((1/n) Σ_i (h Σ_j e_j k_j,i / sk_i)²) over the n components of y.
-    fn error_norm(h: f64, k: Stages<'_>, y0: &[f64], y1: &[f64], atol: f64, rtol: f64) -> f64 {
-        let n = y0.len();
-        let mut sum = 0.0;
-        for i in 0..n {
-            let e = h * k.weighted(&E, i);
-            let sk = error_scale(atol, rtol, y0[i], y1[i]);
-            sum += (e / sk) * (e / sk);
-        }
+    const ERROR: &'static [&'static [f64]] = &[&E];
+
+    /// err = |h| sqrt(S/m): the root mean square of the scaled estimate h Σ_j e_j k_j over the m
+    /// components of y.
+    fn error_norm(h: f64, sums: [f64; 2], m: usize) -> f64 {
         // No components (a system of 0 degrees of freedom): no error, not 0/0.
-        (sum / n.max(1) as f64).sqrt()
+        h.abs() * (sums[0] / m.max(1) as f64).sqrt()
     }
 
     /// r₁ = y₁ − y₀, r₂ = h k₁ − r₁, r₃ = r₁ − h k₇ − r₂, r₄ = h Σ d_i k_i.

@@ -129,7 +129,7 @@ impl<P: Potential> LinearizedDynamics for Natural<P> {
     }
 }
 
-impl<S: LinearizedDynamics + ?Sized> LinearizedDynamics for &S {
+impl<S: LinearizedDynamics> LinearizedDynamics for &S {
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         (**self).jacobian(t, q, v, out)
     }
@@ -388,10 +388,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
         newton.tol_residual *= scale;
         newton.tol_step *= scale;
         let mut sys = Dense::new(self.stage_problem(t, h, &y0));
-        let info = newton.solve(&mut sys, &mut z).map_err(|e| match e {
-            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
-            other => other,
-        })?;
+        let info = newton.solve(&mut sys, &mut z).map_err(|e| e.at_time(t))?;
         Ok((y0, z, info.iterations))
     }
 

@@ -62,7 +62,7 @@
 
 use super::adaptive::{
     check_tolerances, check_underflow, combine_stages, error_scale, finite_stage, initial_step_size,
-    settings_methods, Controller, Settings, StageArgument, Stages,
+    settings_methods, stage_sum, Controller, Settings, StageArgument, Stages,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -261,8 +261,89 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
     }
 
     /// One trial step of size h from (q₀, v₀) with k₁ = f(q₀) in place: fills q₁, v₁ and returns the
-    /// error norm (∞ for non-finite stages or results, 0 in fixed-step mode).
+    /// error norm (∞ for non-finite stages or results, 0 in fixed-step mode). Up to 6 degrees of
+    /// freedom on arrays of that length ([`attempt_fixed`](Self::attempt_fixed)), otherwise on the
+    /// vectors.
     fn attempt(&mut self, h: f64) -> Result<f64> {
+        macro_rules! dofs {
+            ($($n:literal)*) => {
+                match self.n {
+                    $($n => self.attempt_fixed::<$n>(h),)*
+                    _ => self.attempt_any(h),
+                }
+            };
+        }
+        dofs!(1 2 3 4 5 6)
+    }
+
+    /// [`attempt_any`](Self::attempt_any) for N degrees of freedom, q₀, q̇₀, the stage positions and
+    /// the sums in arrays and f by [`SplitDynamics::kick_rate_fixed`]: the same operations in the
+    /// same order (the same bits), with everything in registers and `Natural`'s kernel inlined.
+    fn attempt_fixed<const N: usize>(&mut self, h: f64) -> Result<f64> {
+        let s = M::C.len();
+        let (q0, v0) = match (
+            <[f64; N]>::try_from(self.q0.as_slice()),
+            <[f64; N]>::try_from(self.v0.as_slice()),
+        ) {
+            (Ok(q0), Ok(v0)) if self.k.len() >= s * N => (q0, v0),
+            _ => return self.attempt_any(h),
+        };
+        let mut qs = q0;
+        for i in 1..s {
+            let arg = StageArgument::Nystrom {
+                q0: &q0,
+                v0: &v0,
+                c: M::C[i],
+                h,
+            };
+            qs = match arg.fixed::<N>(&self.k, M::A[i]) {
+                Some(q) => q,
+                None => return self.attempt_any(h),
+            };
+            self.evaluations += 1;
+            let ki = match self.system.kick_rate_fixed(qs) {
+                Ok(k) => k,
+                Err(Error::NonFiniteResult { .. } | Error::NonFinite { .. }) => return Ok(f64::INFINITY),
+                Err(e) => return Err(e),
+            };
+            self.k[i * N..(i + 1) * N].copy_from_slice(&ki);
+        }
+        let [b, bp, be, bpe] = [M::B, M::BP, M::B_ERR, M::BP_ERR].map(|w| stage_sum::<N>(&self.k, w));
+        let (atol, rtol, h2) = (self.settings.atol, self.settings.rtol, h * h);
+        let (mut q1, mut v1, mut sq) = ([0.0; N], [0.0; N], 0.0);
+        for x in 0..N {
+            // FSAL: the last stage was evaluated at q₀ + h(q̇₀ + h Σ b_j k_j) = q₁, computed so.
+            q1[x] = if M::FSAL {
+                qs[x]
+            } else {
+                q0[x] + h * (v0[x] + h * b[x])
+            };
+            v1[x] = v0[x] + h * bp[x];
+            let eq = h2 * be[x] / error_scale(atol, rtol, q0[x], q1[x]);
+            let ev = h * bpe[x] / error_scale(atol, rtol, v0[x], v1[x]);
+            sq += eq * eq + ev * ev;
+        }
+        self.q1.copy_from_slice(&q1);
+        self.v1.copy_from_slice(&v1);
+        self.error_from(sq)
+    }
+
+    /// The error norm from Σ (scaled estimates)² over q₁ and q̇₁ in place: ∞ when q₁, q̇₁ or the norm
+    /// are not finite, 0 in fixed-step mode.
+    fn error_from(&self, sq: f64) -> Result<f64> {
+        let n = self.n;
+        if self.q1.iter().chain(&self.v1).any(|x| !x.is_finite()) {
+            return Ok(f64::INFINITY);
+        }
+        if self.settings.fixed || n == 0 {
+            return Ok(0.0);
+        }
+        let err = (sq / (2 * n) as f64).sqrt();
+        Ok(if err.is_nan() { f64::INFINITY } else { err })
+    }
+
+    /// One trial step on the vectors (any number of degrees of freedom).
+    fn attempt_any(&mut self, h: f64) -> Result<f64> {
         let n = self.n;
         let s = M::C.len();
         // Stage i's argument q₀ + h(cᵢ q̇₀ + h Σ_j a_ij k_j) by `combine_stages` (fixed width for small
@@ -288,11 +369,17 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             let kx = self.k[x..].iter().step_by(n.max(1));
             let (mut b, mut bp, mut be, mut bpe) = (0.0, 0.0, 0.0, 0.0);
             let weights = M::B.iter().zip(M::BP).zip(M::B_ERR).zip(M::BP_ERR);
+            // Zero weights left out, as in `stage_sum` (the same bits as the fixed-size path).
+            let add = |sum: &mut f64, w: f64, k: f64| {
+                if w != 0.0 {
+                    *sum += w * k
+                }
+            };
             for (k, (((wb, wbp), wbe), wbpe)) in kx.zip(weights) {
-                b += wb * k;
-                bp += wbp * k;
-                be += wbe * k;
-                bpe += wbpe * k;
+                add(&mut b, *wb, *k);
+                add(&mut bp, *wbp, *k);
+                add(&mut be, *wbe, *k);
+                add(&mut bpe, *wbpe, *k);
             }
             // FSAL: the last stage was evaluated at q₀ + h(q̇₀ + h Σ b_j k_j) = q₁, computed so.
             let q1 = if M::FSAL {
@@ -307,14 +394,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             let ev = h * bpe / error_scale(atol, rtol, self.v0[x], v1);
             sq += eq * eq + ev * ev;
         }
-        if self.q1.iter().chain(&self.v1).any(|x| !x.is_finite()) {
-            return Ok(f64::INFINITY);
-        }
-        if self.settings.fixed || n == 0 {
-            return Ok(0.0);
-        }
-        let err = (sq / (2 * n) as f64).sqrt();
-        Ok(if err.is_nan() { f64::INFINITY } else { err })
+        self.error_from(sq)
     }
 
     /// The dense output of the accepted step [t, t + h] (q₁, v₁ and a₁ = f(q₁) in place).

@@ -52,10 +52,12 @@ pub trait SplitDynamics: Dynamics {
     fn drift_is_identity(&self) -> bool {
         false
     }
-    /// [`kick_rate`](Self::kick_rate) for a system of exactly W coordinates, by value: what the
-    /// fixed-size loop of [`Composition`] calls for small systems. The default forwards to
-    /// `kick_rate`; [`Natural`] calls its fixed-width kernel directly, so that the model inlines
-    /// into the loop and q, v and the force stay in registers.
+    /// [`kick_rate`](Self::kick_rate) for a system of exactly W coordinates, by value, and only when
+    /// every value is finite (else an error, [`Error::NonFiniteResult`] when `kick_rate` gave none):
+    /// what the fixed-size loops of [`Composition`] and [`Nystrom`](super::Nystrom) call for small
+    /// systems. The default forwards to `kick_rate` and checks; [`Natural`] calls its fixed-width
+    /// kernel directly, so that the model inlines into the loop, q, v and the force stay in
+    /// registers, and one test covers the result.
     #[inline]
     fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]>
     where
@@ -63,6 +65,7 @@ pub trait SplitDynamics: Dynamics {
     {
         let mut dv = [0.0; W];
         self.kick_rate(&q, &mut dv)?;
+        crate::error::check_result("kick rate", f64::NAN, &dv)?;
         Ok(dv)
     }
 }
@@ -98,7 +101,7 @@ impl<S: Separable> Dynamics for SeparableHamiltonian<S> {
         check_finite("p", p)?;
         self.drift_rate(p, dq)
             .and_then(|_| self.kick_rate(q, dp))
-            .map_err(|e| with_time(e, t))
+            .map_err(|e| e.at_time(t))
     }
     fn energy(&self, _t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
         let n = self.0.dof();
@@ -107,7 +110,7 @@ impl<S: Separable> Dynamics for SeparableHamiltonian<S> {
         Ok(self.0.kinetic(p) + self.0.potential(q))
     }
     fn position_rates(&self, t: f64, _q: &[f64], p: &[f64], dq: &mut [f64]) -> Result<()> {
-        self.drift_rate(p, dq).map_err(|e| with_time(e, t))
+        self.drift_rate(p, dq).map_err(|e| e.at_time(t))
     }
 }
 
@@ -159,13 +162,6 @@ impl<S: SplitDynamics> SplitDynamics for &S {
     #[inline]
     fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
         (**self).kick_rate_fixed(q)
-    }
-}
-
-fn with_time(e: Error, t: f64) -> Error {
-    match e {
-        Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
-        other => other,
     }
 }
 
@@ -253,7 +249,7 @@ impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
             w.kick(h);
             w.drift(&self.system, h)
         };
-        run(w).map_err(|e| with_time(e, t))?;
+        run(w).map_err(|e| e.at_time(t))?;
         w.commit(state, h)?;
         Ok(StepInfo::fixed(h).with_evaluations(1))
     }
@@ -508,9 +504,9 @@ impl<S: SplitDynamics> Stepper for Composition<S> {
             self.cached = false;
             self.system
                 .kick_rate(&self.work.q, &mut self.work.f)
-                .map_err(|e| with_time(e, t))?;
+                .map_err(|e| e.at_time(t))?;
         }
-        self.run(h).map_err(|e| with_time(e, t))?;
+        self.run(h).map_err(|e| e.at_time(t))?;
         self.work.commit(state, h)?;
         self.cache_q.copy_from_slice(&self.work.q);
         self.cache_f.copy_from_slice(&self.work.f);

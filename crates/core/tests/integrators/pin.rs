@@ -127,11 +127,14 @@ fn pin_dop853_arenstorf() {
     // is against the orbit itself and our own counts: the orbit is periodic, y(x_end) = y₀ (measured
     // distance 4.1e-6 in q₂ and 6.7e-4 in v₁ at tolerance 1e-7; DOPRI5 ends 1.4e-3 away in v₁), and
     // the statistics of this run (dense output off, Hairer's IOUT = 0) are pinned so that a change of
-    // the controller or of the error norm shows.
+    // the controller or of the error norm shows. The evaluations follow dop853.f's count: 2 before
+    // the first step (F(x₀, y₀) and the one of `hinit`), 11 per trial step and 1 more, F(x + h, y₁),
+    // per accepted one (its error estimate does not weigh that stage): 2 + 11·116 + 83 = 1361.
     let dq = distance(&r.end, &[0.994, 0.0], r.end.v.as_slice());
     let dv = distance(&r.end, r.end.q.as_slice(), &[0.0, V0]);
     assert!(dq < 5e-6 && dv < 1e-3, "{dq:e} {dv:e}");
-    assert_eq!((r.nfcn, r.nstep, r.naccpt, r.nrejct), (1394, 116, 83, 32));
+    assert_eq!((r.nstep, r.naccpt, r.nrejct), (116, 83, 32));
+    assert_eq!(r.nfcn, 2 + 11 * r.nstep + r.naccpt);
 }
 
 /// Van der Pol's equation y₁′ = y₂, y₂′ = ((1 − y₁²) y₂ − y₁)/ε with ε = 1e-3 (Hairer's `FVPOL`).

@@ -1,0 +1,49 @@
+//! Kepler's problem as the benchmarks run it (μ = 1, a = 1, e = 0.6, from pericentre, 100 orbits),
+//! written once and included by path into each bench binary that needs it: core's `rates`, `nystrom`,
+//! `ias15` and `peer_dop853`, and the gallery's `work_precision`. Each binary uses part of it.
+#![allow(dead_code)]
+
+use nalgebra::SVector;
+use noether_core::prelude::*;
+
+/// V = −1/|q| (μ = 1), with `#[inline]` as the scalar module's docs ask of a model.
+pub struct Kepler;
+impl Potential for Kepler {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
+    }
+}
+
+/// The eccentricity.
+pub const E: f64 = 0.6;
+/// 100 periods of the orbit of semi-major axis 1.
+pub const T_END: f64 = 200.0 * std::f64::consts::PI;
+
+/// Pericentre with a = 1: q = (1 − e, 0), q̇ = (0, sqrt((1 + e)/(1 − e))).
+pub fn start() -> ([f64; 2], [f64; 2]) {
+    ([1.0 - E, 0.0], [0.0, ((1.0 + E) / (1.0 - E)).sqrt()])
+}
+
+/// [`start`] as a state at t = 0.
+pub fn start_state() -> State {
+    let (q, v) = start();
+    State::new(0.0, q, v)
+}
+
+/// The hand-written right-hand side on y = (q, q̇) for the Rust peer ode_solvers.
+pub struct KeplerRhs;
+impl ode_solvers::System<f64, SVector<f64, 4>> for KeplerRhs {
+    #[inline]
+    fn system(&self, _t: f64, y: &SVector<f64, 4>, dy: &mut SVector<f64, 4>) {
+        let r2 = y[0] * y[0] + y[1] * y[1];
+        let r3 = r2 * r2.sqrt();
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = -y[0] / r3;
+        dy[3] = -y[1] / r3;
+    }
+}
