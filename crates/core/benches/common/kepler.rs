@@ -18,6 +18,21 @@ impl Potential for Kepler {
     }
 }
 
+/// H = ½|p|² + V(q) for `SeparableHamiltonian` (with unit mass p = q̇: the same start, the same orbit).
+impl Separable for Kepler {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        Potential::potential(self, q)
+    }
+}
+
 /// The eccentricity.
 pub const E: f64 = 0.6;
 /// 100 periods of the orbit of semi-major axis 1.

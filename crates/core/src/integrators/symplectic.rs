@@ -52,6 +52,20 @@ pub trait SplitDynamics: Dynamics {
     fn drift_is_identity(&self) -> bool {
         false
     }
+    /// [`drift_rate`](Self::drift_rate) for exactly W coordinates, by value, and only when every
+    /// value is finite (else an error): what the fixed-size loop of [`Composition`] calls when the
+    /// drift is not the identity. The default forwards to `drift_rate` and checks;
+    /// `SeparableHamiltonian` calls its fixed-width gradient of T directly.
+    #[inline]
+    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]>
+    where
+        Self: Sized,
+    {
+        let mut dq = [0.0; W];
+        self.drift_rate(&v, &mut dq)?;
+        crate::error::check_result("drift rate", f64::NAN, &dq)?;
+        Ok(dq)
+    }
     /// [`kick_rate`](Self::kick_rate) for a system of exactly W coordinates, by value, and only when
     /// every value is finite (else an error, [`Error::NonFiniteResult`] when `kick_rate` gave none):
     /// what the fixed-size loops of [`Composition`] and [`Nystrom`](super::Nystrom) call for small
@@ -80,6 +94,54 @@ struct PotentialOf<'a, S: ?Sized>(&'a S);
 impl<S: Separable + ?Sized> Field for PotentialOf<'_, S> {
     fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
         self.0.potential(x)
+    }
+}
+
+/// T(x) as a field of the first block, for [`ad::gradient_exact`] (which differentiates that block).
+struct KineticOfX<'a, S: ?Sized>(&'a S);
+impl<S: Separable + ?Sized> Field for KineticOfX<'_, S> {
+    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
+        self.0.kinetic(x)
+    }
+}
+
+impl<S: Separable> SeparableHamiltonian<S> {
+    /// ∇T(p) (given p) and −∇V(q) (given q) for exactly N = dof ≤ [`ad::MAX_FIXED`] degrees of
+    /// freedom, one fixed-width gradient each with every length a constant (the model inlines), zeros
+    /// for the half not asked for; `None` when N does not fit or T + V + Σ 0·(rates, q, p) is not
+    /// finite, for the general path to name the error.
+    #[inline(always)]
+    fn rates_fast<const N: usize>(
+        &self,
+        q: Option<&[f64; N]>,
+        p: Option<&[f64; N]>,
+    ) -> Option<([f64; N], [f64; N])> {
+        if N != self.0.dof() || N > ad::MAX_FIXED {
+            return None;
+        }
+        let (mut dq, mut dp, mut check) = ([0.0; N], [0.0; N], 0.0);
+        // q and p enter the test too: T or V need not depend on all of them (the general path
+        // checks its input).
+        if let Some(p) = p {
+            check += ad::gradient_exact(&KineticOfX(&self.0), 0.0, p, &mut dq);
+            check = p.iter().fold(check, |c, x| c + x * 0.0);
+        }
+        if let Some(q) = q {
+            check += ad::gradient_exact(&PotentialOf(&self.0), 0.0, q, &mut dp);
+            dp = dp.map(|x| -x);
+            check = q.iter().fold(check, |c, x| c + x * 0.0);
+        }
+        let check = dq.iter().chain(&dp).fold(check, |c, x| c + x * 0.0);
+        check.is_finite().then_some((dq, dp))
+    }
+
+    /// The general path of the fixed-size rates, out of their way.
+    #[cold]
+    #[inline(never)]
+    fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], p: [f64; N]) -> Result<([f64; N], [f64; N])> {
+        let (mut dq, mut dp) = ([0.0; N], [0.0; N]);
+        Dynamics::rates(self, t, &q, &p, &mut dq, &mut dp)?;
+        Ok((dq, dp))
     }
 }
 
@@ -112,6 +174,15 @@ impl<S: Separable> Dynamics for SeparableHamiltonian<S> {
     fn position_rates(&self, t: f64, _q: &[f64], p: &[f64], dq: &mut [f64]) -> Result<()> {
         self.drift_rate(p, dq).map_err(|e| e.at_time(t))
     }
+    /// ∇T(p) and −∇V(q) by fixed-width kernels called directly (the same values and errors as
+    /// [`rates`](Dynamics::rates)).
+    #[inline(always)]
+    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], p: [f64; N]) -> Result<([f64; N], [f64; N])> {
+        match self.rates_fast(Some(&q), Some(&p)) {
+            Some(r) => Ok(r),
+            None => self.rates_cold(t, q, p),
+        }
+    }
 }
 
 impl<S: Separable> SplitDynamics for SeparableHamiltonian<S> {
@@ -128,12 +199,46 @@ impl<S: Separable> SplitDynamics for SeparableHamiltonian<S> {
         dp.iter_mut().for_each(|x| *x = -*x);
         finite_or(value, dp)
     }
+    /// ∇T(p) by the fixed-width kernel called directly (the same values and errors as `drift_rate`).
+    #[inline]
+    fn drift_rate_fixed<const W: usize>(&self, p: [f64; W]) -> Result<[f64; W]> {
+        match self.rates_fast(None, Some(&p)) {
+            Some((dq, _)) => Ok(dq),
+            None => {
+                let mut dq = [0.0; W];
+                self.drift_rate(&p, &mut dq)?;
+                Ok(dq)
+            }
+        }
+    }
+    /// −∇V(q) by the fixed-width kernel called directly (the same values and errors as `kick_rate`).
+    #[inline]
+    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
+        match self.rates_fast(Some(&q), None) {
+            Some((_, dp)) => Ok(dp),
+            None => {
+                let mut dp = [0.0; W];
+                self.kick_rate(&q, &mut dp)?;
+                Ok(dp)
+            }
+        }
+    }
 }
 
 impl<P: Potential> SplitDynamics for Natural<P> {
+    /// q̇ = v, checked (lengths, finite).
     fn drift_rate(&self, v: &[f64], dq: &mut [f64]) -> Result<()> {
+        check_len("q̇", v, self.dof())?;
+        check_len("q̇ (output)", dq, self.dof())?;
+        check_finite("q̇", v)?;
         dq.copy_from_slice(v);
         Ok(())
+    }
+    #[inline]
+    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]> {
+        check_len("q̇", &v, self.dof())?;
+        check_finite("q̇", &v)?;
+        Ok(v)
     }
     #[inline]
     fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> Result<()> {
@@ -158,6 +263,10 @@ impl<S: SplitDynamics> SplitDynamics for &S {
     }
     fn drift_is_identity(&self) -> bool {
         (**self).drift_is_identity()
+    }
+    #[inline]
+    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]> {
+        (**self).drift_rate_fixed(v)
     }
     #[inline]
     fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
@@ -452,7 +561,6 @@ impl<S: SplitDynamics> Composition<S> {
             return self.run_any(h);
         };
         let identity = self.system.drift_is_identity();
-        let mut dq = [0.0; W];
         // An error returns at once (the step then leaves the state as it was): nothing of q, v or
         // the force lives on the error path, so they need not be kept in memory.
         for (a, b) in self.kicks.iter().zip(&self.drifts) {
@@ -462,9 +570,7 @@ impl<S: SplitDynamics> Composition<S> {
             if identity {
                 (0..W).for_each(|i| q[i] += c * v[i]);
             } else {
-                // A copy's address, not v's: v stays in registers.
-                let vc = v;
-                self.system.drift_rate(&vc, &mut dq)?;
+                let dq = self.system.drift_rate_fixed(v)?;
                 (0..W).for_each(|i| q[i] += c * dq[i]);
             }
             f = self.system.kick_rate_fixed(q)?;

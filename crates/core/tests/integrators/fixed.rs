@@ -40,13 +40,15 @@ fn reference<S: SplitDynamics>(
         kicks[i + 1] += 0.5 * g;
     }
     let (mut q, mut v, mut f) = (q.to_vec(), v.to_vec(), vec![0.0; q.len()]);
+    let mut d = vec![0.0; q.len()];
     sys.kick_rate(&q, &mut f).unwrap();
     for _ in 0..steps {
         for (a, b) in kicks.iter().zip(gammas) {
             let c = a * h;
             v.iter_mut().zip(&f).for_each(|(v, f)| *v += c * f);
             let c = b * h;
-            q.iter_mut().zip(&v).for_each(|(q, v)| *q += c * v);
+            sys.drift_rate(&v, &mut d).unwrap();
+            q.iter_mut().zip(&d).for_each(|(q, d)| *q += c * d);
             sys.kick_rate(&q, &mut f).unwrap();
         }
         let c = kicks[gammas.len()] * h;
@@ -55,29 +57,44 @@ fn reference<S: SplitDynamics>(
     (q, v)
 }
 
-/// The fixed-size loop against the reference, for a diagonal and a dense mass matrix (the dense
-/// one takes the kernel's general path inside the fixed loop).
+/// 200 Kahan-Li 8 steps of the fixed-size loop on `sys` against the reference, to the bit.
+fn check_composition<S: SplitDynamics>(name: &str, sys: &S) {
+    let (q0, v0, h, steps) = ([0.1, 0.0], [0.0, 0.5], 0.01, 200);
+    let mut kl8 = Composition::kahan_li8(sys);
+    let gammas = kl8.coefficients().to_vec();
+    let mut s = State::<S::Partner>::new(0.0, q0, v0);
+    for _ in 0..steps {
+        kl8.step(&mut s, h).unwrap();
+    }
+    let (q, v) = reference(sys, &gammas, &q0, &v0, h, steps);
+    assert_eq!(s.q.as_slice(), q.as_slice(), "{name}: q");
+    assert_eq!(s.v.as_slice(), v.as_slice(), "{name}: v");
+    // And the run moved: 200 steps of 0.01 on an orbit of period ≈ 2π.
+    assert!((s.q[0] - q0[0]).abs() > 1e-2, "{name}");
+}
+
+/// The fixed-size loop against the reference, for a unit, a diagonal and a dense mass matrix (the
+/// dense one takes the kernel's general path inside the fixed loop) and for the separable
+/// Hamiltonian on (q, p) (drift ∇T(p) on the vectors, kick by its own fixed-size kernel).
 #[test]
 fn regress_composition_fixed_loop_same_bits() {
     let dense = nalgebra::DMatrix::from_row_slice(2, 2, &[2.0, 0.3, 0.3, 1.0]);
-    let systems = [
-        ("unit", Natural::unit(HenonHeiles)),
-        ("diagonal", Natural::diagonal(HenonHeiles, &[1.0, 2.5]).unwrap()),
-        ("dense", Natural::dense(HenonHeiles, dense).unwrap()),
-    ];
-    let (q0, v0, h, steps) = ([0.1, 0.0], [0.0, 0.5], 0.01, 200);
-    for (name, sys) in &systems {
-        let mut kl8 = Composition::kahan_li8(sys);
-        let gammas = kl8.coefficients().to_vec();
-        let mut s = State::new(0.0, q0, v0);
-        for _ in 0..steps {
-            kl8.step(&mut s, h).unwrap();
-        }
-        let (q, v) = reference(sys, &gammas, &q0, &v0, h, steps);
-        assert_eq!(s.q.as_slice(), q.as_slice(), "{name}: q");
-        assert_eq!(s.v.as_slice(), v.as_slice(), "{name}: q̇");
-        // And the run moved: 200 steps of 0.01 on an orbit of period ≈ 2π.
-        assert!((s.q[0] - q0[0]).abs() > 1e-2, "{name}");
+    check_composition("unit", &Natural::unit(HenonHeiles));
+    check_composition("diagonal", &Natural::diagonal(HenonHeiles, &[1.0, 2.5]).unwrap());
+    check_composition("dense", &Natural::dense(HenonHeiles, dense).unwrap());
+    check_composition("separable", &SeparableHamiltonian(HenonHeiles));
+}
+
+/// H = ½|p|² + V(q) for `SeparableHamiltonian`.
+impl Separable for HenonHeiles {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        Potential::potential(self, q)
     }
 }
 
@@ -89,6 +106,19 @@ impl Potential for Kepler {
     }
     fn potential<D: Scalar>(&self, q: &[D]) -> D {
         -q.iter().fold(D::from(0.0), |r2, &x| r2 + x * x).sqrt().recip()
+    }
+}
+
+/// H = ½|p|² + V(q) for `SeparableHamiltonian`.
+impl Separable for Kepler {
+    fn dof(&self) -> usize {
+        self.0
+    }
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        p.iter().fold(D::from(0.0), |t, &x| t + x * x) * 0.5
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        Potential::potential(self, q)
     }
 }
 
@@ -161,10 +191,10 @@ fn reference_trial<M: EmbeddedPair, S: Dynamics>(
 /// One step of `m` of size h from `start`: accepted at once, (q₁, q̇₁) equal to the reference's y₁ to
 /// the bit and, when `root` is given (a controller with safety 0.9 and β = 0 whose err^α is `root`),
 /// the proposal h_next = h / (root(err)/0.9) from the reference's err to the bit. The step's info.
-fn check_accepted<S: Stepper<Partner = Velocities>>(
+fn check_accepted<S: Stepper>(
     what: &str,
     mut m: S,
-    start: &State,
+    start: &State<S::Partner>,
     h: f64,
     (y1, err): (Vec<f64>, f64),
     root: Option<fn(f64) -> f64>,
@@ -183,36 +213,49 @@ fn check_accepted<S: Stepper<Partner = Velocities>>(
     info
 }
 
-/// The fixed-size trial step of DOPRI5 and DOP853 against the reference, for Kepler in the plane
-/// and in space with unit, diagonal and dense masses: the state after one accepted step is y₁ to the
-/// bit, and DOP853's proposal h_next is h / (err^(1/8)/0.9) (its controller: safety 0.9, β = 0,
-/// err^(1/8) as three square roots) with the reference err to the bit. The evaluations are
-/// 1 + 11 + 1 for DOP853 (F(t, y₀), the trial, F(t + h, y₁) after the acceptance) and 1 + 6 for
-/// DOPRI5 (whose estimate weighs F(t + h, y₁)).
-#[test]
-fn regress_adaptive_fixed_trial_same_bits() {
+/// The fixed-size trial step of DOPRI5 and DOP853 on `sys` from (q, v) against the reference: the
+/// state after one accepted step is y₁ to the bit, and DOP853's proposal h_next is h / (err^(1/8)/0.9)
+/// (its controller: safety 0.9, β = 0, err^(1/8) as three square roots) with the reference err to the
+/// bit. The evaluations are 1 + 11 + 1 for DOP853 (F(t, y₀), the trial, F(t + h, y₁) after the
+/// acceptance) and 1 + 6 for DOPRI5 (whose estimate weighs F(t + h, y₁)).
+fn check_adaptive<S: Dynamics>(name: &str, sys: &S, q: &[f64], v: &[f64]) {
     use noether_core::integrators::{Dp5, Dp853};
     let (h, tol) = (0.2, 1e-6);
+    let start = State::<S::Partner>::new(0.3, q.to_vec(), v.to_vec());
+    let reference = reference_trial::<Dp853, _>(sys, 0.3, q, v, h, tol);
+    let m = Dop853::new(sys)
+        .tolerances(tol, tol)
+        .unwrap()
+        .with_dense_output(false);
+    let root: fn(f64) -> f64 = |e| e.sqrt().sqrt().sqrt();
+    let info = check_accepted(&format!("{name} DOP853"), m, &start, h, reference, Some(root));
+    assert_eq!(info.evaluations, 13, "{name}");
+
+    let reference = reference_trial::<Dp5, _>(sys, 0.3, q, v, h, tol);
+    let m = Dopri5::new(sys)
+        .tolerances(tol, tol)
+        .unwrap()
+        .with_dense_output(false);
+    let info = check_accepted(&format!("{name} DOPRI5"), m, &start, h, reference, None);
+    assert_eq!(info.evaluations, 7, "{name}");
+}
+
+/// [`check_adaptive`] for Kepler in the plane and in space with unit, diagonal and dense masses, and
+/// as a `SeparableHamiltonian` on (q, p) (its own fixed-size rates, two gradients).
+#[test]
+fn regress_adaptive_fixed_trial_same_bits() {
     for (name, sys) in &kepler_systems() {
         let n = sys.dof();
-        let (q, v) = (&[0.9, 0.2, -0.1][..n], &[0.1, 1.1, 0.2][..n]);
-        let start = State::new(0.3, q.to_vec(), v.to_vec());
-        let reference = reference_trial::<Dp853, _>(sys, 0.3, q, v, h, tol);
-        let m = Dop853::new(sys)
-            .tolerances(tol, tol)
-            .unwrap()
-            .with_dense_output(false);
-        let root: fn(f64) -> f64 = |e| e.sqrt().sqrt().sqrt();
-        let info = check_accepted(&format!("{name} DOP853"), m, &start, h, reference, Some(root));
-        assert_eq!(info.evaluations, 13, "{name}");
-
-        let reference = reference_trial::<Dp5, _>(sys, 0.3, q, v, h, tol);
-        let m = Dopri5::new(sys)
-            .tolerances(tol, tol)
-            .unwrap()
-            .with_dense_output(false);
-        let info = check_accepted(&format!("{name} DOPRI5"), m, &start, h, reference, None);
-        assert_eq!(info.evaluations, 7, "{name}");
+        check_adaptive(name, sys, &[0.9, 0.2, -0.1][..n], &[0.1, 1.1, 0.2][..n]);
+    }
+    for n in [2, 3] {
+        let sys = SeparableHamiltonian(Kepler(n));
+        check_adaptive(
+            &format!("separable {n}"),
+            &sys,
+            &[0.9, 0.2, -0.1][..n],
+            &[0.1, 1.1, 0.2][..n],
+        );
     }
 }
 
@@ -299,4 +342,44 @@ fn regress_nystrom_fixed_trial_same_bits() {
             Some(root),
         );
     }
+}
+
+/// The fixed-size rates fail as the general ones do (the same error with the same data) where the
+/// model is singular (V = −1/|q| at q = 0) or the input is not finite, for `Natural` on (q, q̇) and
+/// `SeparableHamiltonian` on (q, p): `rates_fixed` against `rates`, `kick_rate_fixed` against
+/// `kick_rate` and `drift_rate_fixed` against `drift_rate`.
+#[test]
+fn regress_fixed_rates_fail_as_the_general_ones() {
+    fn check<S: SplitDynamics>(name: &str, sys: &S) {
+        let cases = [
+            ([0.0, 0.0], [0.1, 0.2]),
+            ([0.5, f64::NAN], [0.1, 0.2]),
+            ([0.5, 0.1], [f64::INFINITY, 0.2]),
+        ];
+        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+        for (q, v) in cases {
+            let fixed = sys.rates_fixed(0.7, q, v).map(|_| ());
+            let general = sys.rates(0.7, &q, &v, &mut a, &mut b);
+            assert_eq!(
+                format!("{fixed:?}"),
+                format!("{general:?}"),
+                "{name}: rates at {q:?} {v:?}"
+            );
+            assert!(fixed.is_err(), "{name}: rates at {q:?} {v:?}");
+            let fixed = sys.kick_rate_fixed(q).map(|_| ());
+            assert_eq!(
+                format!("{fixed:?}"),
+                format!("{:?}", sys.kick_rate(&q, &mut a)),
+                "{name}: kick"
+            );
+            let fixed = sys.drift_rate_fixed(v).map(|_| ());
+            assert_eq!(
+                format!("{fixed:?}"),
+                format!("{:?}", sys.drift_rate(&v, &mut a)),
+                "{name}: drift"
+            );
+        }
+    }
+    check("natural", &Natural::unit(Kepler(2)));
+    check("separable", &SeparableHamiltonian(Kepler(2)));
 }
