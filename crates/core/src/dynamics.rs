@@ -33,11 +33,7 @@ pub trait Dynamics {
     where
         Self: Sized,
     {
-        let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
-        self.rates(t, &q, &v, &mut dq, &mut dv)?;
-        crate::error::check_result("rates", t, &dq)?;
-        crate::error::check_result("rates", t, &dv)?;
-        Ok((dq, dv))
+        rates_by_slices(self, t, q, v)
     }
 
     /// Checks that (t, q, v) is a state this system may be stepped from. Every continuous stepper of
@@ -116,4 +112,35 @@ impl<S: Dynamics> Dynamics for &S {
     fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
         (**self).rates_fixed(t, q, v)
     }
+}
+
+/// The general path of the fixed-size rates: [`Dynamics::rates`] on slices into arrays, `Ok` only
+/// when every value is finite (else [`Error::NonFiniteResult`](crate::Error) at t).
+#[inline]
+pub(crate) fn rates_by_slices<S: Dynamics + ?Sized, const N: usize>(
+    system: &S,
+    t: f64,
+    q: [f64; N],
+    v: [f64; N],
+) -> Result<([f64; N], [f64; N])> {
+    let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
+    system.rates(t, &q, &v, &mut dq, &mut dv)?;
+    crate::error::check_result("rates", t, &dq)?;
+    crate::error::check_result("rates", t, &dv)?;
+    Ok((dq, dv))
+}
+
+/// The same for one rate of one block (a drift, a kick, accelerations): `rate` on slices into an
+/// array, `Ok` only when every value is finite (else [`Error::NonFiniteResult`](crate::Error)
+/// naming `what`, at no time).
+#[inline]
+pub(crate) fn rate_by_slices<const W: usize>(
+    x: [f64; W],
+    what: &'static str,
+    rate: impl FnOnce(&[f64], &mut [f64]) -> Result<()>,
+) -> Result<[f64; W]> {
+    let mut out = [0.0; W];
+    rate(&x, &mut out)?;
+    crate::error::check_result(what, f64::NAN, &out)?;
+    Ok(out)
 }

@@ -297,18 +297,14 @@ impl<P: Potential> Natural<P> {
     #[cold]
     #[inline(never)]
     fn accelerations_cold<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
-        let mut a = [0.0; W];
-        self.accelerations(&q, &mut a)?;
-        Ok(a)
+        crate::dynamics::rate_by_slices(q, "accelerations", |q, a| self.accelerations(q, a))
     }
 
     /// `rates` out of the fixed-size loops' way (see [`accelerations_cold`](Self::accelerations_cold)).
     #[cold]
     #[inline(never)]
     fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
-        Dynamics::rates(self, t, &q, &v, &mut dq, &mut dv)?;
-        Ok((dq, dv))
+        crate::dynamics::rates_by_slices(self, t, q, v)
     }
 
     /// The scaling of −∇V that the force kernels apply: `Some(None)` for none (forces, or unit masses),

@@ -216,6 +216,16 @@ pub(super) fn stage_sum<const M: usize>(k: &[f64], w: &[f64]) -> [f64; M] {
     sum
 }
 
+/// A NaN error norm (from non-finite stages) as ∞: the trial is rejected.
+#[inline]
+pub(super) fn checked_error(err: f64) -> f64 {
+    if err.is_nan() {
+        f64::INFINITY
+    } else {
+        err
+    }
+}
+
 /// The scale of component i in the error norm, sk_i = atol + rtol·max(|y₀_i|, |y₁_i|).
 #[inline]
 pub(super) fn error_scale(atol: f64, rtol: f64, y0: f64, y1: f64) -> f64 {
@@ -606,7 +616,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
                 *sum += z * z;
             }
         }
-        let err = Self::checked_error(M::error_norm(h, sums, W));
+        let err = checked_error(M::error_norm(h, sums, W));
         if err <= 1.0 && !fsal_first && !self.eval_fixed::<N, W>(s, t + h, y)? {
             return Ok(f64::INFINITY);
         }
@@ -637,15 +647,6 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         M::ERROR.iter().any(|row| row.len() > M::C.len())
     }
 
-    /// A NaN error norm (from non-finite stages) as ∞: the trial is rejected.
-    fn checked_error(err: f64) -> f64 {
-        if err.is_nan() {
-            f64::INFINITY
-        } else {
-            err
-        }
-    }
-
     /// One trial step on the vectors (any number of degrees of freedom).
     fn attempt_any(&mut self, t: f64, h: f64) -> Result<f64> {
         let s = M::C.len();
@@ -673,7 +674,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
                 *sum += z * z;
             }
         }
-        let err = Self::checked_error(M::error_norm(h, sums, self.y0.len()));
+        let err = checked_error(M::error_norm(h, sums, self.y0.len()));
         if err <= 1.0 && !fsal_first && !self.eval(s, t + h, true)? {
             return Ok(f64::INFINITY);
         }

@@ -61,8 +61,8 @@
 //!   (Nyström methods, order conditions).
 
 use super::adaptive::{
-    check_tolerances, check_underflow, combine_stages, error_scale, finite_stage, initial_step_size,
-    settings_methods, stage_sum, Controller, Settings, StageArgument, Stages,
+    check_tolerances, check_underflow, checked_error, combine_stages, error_scale, finite_stage,
+    initial_step_size, settings_methods, stage_sum, Controller, Settings, StageArgument, Stages,
 };
 use super::SplitDynamics;
 use crate::error::check_step;
@@ -338,8 +338,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         if self.settings.fixed || n == 0 {
             return Ok(0.0);
         }
-        let err = (sq / (2 * n) as f64).sqrt();
-        Ok(if err.is_nan() { f64::INFINITY } else { err })
+        Ok(checked_error((sq / (2 * n) as f64).sqrt()))
     }
 
     /// One trial step on the vectors (any number of degrees of freedom).

@@ -31,6 +31,7 @@
 //!   ordinary differential equations, Math. Comp. 66 (1997) 1089.
 
 use crate::ad::{self, Block, Field};
+use crate::dynamics::{rate_by_slices, rates_by_slices};
 use crate::error::{check_finite, check_len, check_result, check_step, finite_result};
 use crate::integrators::LinearizedDynamics;
 use crate::natural::{Natural, Potential};
@@ -61,10 +62,7 @@ pub trait SplitDynamics: Dynamics {
     where
         Self: Sized,
     {
-        let mut dq = [0.0; W];
-        self.drift_rate(&v, &mut dq)?;
-        crate::error::check_result("drift rate", f64::NAN, &dq)?;
-        Ok(dq)
+        rate_by_slices(v, "drift rate", |v, dq| self.drift_rate(v, dq))
     }
     /// [`kick_rate`](Self::kick_rate) for a system of exactly W coordinates, by value, and only when
     /// every value is finite (else an error, [`Error::NonFiniteResult`] when `kick_rate` gave none):
@@ -77,10 +75,7 @@ pub trait SplitDynamics: Dynamics {
     where
         Self: Sized,
     {
-        let mut dv = [0.0; W];
-        self.kick_rate(&q, &mut dv)?;
-        crate::error::check_result("kick rate", f64::NAN, &dv)?;
-        Ok(dv)
+        rate_by_slices(q, "kick rate", |q, dv| self.kick_rate(q, dv))
     }
 }
 
@@ -139,9 +134,7 @@ impl<S: Separable> SeparableHamiltonian<S> {
     #[cold]
     #[inline(never)]
     fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], p: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        let (mut dq, mut dp) = ([0.0; N], [0.0; N]);
-        Dynamics::rates(self, t, &q, &p, &mut dq, &mut dp)?;
-        Ok((dq, dp))
+        rates_by_slices(self, t, q, p)
     }
 }
 
