@@ -153,7 +153,7 @@ fn top(opts: &Options, report: &mut Report) -> Result<(), BoxError> {
     } else {
         (u0 + 1e-7, 1.0 - 1e-9)
     };
-    let theta_other = bracketed_root(f, (a, f(a)), (b, f(b))).acos();
+    let theta_other = bracketed_root(f, (a, f(a)), (b, f(b)))?.acos();
 
     let t_end = 12.0;
     let times: Vec<f64> = (0..=600).map(|i| i as f64 * t_end / 600.0).collect();

@@ -122,7 +122,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     // with θ̇ = 0); the other is the root of V_eff(θ) − E on (0, θ₀), by core's bracketed root finder.
     let veff = |th: f64| lz0 * lz0 / (2.0 * m * l * l * th.sin().powi(2)) - m * g * l * th.cos() - e0;
     let (lo, hi) = (1e-6, 1.0 - 1e-6);
-    let theta_min_expected = bracketed_root(veff, (lo, veff(lo)), (hi, veff(hi)));
+    let theta_min_expected = bracketed_root(veff, (lo, veff(lo)), (hi, veff(hi)))?;
     let tmax = cart
         .events_named("θ largest")
         .map(|e| theta_of(&e.state))

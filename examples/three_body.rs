@@ -65,7 +65,7 @@ fn omega_x(mu: f64, x: f64) -> f64 {
 
 /// The root of ∂Ω/∂x(x, 0) = 0 in [a, b] (a sign change), to rounding, by core's bracketed root finder
 /// (Illinois with a bisection safeguard), independent of the Newton search it checks.
-fn collinear_point(mu: f64, a: f64, b: f64) -> f64 {
+fn collinear_point(mu: f64, a: f64, b: f64) -> noether::core::Result<f64> {
     let g = |x: f64| omega_x(mu, x);
     bracketed_root(g, (a, g(a)), (b, g(b)))
 }
@@ -174,7 +174,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         ];
         for (name, guess, (a, b)) in guesses {
             let eq = finder.stationary_point(&pot, &[guess, 0.0])?;
-            let x = collinear_point(mu, a, b);
+            let x = collinear_point(mu, a, b)?;
             // Newton to ‖∇Ω‖ ≤ 1e-14 against Illinois on ∂Ω/∂x: measured 8.8e-16 to 4.8e-14 (L1 at μ = 0.05): 1e-13.
             checks.push(Check::rel(
                 NAME,

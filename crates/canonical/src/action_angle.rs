@@ -416,7 +416,7 @@ pub(crate) fn momenta<C: Curve>(c: &C, q: f64, e: f64, ps: f64, hs: f64, hpp: f6
         for _ in 0..200 {
             let fp = f(ps + s * d);
             if fp >= 0.0 {
-                return Ok(bracketed_root(f, (ps, hs - e), (ps + s * d, fp)));
+                return Ok(bracketed_root(f, (ps, hs - e), (ps + s * d, fp))?);
             }
             if !fp.is_finite() {
                 break;
@@ -490,7 +490,7 @@ pub(crate) fn turning_points<C: Curve>(c: &C, e: f64, q_inside: f64, step: f64) 
             });
         };
         last.set(p0);
-        *end = bracketed_root(g, (a, ga), (b, gb));
+        *end = bracketed_root(g, (a, ga), (b, gb))?;
     }
     Ok((ends[0], ends[1]))
 }
@@ -599,7 +599,7 @@ fn momenta_near_end<C: Curve>(c: &C, w: &Well, phi: f64, ps: f64) -> Result<(f64
         let Some((d, fd)) = found else {
             return Err(Error::NoMomentum { energy: w.e, q });
         };
-        *end = ps + sign * bracketed_root(f, (0.0, -depth), (d, fd));
+        *end = ps + sign * bracketed_root(f, (0.0, -depth), (d, fd))?;
     }
     Ok((ends[0], ends[1]))
 }

@@ -53,6 +53,14 @@ use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 use event::{Action, Observer};
 use std::time::Instant;
 
+/// The default step limit of a run ([`Driver::max_steps`]): 10¹⁰ steps (`usize::MAX` on targets
+/// whose `usize` cannot hold it).
+pub const DEFAULT_MAX_STEPS: usize = if usize::BITS >= 64 {
+    10_000_000_000u64 as usize
+} else {
+    usize::MAX
+};
+
 /// Which states a run saves.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -75,11 +83,15 @@ pub struct Driver<'a, S: Stepper> {
     h_proposal: Option<f64>,
     save: Save,
     keep_dense: bool,
-    max_steps: Option<usize>,
+    max_steps: usize,
     events: Vec<Event<'a, S::Partner>>,
     observers: Vec<Observer<'a, S::Partner>>,
     steps_taken: usize,
     failed: bool,
+    /// The event and time of the terminal stop that ended the last run (see `record_events`).
+    stopped_at: Option<(usize, f64)>,
+    /// The solution of the last run up to its error.
+    partial: Option<Solution<S::Partner>>,
 }
 
 /// What bounds a run.
@@ -110,11 +122,13 @@ impl<'a, S: Stepper> Driver<'a, S> {
             h_proposal: None,
             save: Save::Steps,
             keep_dense: false,
-            max_steps: None,
+            max_steps: DEFAULT_MAX_STEPS,
             events: Vec::new(),
             observers: Vec::new(),
             steps_taken: 0,
             failed: false,
+            stopped_at: None,
+            partial: None,
         })
     }
 
@@ -164,9 +178,12 @@ impl<'a, S: Stepper> Driver<'a, S> {
         self
     }
 
-    /// Fails with [`Error::StepLimit`] after `n` steps of one run (default: no limit).
+    /// Fails with [`Error::StepLimit`] after `n` steps of one run (default [`DEFAULT_MAX_STEPS`],
+    /// 10¹⁰ on 64-bit targets: far beyond any run that ends in hours, so that a run that could never
+    /// finish is refused instead of hanging). A fixed-step run to an end time that needs more than `n`
+    /// steps is refused before its first step.
     pub fn max_steps(mut self, n: usize) -> Self {
-        self.max_steps = Some(n);
+        self.max_steps = n;
         self
     }
 
@@ -334,13 +351,13 @@ impl<'a, S: Stepper> Driver<'a, S> {
         }
         if let (true, Some(f0)) = (start.has_rates, start.f.take()) {
             if let Some(f1) = self.rates_at(&self.state, stats)? {
-                let d = DenseOutput::hermite(t0, t1 - t0, &start.y, &f0, &y1, &f1);
+                let d = DenseOutput::hermite(t0, t1 - t0, &start.y, &f0, &y1, &f1)?;
                 start.f = Some(f1);
                 return Ok(d);
             }
             start.has_rates = false;
         }
-        Ok(DenseOutput::linear(t0, t1 - t0, &start.y, &y1))
+        DenseOutput::linear(t0, t1 - t0, &start.y, &y1)
     }
 
     /// The vector field (q̇, v̇) at `state`, `None` when the stepper has none.
@@ -358,223 +375,354 @@ impl<'a, S: Stepper> Driver<'a, S> {
         }
     }
 
+    /// The solution of the last run up to the error that ended it (the rows saved, the events that
+    /// fired, the statistics), taken out of the driver; `None` after a run that succeeded. With
+    /// [`state`](Self::state), the last good state, it is everything the failed run computed.
+    pub fn take_partial_solution(&mut self) -> Option<Solution<S::Partner>> {
+        self.partial.take()
+    }
+
     fn run(&mut self, target: Target) -> Result<Solution<S::Partner>> {
         let clock = Instant::now();
+        let mut sol = Solution::new(
+            self.state.dof(),
+            self.stepper.name(),
+            self.observers.iter().flat_map(|o| o.names.clone()).collect(),
+            self.events.iter().map(|e| e.name.clone()).collect(),
+            self.state.clone(),
+        );
+        let result = self.run_into(&mut sol, target);
+        sol.last = self.state.clone();
+        sol.stats.wall_time = clock.elapsed();
+        match result {
+            Ok(()) => {
+                self.partial = None;
+                Ok(sol)
+            }
+            Err(e) => {
+                self.partial = Some(sol);
+                Err(e)
+            }
+        }
+    }
+
+    /// The run proper: steps until the target or a terminal event, filling `sol` as it goes (so that
+    /// after an error `sol` holds the run up to it).
+    fn run_into(&mut self, sol: &mut Solution<S::Partner>, target: Target) -> Result<()> {
         let n = self.state.dof();
         let interpolate = matches!(self.save, Save::Times(_)) || !self.events.is_empty();
         self.stepper.request_dense_output(interpolate || self.keep_dense);
         let adaptive = self.stepper.is_adaptive();
         let h_fixed = if adaptive { 0.0 } else { self.fixed_h()? };
-        let observer_names = self.observers.iter().flat_map(|o| o.names.clone()).collect();
-        let event_names = self.events.iter().map(|e| e.name.clone()).collect();
-        let mut sol = Solution::new(
-            n,
-            self.stepper.name(),
-            observer_names,
-            event_names,
-            self.state.clone(),
-        );
-        let mut obs_row = vec![0.0; sol.observer_names.len()];
-        let mut next_time = 0; // index of the next output time
-        let mut stepped = 0usize; // steps of this run
-        if !matches!(self.save, Save::End | Save::Times(_)) {
-            self.observe_into(&mut obs_row)?;
-            sol.push(&self.state, &obs_row);
+        if let (Target::Time(t_end), false) = (target, adaptive) {
+            self.check_step_count(t_end, h_fixed)?;
         }
-        if let Save::Times(times) = &self.save {
-            while next_time < times.len() && times[next_time] == self.state.t {
-                next_time += 1;
-            }
-            if next_time > 0 {
-                self.observe_into(&mut obs_row)?;
-                for _ in 0..next_time {
-                    sol.push(&self.state, &obs_row);
-                }
-            }
-        }
-        let mut g_prev = self.event_values()?;
-        let mut start = StepStart {
-            y: vec![0.0; 2 * n],
-            f: None,
-            has_rates: true,
+        let mut run = RunState {
+            obs_row: vec![0.0; sol.observer_names.len()],
+            next_time: 0,
+            stepped: 0,
+            origin: self.state.t,
+            k: 0,
+            g_prev: self.event_values()?,
+            // A terminal stop of the previous run is the located root: its sign may still be the one
+            // before the crossing, so the sign is taken just after it (issue 29 item 2).
+            just_applied: vec![false; self.events.len()],
+            start: StepStart {
+                y: vec![0.0; 2 * n],
+                f: None,
+                has_rates: true,
+            },
+            scratch: self.state.clone(),
         };
-        // The fixed-step grid t_k = origin + k h (restarted after a reset).
-        let (mut origin, mut k) = (self.state.t, 0usize);
-        let mut scratch = self.state.clone();
+        if let Some((i, t)) = self.stopped_at.take() {
+            if t == self.state.t && i < run.just_applied.len() {
+                run.just_applied[i] = true;
+            }
+        }
+        self.save_start(sol, &mut run)?;
         loop {
             let t0 = self.state.t;
-            let (h_try, last) = match target {
-                Target::Time(t_end) if t0 >= t_end => break,
-                Target::Steps(m) if stepped >= m => {
+            let Some((h_try, last)) = self.next_step_size(target, adaptive, h_fixed, &run)? else {
+                if matches!(target, Target::Steps(_)) {
                     sol.stop = Stop::Steps;
-                    break;
                 }
-                Target::Time(t_end) if adaptive => {
-                    let h = self.adaptive_h()?;
-                    if t0 + 1.01 * h >= t_end {
-                        (t_end - t0, true)
-                    } else {
-                        (h, false)
-                    }
-                }
-                Target::Time(t_end) => {
-                    let next = origin + (k + 1) as f64 * h_fixed;
-                    if next >= t_end || t_end - next <= 4.0 * f64::EPSILON * t_end.abs() {
-                        (t_end - t0, true)
-                    } else {
-                        (next - t0, false)
-                    }
-                }
-                Target::Steps(_) if adaptive => (self.adaptive_h()?, false),
-                Target::Steps(_) => ((origin + (k + 1) as f64 * h_fixed) - t0, false),
+                break;
             };
-            if self.max_steps.is_some_and(|m| stepped >= m) {
+            if run.stepped >= self.max_steps {
                 return Err(Error::StepLimit {
-                    steps: stepped,
+                    steps: run.stepped,
                     t: t0,
                 });
             }
             if interpolate || self.keep_dense {
-                start.y[..n].copy_from_slice(self.state.q.as_slice());
-                start.y[n..].copy_from_slice(self.state.v.as_slice());
+                run.start.y[..n].copy_from_slice(self.state.q.as_slice());
+                run.start.y[n..].copy_from_slice(self.state.v.as_slice());
             }
             let info = self.advance(h_try)?;
-            stepped += 1;
-            k += 1;
+            run.stepped += 1;
+            run.k += 1;
             if last && info.h == h_try {
                 if let Target::Time(t_end) = target {
                     self.state.t = t_end;
                 }
             } else if !adaptive {
-                self.state.t = origin + k as f64 * h_fixed;
+                self.state.t = run.origin + run.k as f64 * h_fixed;
             }
             add_step(&mut sol.stats, &info);
-            let t1 = self.state.t;
 
             // The continuous extension of this step, when something needs it.
             let dense = if interpolate || self.keep_dense {
-                let d = self.extension(t0, &mut start, &mut sol.stats)?;
+                let d = self.extension(t0, &mut run.start, &mut sol.stats)?;
                 let order = sol.interpolation_order.map_or(d.order(), |o| o.min(d.order()));
                 sol.interpolation_order = Some(order);
                 Some(d)
             } else {
                 None
             };
-
-            // Events inside (t0, t1], in time order.
-            let mut hits = Vec::new();
-            let mut g_end = Vec::with_capacity(self.events.len());
-            for (i, ev) in self.events.iter_mut().enumerate() {
-                let g1 = ev.value(&self.state)?;
-                g_end.push(g1);
-                if ev.direction.fires(g_prev[i], g1) {
-                    let d = dense.as_ref().expect("events interpolate");
-                    let tc = crate::roots::bracketed_root(
-                        |t| {
-                            d.fill_state(t, &mut scratch);
-                            (ev.g)(&scratch)
-                        },
-                        (t0, g_prev[i]),
-                        (t1, g1),
-                    );
-                    hits.push((tc, i));
+            let cut = match &dense {
+                Some(d) => {
+                    let cut = self.record_events(d, sol, &mut run)?;
+                    self.sample_times(d, cut.map_or(self.state.t, |c| c.0), sol, &mut run)?;
+                    cut
                 }
-            }
-            hits.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let mut cut = None; // (time, event index) of a stop or reset inside this step
-            for &(tc, i) in &hits {
-                let d = dense.as_ref().expect("events interpolate");
-                let at = if tc == t1 {
-                    self.state.clone()
-                } else {
-                    d.state_at(tc)?
-                };
-                sol.events.push(EventRecord {
-                    event: i,
-                    t: tc,
-                    state: at,
-                });
-                sol.stats.events += 1;
-                if !matches!(self.events[i].action, Action::Record) {
-                    cut = Some((tc, i));
-                    break;
-                }
-            }
-            let t_out = cut.map_or(t1, |c| c.0);
-
-            // Output times inside (t0, t_out].
-            if let Save::Times(times) = &self.save {
-                let times = times.clone();
-                while next_time < times.len() && times[next_time] <= t_out {
-                    let t = times[next_time];
-                    if t == t1 {
-                        scratch.copy_from(&self.state);
-                    } else {
-                        dense
-                            .as_ref()
-                            .expect("output times interpolate")
-                            .fill_state(t, &mut scratch);
-                    }
-                    self.observe_state(&scratch, &mut obs_row)?;
-                    sol.push(&scratch, &obs_row);
-                    next_time += 1;
-                }
-            }
+                None => None,
+            };
             if let Some(d) = dense.filter(|_| self.keep_dense) {
                 sol.segments.push(d);
             }
-
             match cut {
                 None => {
                     let save_step = match self.save {
                         Save::Steps => true,
-                        Save::Every(every) => stepped.is_multiple_of(every) || self.is_done(target, stepped),
+                        Save::Every(every) => {
+                            run.stepped.is_multiple_of(every) || self.is_done(target, run.stepped)
+                        }
                         _ => false,
                     };
                     if save_step {
-                        self.observe_into(&mut obs_row)?;
-                        sol.push(&self.state, &obs_row);
+                        observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+                        sol.push(&self.state, &run.obs_row);
                     }
-                    g_prev = g_end;
                 }
                 Some((_, i)) => {
-                    let at = sol.events.last().expect("the cut event").state.clone();
-                    if matches!(self.save, Save::Steps | Save::Every(_)) {
-                        self.observe_state(&at, &mut obs_row)?;
-                        sol.push(&at, &obs_row);
-                    }
-                    self.state = at;
-                    match &mut self.events[i].action {
-                        Action::Stop => {
-                            sol.stop = Stop::Event(i);
-                            break;
-                        }
-                        Action::Reset(reset) => {
-                            let mut changed = self.state.clone();
-                            reset(&mut changed)?;
-                            changed.validate(n)?;
-                            self.state = changed;
-                            if matches!(self.save, Save::Steps | Save::Every(_)) {
-                                self.observe_into(&mut obs_row)?;
-                                sol.push(&self.state, &obs_row);
-                            }
-                            (origin, k) = (self.state.t, 0);
-                            start.f = None;
-                            g_prev = self.event_values()?;
-                            g_prev[i] = 0.0; // the event just handled does not fire again at once
-                        }
-                        Action::Record => unreachable!("a cut is a stop or a reset"),
+                    if self.apply_event(i, sol, &mut run)? {
+                        sol.stop = Stop::Event(i);
+                        break;
                     }
                 }
             }
         }
         if matches!(self.save, Save::End) {
-            self.observe_into(&mut obs_row)?;
-            sol.push(&self.state, &obs_row);
+            observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+            sol.push(&self.state, &run.obs_row);
         }
-        sol.last = self.state.clone();
-        sol.stats.wall_time = clock.elapsed();
-        Ok(sol)
+        Ok(())
+    }
+
+    /// Refuses a fixed-step run to `t_end` that needs more steps than the step limit allows (it could
+    /// never finish: h = 5e-324 asks for 10³²³ steps), before taking any.
+    fn check_step_count(&self, t_end: f64, h: f64) -> Result<()> {
+        let needed = ((t_end - self.state.t) / h).ceil();
+        if needed > self.max_steps as f64 {
+            return Err(Error::InvalidParameter {
+                name: "h",
+                value: h,
+                reason:
+                    "(t_end − t)/h exceeds the step limit (Driver::max_steps): the run could never finish",
+            });
+        }
+        Ok(())
+    }
+
+    /// Saves the start of the run: the initial state for saved steps, and every output time equal to
+    /// the start time.
+    fn save_start(&mut self, sol: &mut Solution<S::Partner>, run: &mut RunState<S::Partner>) -> Result<()> {
+        if !matches!(self.save, Save::End | Save::Times(_)) {
+            observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+            sol.push(&self.state, &run.obs_row);
+        }
+        if let Save::Times(times) = &self.save {
+            while run.next_time < times.len() && times[run.next_time] == self.state.t {
+                run.next_time += 1;
+            }
+            if run.next_time > 0 {
+                observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+                for _ in 0..run.next_time {
+                    sol.push(&self.state, &run.obs_row);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The size of the next step and whether it is the last, `None` when the target is reached.
+    fn next_step_size(
+        &mut self,
+        target: Target,
+        adaptive: bool,
+        h_fixed: f64,
+        run: &RunState<S::Partner>,
+    ) -> Result<Option<(f64, bool)>> {
+        let t0 = self.state.t;
+        let grid = run.origin + (run.k + 1) as f64 * h_fixed;
+        Ok(Some(match target {
+            Target::Time(t_end) if t0 >= t_end => return Ok(None),
+            Target::Steps(m) if run.stepped >= m => return Ok(None),
+            Target::Time(t_end) if adaptive => {
+                let h = self.adaptive_h()?;
+                if t0 + 1.01 * h >= t_end {
+                    (t_end - t0, true)
+                } else {
+                    (h, false)
+                }
+            }
+            Target::Time(t_end) => {
+                if grid >= t_end || t_end - grid <= 4.0 * f64::EPSILON * t_end.abs() {
+                    (t_end - t0, true)
+                } else {
+                    (grid - t0, false)
+                }
+            }
+            Target::Steps(_) if adaptive => (self.adaptive_h()?, false),
+            Target::Steps(_) => (grid - t0, false),
+        }))
+    }
+
+    /// Finds the events that fired in the step just taken (on its continuous extension `d`), records
+    /// those up to the first stop or reset, and returns the (time, index) of that stop or reset; g at
+    /// the end of the step becomes each event's starting value for the next.
+    ///
+    /// An event whose g vanishes at the start of the step, or that was just applied there (a reset, or
+    /// the terminal stop a continued run starts from), takes its starting sign just after the start,
+    /// at t₀ + δ with δ = max(1e-9 h, 64 ε |t₀|): the located root is only known to rounding, so its
+    /// own g may have either sign, and a crossing later in the same step must still be seen (a ball
+    /// that bounces and lands again within one long step). Only a crossing closer than δ to the point
+    /// where the event was applied is not seen, so a reset cannot fire again at once.
+    fn record_events(
+        &mut self,
+        d: &DenseOutput<S::Partner>,
+        sol: &mut Solution<S::Partner>,
+        run: &mut RunState<S::Partner>,
+    ) -> Result<Option<(f64, usize)>> {
+        let (t0, t1) = (d.t_start(), self.state.t);
+        let mut hits = Vec::new();
+        for (i, ev) in self.events.iter_mut().enumerate() {
+            let g1 = ev.value(&self.state)?;
+            let (mut ta, mut ga) = (t0, std::mem::replace(&mut run.g_prev[i], g1));
+            if run.just_applied[i] || ga == 0.0 {
+                run.just_applied[i] = false;
+                ta = t0 + (1e-9 * (t1 - t0)).max(64.0 * f64::EPSILON * t0.abs());
+                if ta >= t1 {
+                    continue; // a step too short to tell the side: the next one starts from g1
+                }
+                d.fill_state(ta, &mut run.scratch)?;
+                ga = ev.value(&run.scratch)?;
+            }
+            if ev.direction.fires(ga, g1) {
+                let scratch = &mut run.scratch;
+                let g = &mut ev.g;
+                let tc = crate::roots::bracketed_root(
+                    |t| match d.fill_state(t, scratch) {
+                        Ok(()) => g(scratch),
+                        Err(_) => f64::NAN,
+                    },
+                    (ta, ga),
+                    (t1, g1),
+                )
+                .map_err(|e| match e {
+                    Error::NonFiniteResult { t, .. } => Error::NonFiniteResult {
+                        what: "event function inside the step",
+                        t,
+                    },
+                    e => e,
+                })?;
+                hits.push((tc, i));
+            }
+        }
+        hits.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for &(tc, i) in &hits {
+            let state = if tc == t1 {
+                self.state.clone()
+            } else {
+                d.state_at(tc)?
+            };
+            sol.events.push(EventRecord {
+                event: i,
+                t: tc,
+                state,
+            });
+            sol.stats.events += 1;
+            if !matches!(self.events[i].action, Action::Record) {
+                return Ok(Some((tc, i)));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Saves the output times inside (t₀, t_out] of the step just taken, from its continuous extension
+    /// (the computed state itself at its end). The list of times is read in place: sampling costs
+    /// O(steps + times).
+    fn sample_times(
+        &mut self,
+        d: &DenseOutput<S::Partner>,
+        t_out: f64,
+        sol: &mut Solution<S::Partner>,
+        run: &mut RunState<S::Partner>,
+    ) -> Result<()> {
+        let Save::Times(times) = &self.save else {
+            return Ok(());
+        };
+        while let Some(&t) = times.get(run.next_time).filter(|&&t| t <= t_out) {
+            if t == self.state.t {
+                run.scratch.copy_from(&self.state);
+            } else {
+                d.fill_state(t, &mut run.scratch)?;
+            }
+            observe(&mut self.observers, &run.scratch, &mut run.obs_row)?;
+            sol.push(&run.scratch, &run.obs_row);
+            run.next_time += 1;
+        }
+        Ok(())
+    }
+
+    /// Applies the stop or reset of event `i`, whose record is the last of `sol`: the state becomes
+    /// the one at the event, then (a reset) the changed one. Returns `true` when the run stops.
+    fn apply_event(
+        &mut self,
+        i: usize,
+        sol: &mut Solution<S::Partner>,
+        run: &mut RunState<S::Partner>,
+    ) -> Result<bool> {
+        let at = sol.events.last().expect("the event just recorded").state.clone();
+        let save_steps = matches!(self.save, Save::Steps | Save::Every(_));
+        if save_steps {
+            observe(&mut self.observers, &at, &mut run.obs_row)?;
+            sol.push(&at, &run.obs_row);
+        }
+        self.state = at;
+        let n = self.state.dof();
+        let reset = match &mut self.events[i].action {
+            Action::Stop => {
+                self.stopped_at = Some((i, self.state.t));
+                return Ok(true);
+            }
+            Action::Reset(reset) => reset,
+            Action::Record => unreachable!("a cut is a stop or a reset"),
+        };
+        let mut changed = self.state.clone();
+        reset(&mut changed)?;
+        changed.validate(n)?;
+        check_reset_time(self.state.t, changed.t, &self.save, run.next_time)?;
+        self.state = changed;
+        if save_steps {
+            observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+            sol.push(&self.state, &run.obs_row);
+        }
+        (run.origin, run.k) = (self.state.t, 0);
+        run.start.f = None;
+        run.g_prev = self.event_values()?;
+        run.just_applied[i] = true;
+        Ok(false)
     }
 
     /// `true` when the run will stop after this step (for [`Save::Every`] to save the end).
@@ -589,21 +737,64 @@ impl<'a, S: Stepper> Driver<'a, S> {
         let state = &self.state;
         self.events.iter_mut().map(|e| e.value(state)).collect()
     }
+}
 
-    fn observe_into(&mut self, row: &mut [f64]) -> Result<()> {
-        let s = self.state.clone();
-        self.observe_state(&s, row)
+/// The bookkeeping of one run between its steps.
+struct RunState<K: crate::Partner> {
+    /// The observed values of the row being saved.
+    obs_row: Vec<f64>,
+    /// Index of the next output time.
+    next_time: usize,
+    /// Steps of this run.
+    stepped: usize,
+    /// The fixed-step grid t_k = origin + k h (restarted after a reset).
+    origin: f64,
+    k: usize,
+    /// g of each event at the start of the step.
+    g_prev: Vec<f64>,
+    /// Events applied at the start of the step (a reset, a terminal stop continued from).
+    just_applied: Vec<bool>,
+    start: StepStart,
+    /// A state to interpolate into.
+    scratch: State<K>,
+}
+
+/// A reset may move t forward (a dead time), not back; an output time inside the interval it skips
+/// has no state, so it is an error rather than a row made up from outside any step.
+fn check_reset_time(t_event: f64, t_new: f64, save: &Save, next_time: usize) -> Result<()> {
+    if t_new < t_event {
+        return Err(Error::InvalidParameter {
+            name: "t after a reset",
+            value: t_new,
+            reason: "a reset may not move time backward",
+        });
     }
-
-    fn observe_state(&mut self, state: &State<S::Partner>, row: &mut [f64]) -> Result<()> {
-        let mut j = 0;
-        for o in &mut self.observers {
-            let m = o.names.len();
-            o.eval(state, &mut row[j..j + m])?;
-            j += m;
+    if let Save::Times(times) = save {
+        if let Some(&t) = times.get(next_time).filter(|&&t| t < t_new) {
+            return Err(Error::InvalidParameter {
+                name: "output time",
+                value: t,
+                reason:
+                    "lies in the interval a reset skipped (it moved t forward): the run has no state there",
+            });
         }
-        Ok(())
     }
+    Ok(())
+}
+
+/// Evaluates every observer at `state` into `row`.
+fn observe<K: crate::Partner>(
+    observers: &mut [Observer<'_, K>],
+    state: &State<K>,
+    row: &mut [f64],
+) -> Result<()> {
+    let mut j = 0;
+    for o in observers {
+        let m = o.names.len();
+        o.eval(state, &mut row[j..j + m])?;
+        j += m;
+    }
+    Ok(())
 }
 
 /// y = (q, v) of a state as one vector.

@@ -14,24 +14,36 @@
 //! - M. Dowell, P. Jarratt, A modified regula falsi method for computing the root of an equation,
 //!   BIT 11 (1971) 168–174.
 
+use crate::{Error, Result};
+
 /// The root of `g` in the bracket [a, b] where `ga = g(a)` and `gb = g(b)` have opposite signs (or one
 /// is zero), to the resolution of f64 near the root: the returned t satisfies g(t) = 0 or lies within
-/// 4 ulps of a sign change. Where g is not finite at a trial point the midpoint is tried instead, and
-/// if g is not finite there either the search stops at the end of the bracket with the smaller |g|.
+/// 4 ulps of a sign change. A g that is not finite at an end or at any point tried is an
+/// [`Error::NonFiniteResult`] at that point: a NaN inside the bracket may hide the crossing, so no
+/// root is guessed around it.
 ///
 /// ```
 /// use noether_core::roots::bracketed_root;
 /// let g = |t: f64| t * t - 2.0;
-/// let r = bracketed_root(g, (1.0, g(1.0)), (2.0, g(2.0)));
+/// let r = bracketed_root(g, (1.0, g(1.0)), (2.0, g(2.0)))?;
 /// assert!((r - 2f64.sqrt()).abs() <= 4.0 * f64::EPSILON);
+/// # Ok::<(), noether_core::Error>(())
 /// ```
-pub fn bracketed_root(mut g: impl FnMut(f64) -> f64, (a, ga): (f64, f64), (b, gb): (f64, f64)) -> f64 {
+pub fn bracketed_root(
+    mut g: impl FnMut(f64) -> f64,
+    (a, ga): (f64, f64),
+    (b, gb): (f64, f64),
+) -> Result<f64> {
+    for (t, gt) in [(a, ga), (b, gb)] {
+        finite_at(t, gt)?;
+    }
     if ga == 0.0 {
-        return a;
+        return Ok(a);
     }
     if gb == 0.0 {
-        return b;
+        return Ok(b);
     }
+    let mut g = |t: f64| finite_at(t, g(t));
     // Bracket [lo, hi] with g(lo) of the sign of ga; `side` remembers which end moved last.
     let (mut lo, mut glo, mut hi, mut ghi) = (a, ga, b, gb);
     let mut side = 0i8;
@@ -45,19 +57,9 @@ pub fn bracketed_root(mut g: impl FnMut(f64) -> f64, (a, ga): (f64, f64), (b, gb
         let secant = hi - ghi * (hi - lo) / (ghi - glo);
         let inside = secant.is_finite() && (secant - lo) * (secant - hi) < 0.0;
         let c = if inside { secant } else { 0.5 * (lo + hi) };
-        let (c, gc) = match g(c) {
-            gc if gc.is_finite() || !inside => (c, gc),
-            // The model is not finite at the secant point: try the midpoint instead.
-            _ => {
-                let m = 0.5 * (lo + hi);
-                (m, g(m))
-            }
-        };
+        let gc = g(c)?;
         if gc == 0.0 {
-            return c;
-        }
-        if !gc.is_finite() {
-            break; // no sign to be had: the best end so far
+            return Ok(c);
         }
         if gc.signum() == glo.signum() {
             lo = c;
@@ -77,12 +79,9 @@ pub fn bracketed_root(mut g: impl FnMut(f64) -> f64, (a, ga): (f64, f64), (b, gb
         // Safeguard: force a bisection when two steps did not halve the bracket.
         if (hi - lo).abs() > 0.5 * width2 {
             let m = 0.5 * (lo + hi);
-            let gm = g(m);
+            let gm = g(m)?;
             if gm == 0.0 {
-                return m;
-            }
-            if !gm.is_finite() {
-                break;
+                return Ok(m);
             }
             if gm.signum() == glo.signum() {
                 (lo, glo) = (m, gm);
@@ -94,10 +93,18 @@ pub fn bracketed_root(mut g: impl FnMut(f64) -> f64, (a, ga): (f64, f64), (b, gb
         (width2, width1) = (width1, (hi - lo).abs());
     }
     // The end nearer to zero in |g|.
-    if glo.abs() < ghi.abs() {
-        lo
+    Ok(if glo.abs() < ghi.abs() { lo } else { hi })
+}
+
+/// `g` when finite, else the error naming where it was not.
+fn finite_at(t: f64, g: f64) -> Result<f64> {
+    if g.is_finite() {
+        Ok(g)
     } else {
-        hi
+        Err(Error::NonFiniteResult {
+            what: "function inside the bracket of a root",
+            t,
+        })
     }
 }
 
@@ -124,7 +131,8 @@ mod tests {
                 },
                 (a, g(a)),
                 (b, g(b)),
-            );
+            )
+            .unwrap();
             // Rounding: within 4 ulps of the root (g's own rounding near it is of the same order).
             assert!(
                 (r - root).abs() <= 4.0 * f64::EPSILON * root,
@@ -139,13 +147,15 @@ mod tests {
         // An event at t = 1e15 + 0.3 (ulp(1e15) = 0.125): the answer is the nearest representable time.
         let t0 = 1e15;
         let g = |t: f64| (t - t0) - 0.3;
-        let r = bracketed_root(g, (t0, g(t0)), (t0 + 1.0, g(t0 + 1.0)));
+        let r = bracketed_root(g, (t0, g(t0)), (t0 + 1.0, g(t0 + 1.0))).unwrap();
         assert!((r - (t0 + 0.3)).abs() <= 0.125, "{r}");
     }
 
     #[test]
-    fn nan_inside_the_bracket_still_terminates() {
-        // g = t³ − 0.343 on [0, 1]: the first secant point is 0.343, where g is made NaN.
+    fn regress_nan_inside_the_bracket_is_an_error() {
+        // Issue 29 item 4: g = t³ − 0.343 on [0, 1] made NaN on [0.3, 0.36), where the first secant
+        // point falls. The root finder used to step around it and answer; a NaN may hide the crossing
+        // (here it does not, but nothing can tell), so it is reported with where it was met.
         let g = |t: f64| {
             if (0.3..0.36).contains(&t) {
                 f64::NAN
@@ -153,7 +163,12 @@ mod tests {
                 t * t * t - 0.343
             }
         };
-        let r = bracketed_root(g, (0.0, g(0.0)), (1.0, g(1.0)));
-        assert!((r - 0.7).abs() < 1e-12, "{r}");
+        let err = bracketed_root(g, (0.0, g(0.0)), (1.0, g(1.0))).unwrap_err();
+        assert!(
+            matches!(err, Error::NonFiniteResult { t, .. } if (0.3..0.36).contains(&t)),
+            "{err}"
+        );
+        // A NaN at an end as well.
+        assert!(bracketed_root(g, (0.0, f64::NAN), (1.0, g(1.0))).is_err());
     }
 }

@@ -145,7 +145,7 @@ fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
         (u0 + 1e-7, 1.0 - 1e-9)
     };
     assert!(f(a) * f(b) < 0.0);
-    let u1 = noether_core::roots::bracketed_root(f, (a, f(a)), (b, f(b)));
+    let u1 = noether_core::roots::bracketed_root(f, (a, f(a)), (b, f(b))).unwrap();
     let theta_other = u1.acos();
 
     // The full model and the reduced one, both DOP853 at 1e-14, turning points θ̇ = 0 as events.

@@ -65,7 +65,8 @@ impl<K: Partner> Solution<K> {
     /// Reads a solution written by [`write_csv`](Self::write_csv): times, states and observed quantities
     /// (the method is recorded as `"csv"`; events and statistics are empty). A header that does not name
     /// `t`, equally many `q` and partner columns (`v` for velocities, `p` for momenta), a row of the
-    /// wrong length, a value that is not a number, or a file with no row is an [`Error::SavedRun`].
+    /// wrong length, a value that is not a finite number (NaN, inf, 1e400), or a file with no row is an
+    /// [`Error::SavedRun`].
     pub fn read_csv<R: Read>(r: R) -> Result<Self> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
         let header: Vec<String> = input
@@ -96,10 +97,10 @@ impl<K: Partner> Solution<K> {
             let line = record.position().map(|p| p.line());
             let values = record
                 .iter()
-                .map(|x| {
-                    x.trim()
-                        .parse::<f64>()
-                        .map_err(|e| saved_run(line, format!("'{x}': {e}")))
+                .map(|x| match x.trim().parse::<f64>() {
+                    Ok(v) if v.is_finite() => Ok(v),
+                    Ok(_) => Err(saved_run(line, format!("'{x}' is not a finite number"))),
+                    Err(e) => Err(saved_run(line, format!("'{x}': {e}"))),
                 })
                 .collect::<Result<Vec<f64>>>()?;
             state.t = values[0];
@@ -188,6 +189,19 @@ mod tests {
         assert!(Solution::<Velocities>::read_csv(no_rows.as_bytes()).is_err());
     }
 
+    #[test]
+    fn regress_csv_with_non_finite_values_is_refused() {
+        // Issue 29 item 12: NaN, inf and 1e400 (which parses to inf) were read as values.
+        for bad in ["NaN", "inf", "-inf", "1e400"] {
+            let text = format!("t,q0,v0\n0,1,0\n0.1,{bad},0\n");
+            let err = Solution::<Velocities>::read_csv(text.as_bytes()).unwrap_err();
+            assert!(
+                matches!(err, Error::SavedRun { line: Some(3), .. }),
+                "{bad}: {err}"
+            );
+        }
+    }
+
     #[cfg(feature = "serde")]
     #[test]
     fn serde_round_trip_keeps_rows_observers_and_stats() {
@@ -199,5 +213,28 @@ mod tests {
         assert_eq!(back.observed("energy"), sol.observed("energy"));
         assert_eq!(back.stats(), sol.stats());
         assert_eq!(back.method(), sol.method());
+    }
+
+    #[cfg(feature = "serde")]
+    #[test]
+    fn regress_deserialized_solution_is_checked() {
+        // Issue 29 items 6 and 11: a saved run whose arrays disagree (fewer times than rows, a dof that
+        // does not divide the rows) was accepted, and q_matrix or write_csv then panicked.
+        let sol = run();
+        let mut value: serde_json::Value = serde_json::to_value(&sol).unwrap();
+        let good = value.clone();
+        value["t"].as_array_mut().unwrap().pop();
+        let err = serde_json::from_value::<Solution>(value).unwrap_err();
+        assert!(err.to_string().contains("times"), "{err}");
+        let mut value = good.clone();
+        value["dof"] = serde_json::json!(3);
+        assert!(serde_json::from_value::<Solution>(value).is_err());
+        let mut value = good.clone();
+        value["observed"].as_array_mut().unwrap().pop();
+        assert!(serde_json::from_value::<Solution>(value).is_err());
+        let mut value = good.clone();
+        value["q"][0] = serde_json::json!(null);
+        assert!(serde_json::from_value::<Solution>(value).is_err());
+        assert!(serde_json::from_value::<Solution>(good).is_ok());
     }
 }

@@ -76,7 +76,10 @@ pub struct EventRecord<K = Velocities> {
 /// ```
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(bound = ""))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(serialize = "", deserialize = "K: Partner"), try_from = "Unchecked<K>")
+)]
 pub struct Solution<K = Velocities> {
     pub(crate) dof: usize,
     pub(crate) method: Cow<'static, str>,
@@ -155,19 +158,26 @@ impl<K: Partner> Solution<K> {
         &self.t
     }
 
-    /// The coordinates q at row `i` (panics if `i >= len()`, like slice indexing).
+    /// The coordinates q at row `i`. Indexing: panics if `i >= len()`, as slice indexing does (the
+    /// error contract's one stated exception); [`get`](Self::get) is the checked form.
     pub fn q(&self, i: usize) -> &[f64] {
         &self.q[i * self.dof..(i + 1) * self.dof]
     }
 
-    /// The partner (q̇ or p, as `K` says) at row `i` (panics if `i >= len()`).
+    /// The partner (q̇ or p, as `K` says) at row `i`. Indexing: panics if `i >= len()` (see
+    /// [`q`](Self::q)).
     pub fn v(&self, i: usize) -> &[f64] {
         &self.v[i * self.dof..(i + 1) * self.dof]
     }
 
-    /// The saved state at row `i` (panics if `i >= len()`).
+    /// The saved state at row `i`. Indexing: panics if `i >= len()` (see [`q`](Self::q)).
     pub fn state(&self, i: usize) -> State<K> {
         State::new(self.t[i], self.q(i), self.v(i))
+    }
+
+    /// The saved state at row `i`, `None` if `i >= len()`.
+    pub fn get(&self, i: usize) -> Option<State<K>> {
+        (i < self.len()).then(|| self.state(i))
     }
 
     /// All saved coordinates as a matrix view, one column per saved time (dof × len).
@@ -180,13 +190,13 @@ impl<K: Partner> Solution<K> {
         DMatrixView::from_slice(&self.v, self.dof, self.len())
     }
 
-    /// Component `j` of q over all saved times (panics if `j >= dof()`).
+    /// Component `j` of q over all saved times. Indexing: panics if `j >= dof()` (see [`q`](Self::q)).
     pub fn q_series(&self, j: usize) -> Vec<f64> {
         assert!(j < self.dof, "coordinate {j} of {}", self.dof);
         self.q.iter().skip(j).step_by(self.dof.max(1)).copied().collect()
     }
 
-    /// Component `j` of the partner (q̇ or p) over all saved times (panics if `j >= dof()`).
+    /// Component `j` of the partner (q̇ or p) over all saved times. Indexing: panics if `j >= dof()`.
     pub fn v_series(&self, j: usize) -> Vec<f64> {
         assert!(j < self.dof, "coordinate {j} of {}", self.dof);
         self.v.iter().skip(j).step_by(self.dof.max(1)).copied().collect()
@@ -209,7 +219,7 @@ impl<K: Partner> Solution<K> {
         Some(self.observed.iter().skip(j).step_by(m).copied().collect())
     }
 
-    /// The observed values at row `i`, in column order.
+    /// The observed values at row `i`, in column order. Indexing: panics if `i >= len()`.
     pub fn observed_row(&self, i: usize) -> &[f64] {
         let m = self.observer_names.len();
         &self.observed[i * m..(i + 1) * m]
@@ -303,5 +313,84 @@ impl<K: Partner> Solution<K> {
         self.last = other.last;
         self.interpolation_order = self.interpolation_order.or(other.interpolation_order);
         Ok(())
+    }
+}
+
+/// A solution as read by serde, before its arrays are checked to agree.
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+#[serde(bound = "")]
+struct Unchecked<K> {
+    dof: usize,
+    method: Cow<'static, str>,
+    t: Vec<f64>,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    observer_names: Vec<String>,
+    observed: Vec<f64>,
+    event_names: Vec<String>,
+    events: Vec<EventRecord<K>>,
+    stop: Stop,
+    stats: Stats,
+    interpolation_order: Option<u32>,
+    last: State<K>,
+}
+
+/// A deserialized solution is accepted only when its arrays agree: one time per row, dof values of q
+/// and of the partner per row, one value per observer per row, every value finite, events naming
+/// events of the run, states of the run's dimension.
+#[cfg(feature = "serde")]
+impl<K: Partner> TryFrom<Unchecked<K>> for Solution<K> {
+    type Error = Error;
+
+    fn try_from(u: Unchecked<K>) -> Result<Self> {
+        let bad = |reason: String| Err(Error::SavedRun { line: None, reason });
+        let rows = u.t.len();
+        if u.dof == 0 {
+            return bad("a solution of 0 coordinates".into());
+        }
+        for (what, len, per_row) in [
+            ("q", u.q.len(), u.dof),
+            ("the partner", u.v.len(), u.dof),
+            ("observed", u.observed.len(), u.observer_names.len()),
+        ] {
+            if len != rows * per_row {
+                return bad(format!(
+                    "{len} values of {what} for {rows} times of {per_row} values each"
+                ));
+            }
+        }
+        let all = u.t.iter().chain(&u.q).chain(&u.v).chain(&u.observed);
+        if let Some(x) = all.copied().find(|x| !x.is_finite()) {
+            return bad(format!("a value that is not finite ({x})"));
+        }
+        let events = u.events.iter().map(|e| e.event);
+        let stopped = match u.stop {
+            Stop::Event(i) => Some(i),
+            _ => None,
+        };
+        if let Some(i) = events.chain(stopped).find(|&i| i >= u.event_names.len()) {
+            return bad(format!("event {i} of a run with {} events", u.event_names.len()));
+        }
+        let states = u.events.iter().map(|e| &e.state).chain([&u.last]);
+        if let Some(s) = states.into_iter().find(|s| s.validate(u.dof).is_err()) {
+            return bad(format!("a state of {} coordinates or not finite", s.dof()));
+        }
+        Ok(Solution {
+            dof: u.dof,
+            method: u.method,
+            t: u.t,
+            q: u.q,
+            v: u.v,
+            observer_names: u.observer_names,
+            observed: u.observed,
+            event_names: u.event_names,
+            events: u.events,
+            stop: u.stop,
+            stats: u.stats,
+            interpolation_order: u.interpolation_order,
+            segments: Vec::new(),
+            last: u.last,
+        })
     }
 }

@@ -212,7 +212,7 @@ fn first_zero_of_theta<M: EmbeddedPair>() -> f64 {
     let mut h = 0.01;
     loop {
         h = s.step(&mut state, h).unwrap().h_next;
-        if let Some(t) = s.dense_output().unwrap().locate(|st: &State| st.q[0]) {
+        if let Some(t) = s.dense_output().unwrap().locate(|st: &State| st.q[0]).unwrap() {
             return t;
         }
         assert!(state.t < 10.0, "no crossing found");

@@ -5,6 +5,7 @@
 mod adaptive;
 mod bad_input;
 mod conserves;
+mod events;
 mod fixed;
 mod ias15;
 mod implicit;
