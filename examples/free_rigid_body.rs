@@ -107,7 +107,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
 
     // 5.5 periods, Ω saved at every step, Ω₂ = 0 upwards as an event (at T, 2T, ...).
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
-    let sol = Driver::new(Lgvi::new(body), start.clone())?
+    let sol = Driver::new(Lgvi::new(body)?, start.clone())?
         .step(H)?
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .run_until(5.5 * top.period())?;
@@ -148,7 +148,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     ));
 
     // The long run: 10⁵ steps of h = 10⁻².
-    let mut lgvi = Lgvi::new(body);
+    let mut lgvi = Lgvi::new(body)?;
     let mut s = start;
     let (l0, e0) = (body.spatial_angular_momentum(&s)?.norm(), body.energy(&s)?);
     let (mut casimir, mut energy, mut ortho): (f64, f64, f64) = (0.0, 0.0, 0.0);
@@ -176,7 +176,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // Torque-free precession of a symmetric body.
     let (i1, i3, w3, wp) = (1.0, 1.6, 2.0, 0.5);
     let sym: RigidBody<Free> = RigidBody::free(i1, i1, i3)?;
-    let mut lgvi = Lgvi::new(sym);
+    let mut lgvi = Lgvi::new(sym)?;
     let mut s = sym.state(
         0.0,
         &UnitQuaternion::from_euler_angles(1.0, 0.2, -0.5),

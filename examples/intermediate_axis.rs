@@ -48,7 +48,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let period = top.period();
     let start = body.state(0.0, &UnitQuaternion::identity(), &w0);
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
-    let sol = Driver::new(Lgvi::new(body), start)?
+    let sol = Driver::new(Lgvi::new(body)?, start)?
         .step(H)?
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .event(Event::new("Ω₂ = 0 down", omega2).falling())

@@ -35,7 +35,7 @@ fn body() -> Result<RigidBody<UniformGravity>, BoxError> {
     Ok(RigidBody::new(
         Inertia::principal(top.i1, top.i1, top.i3)?,
         gravity,
-    ))
+    )?)
 }
 
 /// The top at Euler angles (φ, θ, ψ) = (0, θ, 0), R = R_x(θ), with rates (θ̇, φ̇, ψ̇): body
@@ -87,7 +87,7 @@ fn run_top(
     t_end: f64,
 ) -> Result<Solution<Momenta>, BoxError> {
     let ud = move |s: &State<Momenta>| u_dot(&b, s);
-    Ok(Driver::new(Lgvi::new(b), s)?
+    Ok(Driver::new(Lgvi::new(b)?, s)?
         .step(H)?
         .save(Save::Every(50))?
         .event(Event::new(THETA_MAX, ud).rising())

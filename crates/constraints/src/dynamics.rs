@@ -252,7 +252,33 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
     }
 
     /// Residuals of a state: (‖φ(t, q)‖∞ for holonomic sets (`None` otherwise), ‖A q̇ + a‖∞).
-    pub fn residuals(&self, t: f64, q: &[f64], v: &[f64]) -> (Option<f64>, f64) {
+    ///
+    /// q and q̇ must have n entries ([`CoreError::Dimension`], checked before the constraint
+    /// functions see them) and be finite ([`CoreError::NonFinite`]); a residual that comes out NaN or
+    /// infinite (a constraint evaluated outside its domain) is [`CoreError::NonFiniteResult`], never a
+    /// NaN norm.
+    pub fn residuals(&self, t: f64, q: &[f64], v: &[f64]) -> Result<(Option<f64>, f64)> {
+        self.check(t, q, v)?;
+        let (pos, vel) = self.residuals_unchecked(t, q, v);
+        if pos.is_some_and(|p| !p.is_finite()) {
+            return Err(CoreError::NonFiniteResult {
+                what: "position constraint residual φ(t, q)",
+                t,
+            }
+            .into());
+        }
+        if !vel.is_finite() {
+            return Err(CoreError::NonFiniteResult {
+                what: "velocity constraint residual A q̇ + a",
+                t,
+            }
+            .into());
+        }
+        Ok((pos, vel))
+    }
+
+    /// [`residuals`](Self::residuals) without the checks (lengths checked by the caller).
+    fn residuals_unchecked(&self, t: f64, q: &[f64], v: &[f64]) -> (Option<f64>, f64) {
         let m = self.count();
         let mut r = vec![0.0; m];
         let pos = self.set.positions(t, q, &mut r).then(|| max_abs(&r));
@@ -276,7 +302,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
 
     /// [`Error::ConstraintViolated`] when a residual of (t, q, q̇) exceeds `tol`.
     fn check_residuals(&self, t: f64, q: &[f64], v: &[f64], tol: f64) -> Result<()> {
-        let (pos, vel) = self.residuals(t, q, v);
+        let (pos, vel) = self.residuals(t, q, v)?;
         if let Some(p) = pos.filter(|p| !within(*p, tol)) {
             return Err(Error::ConstraintViolated {
                 what: "position",

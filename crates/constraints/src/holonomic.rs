@@ -15,6 +15,9 @@
 //!     }
 //! }
 //!
+//! let phi = &mut [0.0];
+//! noether_constraints::holonomic::values(&Rod { l: 2.0 }, 0.0, &[1.2, -1.6], phi)?; // 1.44 + 2.56 − 4
+//! assert!(phi[0].abs() < 1e-15);
 //! let rod = HolonomicSet(Rod { l: 2.0 });
 //! let mut a = nalgebra::DMatrix::zeros(1, 2);
 //! rod.matrix(0.0, &[1.2, -1.6], &[0.0, 0.0], &mut a); // Φ_q = (x, y)
@@ -22,12 +25,15 @@
 //! let mut c = [0.0];
 //! rod.bias(0.0, &[1.2, -1.6], &[0.8, 0.6], &mut c); // (Φ_q q̇)_q q̇ = |q̇|²
 //! assert!((c[0] - 1.0).abs() < 1e-15);
+//! # Ok::<(), noether_constraints::Error>(())
 //! ```
 
 use crate::jets::{self, Block, VectorField};
 use crate::set::ConstraintSet;
+use crate::Result;
 use nalgebra::DMatrix;
-use noether_core::Scalar;
+use noether_core::error::{check_finite, check_len, check_result};
+use noether_core::{Error, Scalar};
 
 /// m holonomic constraints φ(t, q) = 0 on n coordinates.
 ///
@@ -68,28 +74,152 @@ impl<C: Holonomic + ?Sized> VectorField for Field<'_, C> {
     }
 }
 
-/// φ(t, q) into `out`.
-pub fn values<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) {
+// The checked functions below are the public face: lengths first (the user's constraint function
+// indexes q and out freely, so it must never see a wrong length), finite input, finite output, and
+// `out` written only on success. The crate's own callers, which have checked the lengths once per
+// step, use the `*_unchecked` forms inside their Newton loops.
+
+/// Checks (t, q) and the output length m against the constraint set: [`Error::Dimension`] or
+/// [`Error::NonFinite`].
+fn check_args<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out_len: usize) -> Result<()> {
+    check_len("q", q, c.dof())?;
+    if out_len != c.count() {
+        return Err(Error::Dimension {
+            what: "constraint values (output)",
+            expected: c.count(),
+            got: out_len,
+        }
+        .into());
+    }
+    check_finite("t", &[t])?;
+    Ok(check_finite("q", q)?)
+}
+
+/// Runs `eval` into scratch space, checks the result finite (else [`Error::NonFiniteResult`] naming
+/// `what`) and only then copies it into `out`.
+fn into_checked(what: &'static str, t: f64, out: &mut [f64], eval: impl FnOnce(&mut [f64])) -> Result<()> {
+    let mut r = vec![0.0; out.len()];
+    eval(&mut r);
+    check_result(what, t, &r)?;
+    out.copy_from_slice(&r);
+    Ok(())
+}
+
+/// φ(t, q) into `out` (length m).
+///
+/// q must have n = `dof()` entries and `out` m = `count()` ([`Error::Dimension`], checked before the
+/// constraint function is called); t and q finite ([`Error::NonFinite`]); a non-finite φ is
+/// [`Error::NonFiniteResult`]. On error `out` is left as it was.
+pub fn values<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) -> Result<()> {
+    check_args(c, t, q, out.len())?;
+    into_checked("constraint values φ(t, q)", t, out, |r| {
+        values_unchecked(c, t, q, r)
+    })
+}
+
+/// φ(t, q) into `out`, lengths unchecked (the caller has checked them).
+pub(crate) fn values_unchecked<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) {
     c.constraints(t, q, out)
 }
 
-/// The constraint Jacobian Φ_q (m × n) into `out`.
-pub fn jacobian<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut DMatrix<f64>) {
+/// The constraint Jacobian Φ_q = ∂φ/∂q (m × n) into `out`.
+///
+/// `out` must be exactly m × n ([`Error::Dimension`] naming its rows or columns: a smaller matrix
+/// would hold only part of Φ_q); the other checks and the state of `out` on error as in [`values`].
+pub fn jacobian<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+    let (m, n) = (c.count(), c.dof());
+    if out.nrows() != m || out.ncols() != n {
+        let rows = out.nrows() != m;
+        return Err(Error::Dimension {
+            what: if rows {
+                "rows of Φ_q (output)"
+            } else {
+                "columns of Φ_q (output)"
+            },
+            expected: if rows { m } else { n },
+            got: if rows { out.nrows() } else { out.ncols() },
+        }
+        .into());
+    }
+    check_args(c, t, q, m)?;
+    let mut j = DMatrix::zeros(m, n);
+    jacobian_unchecked(c, t, q, &mut j);
+    check_result("constraint Jacobian Φ_q", t, j.as_slice())?;
+    out.copy_from(&j);
+    Ok(())
+}
+
+/// Φ_q into `out`, shape unchecked (the caller has made it m × n).
+pub(crate) fn jacobian_unchecked<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut DMatrix<f64>) {
     jets::jacobian(&Field(c), t, q, &[], Block::X, out)
 }
 
-/// ∂φ/∂t into `out` (zero for scleronomic constraints).
-pub fn partial_t<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) {
+/// ∂φ/∂t into `out` (zero for scleronomic constraints); checks as in [`values`].
+pub fn partial_t<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) -> Result<()> {
+    check_args(c, t, q, out.len())?;
+    into_checked("constraint rate ∂φ/∂t", t, out, |r| {
+        partial_t_unchecked(c, t, q, r)
+    })
+}
+
+/// ∂φ/∂t into `out`, lengths unchecked.
+pub(crate) fn partial_t_unchecked<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], out: &mut [f64]) {
     jets::along(&Field(c), t, q, &[], (1.0, &[], &[]), out)
 }
 
-/// The velocity residual Φ_q v + φ_t = dφ/dt along q̇ = v, into `out`.
-pub fn velocity_residual<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+/// The velocity residual Φ_q v + φ_t = dφ/dt along q̇ = v, into `out`; v of length n, finite, and
+/// the other checks as in [`values`].
+pub fn velocity_residual<C: Holonomic + ?Sized>(
+    c: &C,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    out: &mut [f64],
+) -> Result<()> {
+    check_args(c, t, q, out.len())?;
+    check_len("q̇", v, c.dof())?;
+    check_finite("q̇", v)?;
+    into_checked("constraint velocity residual Φ_q q̇ + φ_t", t, out, |r| {
+        velocity_residual_unchecked(c, t, q, v, r)
+    })
+}
+
+/// Φ_q v + φ_t into `out`, lengths unchecked.
+pub(crate) fn velocity_residual_unchecked<C: Holonomic + ?Sized>(
+    c: &C,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    out: &mut [f64],
+) {
     jets::along(&Field(c), t, q, &[], (1.0, v, &[]), out)
 }
 
-/// The acceleration term d²φ/dt² at q̈ = 0, i.e. (Φ_q q̇)_q q̇ + 2 Φ_qt q̇ + φ_tt, into `out`.
-pub fn acceleration_bias<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+/// The acceleration term d²φ/dt² at q̈ = 0, i.e. (Φ_q q̇)_q q̇ + 2 Φ_qt q̇ + φ_tt, into `out`; checks as
+/// in [`velocity_residual`].
+pub fn acceleration_bias<C: Holonomic + ?Sized>(
+    c: &C,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    out: &mut [f64],
+) -> Result<()> {
+    check_args(c, t, q, out.len())?;
+    check_len("q̇", v, c.dof())?;
+    check_finite("q̇", v)?;
+    into_checked("constraint acceleration bias", t, out, |r| {
+        acceleration_bias_unchecked(c, t, q, v, r)
+    })
+}
+
+/// The acceleration term into `out`, lengths unchecked.
+pub(crate) fn acceleration_bias_unchecked<C: Holonomic + ?Sized>(
+    c: &C,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    out: &mut [f64],
+) {
     let mut first = vec![0.0; out.len()];
     jets::along2(&Field(c), t, q, &[], (1.0, v, &[]), &mut first, out)
 }
@@ -106,16 +236,16 @@ impl<C: Holonomic> ConstraintSet for HolonomicSet<C> {
         self.0.count()
     }
     fn matrix(&self, t: f64, q: &[f64], _v: &[f64], a: &mut DMatrix<f64>) {
-        jacobian(&self.0, t, q, a)
+        jacobian_unchecked(&self.0, t, q, a)
     }
     fn velocity_residual(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
-        velocity_residual(&self.0, t, q, v, out)
+        velocity_residual_unchecked(&self.0, t, q, v, out)
     }
     fn bias(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
-        acceleration_bias(&self.0, t, q, v, out)
+        acceleration_bias_unchecked(&self.0, t, q, v, out)
     }
     fn positions(&self, t: f64, q: &[f64], out: &mut [f64]) -> bool {
-        values(&self.0, t, q, out);
+        values_unchecked(&self.0, t, q, out);
         true
     }
 }

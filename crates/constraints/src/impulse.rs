@@ -57,7 +57,7 @@
 //! ```
 
 use crate::dynamics::rank_error;
-use crate::holonomic::{jacobian, velocity_residual};
+use crate::holonomic::{jacobian_unchecked as jacobian, velocity_residual_unchecked as velocity_residual};
 use crate::jets::{self, VectorField};
 use crate::{Holonomic, Result};
 use nalgebra::{DMatrix, DVector};

@@ -216,7 +216,7 @@ where
         state.validate(self.ld.dof())?;
         let (t, q) = (state.t, state.q.as_slice());
         let mut r = vec![0.0; self.constraints.count()];
-        holonomic::values(&self.constraints, t, q, &mut r);
+        holonomic::values_unchecked(&self.constraints, t, q, &mut r);
         let res = max_abs(&r);
         if !within(res, self.violation) {
             return Err(Error::ConstraintViolated {
@@ -227,7 +227,7 @@ where
             });
         }
         let v = self.velocities(state)?;
-        holonomic::velocity_residual(&self.constraints, t, q, v.as_slice(), &mut r);
+        holonomic::velocity_residual_unchecked(&self.constraints, t, q, v.as_slice(), &mut r);
         let res = max_abs(&r);
         if !within(res, self.violation) {
             return Err(Error::ConstraintViolated {
@@ -277,7 +277,7 @@ where
         let (t0, t1) = (state.t, state.t + h);
         let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
         let mut g0 = DMatrix::zeros(m, n);
-        holonomic::jacobian(&self.constraints, t0, q0, &mut g0);
+        holonomic::jacobian_unchecked(&self.constraints, t0, q0, &mut g0);
         // Momentum rows scaled by w = h/s (s: mass scale) and Λ' = wΛ: both blocks then read in units
         // of q, with rounding floor ~ε‖q‖, so the constraint rows converge to rounding as well.
         let w = h / self.mass_scale(t0, q0, v0.as_slice())?;
@@ -333,9 +333,9 @@ where
         let mut d2 = vec![0.0; n];
         self.ld.d2(t0, h, q0, q1.as_slice(), &mut d2);
         let mut g1 = DMatrix::zeros(m, n);
-        holonomic::jacobian(&self.constraints, t1, q1.as_slice(), &mut g1);
+        holonomic::jacobian_unchecked(&self.constraints, t1, q1.as_slice(), &mut g1);
         let mut phi_t = vec![0.0; m];
-        holonomic::partial_t(&self.constraints, t1, q1.as_slice(), &mut phi_t);
+        holonomic::partial_t_unchecked(&self.constraints, t1, q1.as_slice(), &mut phi_t);
         let mut y = vec![0.0; n + m];
         for i in 0..n {
             y[i] = (q1[i] - q0[i]) / h;
@@ -360,7 +360,7 @@ where
 
         // Residuals left on the manifold.
         let mut r = vec![0.0; m];
-        holonomic::values(&self.constraints, t1, q1.as_slice(), &mut r);
+        holonomic::values_unchecked(&self.constraints, t1, q1.as_slice(), &mut r);
         let pos = max_abs(&r);
         let gv = &g1 * &v1;
         let vel = gv
@@ -458,7 +458,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
             let gl: f64 = (0..lam.len()).map(|k| self.g0[(k, i)] * lam[k]).sum();
             *ri = self.w * (*ri + self.p0[i]) + gl;
         }
-        holonomic::values(self.c, self.t0 + self.h, q1, rb);
+        holonomic::values_unchecked(self.c, self.t0 + self.h, q1, rb);
         Ok(())
     }
     fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> noether_core::Result<()> {
@@ -466,7 +466,7 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         let m = self.c.count();
         let q1 = &x[..n];
         self.ld.d12(self.t0, self.h, self.q0, q1, &mut self.d12);
-        holonomic::jacobian(self.c, self.t0 + self.h, q1, &mut self.g1);
+        holonomic::jacobian_unchecked(self.c, self.t0 + self.h, q1, &mut self.g1);
         j.fill(0.0);
         j.view_mut((0, 0), (n, n)).copy_from(&(&self.d12 * self.w));
         j.view_mut((0, n), (n, m)).copy_from(&self.g0.transpose());

@@ -146,13 +146,23 @@ impl<L: Lagrangian> EulerLagrange<L> {
             .map_err(Clone::clone)
     }
 
-    /// Overwrites `b` with M(t, q, q̇)⁻¹ b (no copy of a constant factor).
+    /// Overwrites `b` with x = M(t, q, q̇)⁻¹ b, the solution of M x = b (no copy of a constant factor).
+    ///
+    /// `q`, `q̇` and `b` must have the model's length n ([`Error::Dimension`]) and be finite
+    /// ([`Error::NonFinite`]); an x that is not finite (M⁻¹ b overflows) is
+    /// [`Error::NonFiniteResult`]. On any error `b` is left as it was.
     pub fn solve_mass(&self, t: f64, q: &[f64], v: &[f64], b: &mut [f64]) -> Result<()> {
+        self.check(t, q, v)?;
+        check_len("b (right-hand side of M x = b)", b, self.dof())?;
+        check_finite("b (right-hand side of M x = b)", b)?;
+        let mut x = b.to_vec();
         if self.lagrangian.constant_mass_matrix() {
-            self.constant_factor(t, q, v)?.solve_in_place(b);
+            self.constant_factor(t, q, v)?.solve_in_place(&mut x);
         } else {
-            linalg::factor_mass(self.mass_matrix(t, q, v)?, t)?.solve_in_place(b);
+            linalg::factor_mass(self.mass_matrix(t, q, v)?, t)?.solve_in_place(&mut x);
         }
+        check_result("M⁻¹ b", t, &x)?;
+        b.copy_from_slice(&x);
         Ok(())
     }
 

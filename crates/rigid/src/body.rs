@@ -20,6 +20,7 @@ use crate::rotation::{self, vee};
 use crate::{Error, Result};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use noether_core::ad::{gradient, Block, Field};
+use noether_core::error::{check_finite, check_result};
 use noether_core::{Momenta, Scalar, State};
 
 /// A potential energy that depends on the orientation R of the body (body → space), written once as
@@ -45,6 +46,13 @@ pub trait OrientationPotential {
     /// `true` for a body on which no torque acts (the torque is then not evaluated).
     fn is_free(&self) -> bool {
         false
+    }
+    /// Checks the potential's own parameters (finite masses, fields, positions): called by
+    /// [`RigidBody::new`], [`Lgvi::new`](crate::Lgvi::new) and [`rattle`](crate::rattle::rattle), so
+    /// that a NaN parameter is refused when the body is built, not reported later as a failed step.
+    /// The default accepts everything.
+    fn check(&self) -> noether_core::Result<()> {
+        Ok(())
     }
 }
 
@@ -73,11 +81,37 @@ pub struct UniformGravity {
     pub center: Vector3<f64>,
 }
 
+impl UniformGravity {
+    /// Gravity g on a body of mass `mass` with centre of mass `center` (body frame): all finite
+    /// (else [`noether_core::Error::NonFinite`]) and m g finite (else
+    /// [`noether_core::Error::InvalidParameter`]).
+    pub fn new(mass: f64, g: f64, center: Vector3<f64>) -> Result<Self> {
+        let gravity = UniformGravity { mass, g, center };
+        gravity.check()?;
+        Ok(gravity)
+    }
+}
+
 impl OrientationPotential for UniformGravity {
     #[inline]
     fn potential<D: Scalar>(&self, r: &Matrix3<D>) -> D {
         let c = self.center;
         (r[(2, 0)] * c[0] + r[(2, 1)] * c[1] + r[(2, 2)] * c[2]) * (self.mass * self.g)
+    }
+    /// m, g and ρ finite, and the weight m g finite.
+    fn check(&self) -> noether_core::Result<()> {
+        check_finite("mass of the body", &[self.mass])?;
+        check_finite("gravitational acceleration g", &[self.g])?;
+        check_finite("centre of mass", self.center.as_slice())?;
+        let weight = self.mass * self.g;
+        if !weight.is_finite() {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "weight m g",
+                value: weight,
+                reason: "the product of mass and g overflows",
+            });
+        }
+        Ok(())
     }
 }
 
@@ -103,7 +137,9 @@ impl Inertia {
 
     /// A full tensor: finite, symmetric (to 1e-12 of its scale, else [`Error::AsymmetricInertia`])
     /// and positive definite with its smallest principal moment above [`INERTIA_PIVOT`] times the
-    /// largest (else [`Error::InertiaNotPositive`]).
+    /// largest (else [`Error::InertiaNotPositive`]), with principal moments that are normal numbers
+    /// and an inverse J⁻¹ that is finite (else [`Error::InertiaOutOfRange`]: a subnormal moment such
+    /// as 1e-310 has the reciprocal ∞, and Ω = J⁻¹Π would be NaN).
     pub fn tensor(j: Matrix3<f64>) -> Result<Self> {
         noether_core::error::check_finite("inertia tensor", j.as_slice())?;
         let scale = j.amax();
@@ -120,6 +156,9 @@ impl Inertia {
         let inverse = eig.eigenvectors
             * Matrix3::from_diagonal(&eig.eigenvalues.map(|x| 1.0 / x))
             * eig.eigenvectors.transpose();
+        if smallest < f64::MIN_POSITIVE || !inverse.iter().all(|x| x.is_finite()) {
+            return Err(Error::InertiaOutOfRange { smallest, largest });
+        }
         Ok(Inertia {
             tensor: sym,
             inverse,
@@ -158,7 +197,15 @@ pub struct RigidBody<V> {
 impl RigidBody<Free> {
     /// A free body with principal moments I₁, I₂, I₃.
     pub fn free(i1: f64, i2: f64, i3: f64) -> Result<Self> {
-        Ok(RigidBody::new(Inertia::principal(i1, i2, i3)?, Free))
+        RigidBody::new(Inertia::principal(i1, i2, i3)?, Free)
+    }
+}
+
+/// A core error of a quantity computed without a time, given the time `t` of the state it came from.
+fn at_time(e: Error, t: f64) -> Error {
+    match e {
+        Error::Core(c) => Error::Core(c.at_time(t)),
+        other => other,
     }
 }
 
@@ -178,45 +225,71 @@ impl<V: OrientationPotential> Field for OnMatrix<'_, V> {
 }
 
 impl<V: OrientationPotential> RigidBody<V> {
-    /// A body of inertia `inertia` in the potential `potential`.
-    pub fn new(inertia: Inertia, potential: V) -> Self {
-        RigidBody { inertia, potential }
+    /// A body of inertia `inertia` in the potential `potential`, whose parameters are checked
+    /// ([`OrientationPotential::check`]: a NaN g is refused here, not met as a failed step later).
+    pub fn new(inertia: Inertia, potential: V) -> Result<Self> {
+        potential.check()?;
+        Ok(RigidBody { inertia, potential })
     }
 
-    /// Body angular velocity Ω = J⁻¹ Π.
-    pub fn angular_velocity(&self, pi: &Vector3<f64>) -> Vector3<f64> {
-        self.inertia.inverse * pi
+    /// Body angular velocity Ω = J⁻¹ Π: Π finite (else [`noether_core::Error::NonFinite`]) and Ω
+    /// finite (else [`noether_core::Error::NonFiniteResult`] with t = NaN: a huge Π overflows).
+    pub fn angular_velocity(&self, pi: &Vector3<f64>) -> Result<Vector3<f64>> {
+        check_finite("body angular momentum Π", pi.as_slice())?;
+        let omega = self.inertia.inverse * pi;
+        check_result("angular velocity Ω = J⁻¹Π", f64::NAN, omega.as_slice())?;
+        Ok(omega)
     }
 
-    /// Kinetic energy ½ Π·J⁻¹Π.
-    pub fn kinetic_energy(&self, pi: &Vector3<f64>) -> f64 {
-        0.5 * pi.dot(&self.angular_velocity(pi))
+    /// Kinetic energy T = ½ Π·J⁻¹Π: Π finite, and T finite (Π = 1e200 overflows to ∞:
+    /// [`noether_core::Error::NonFiniteResult`] with t = NaN).
+    pub fn kinetic_energy(&self, pi: &Vector3<f64>) -> Result<f64> {
+        let t = 0.5 * pi.dot(&self.angular_velocity(pi)?);
+        check_result("kinetic energy", f64::NAN, &[t])?;
+        Ok(t)
     }
 
-    /// V(R).
-    pub fn potential_energy(&self, r: &Matrix3<f64>) -> f64 {
-        self.potential.potential(r)
+    /// V(R): R finite (else [`noether_core::Error::NonFinite`]) and V finite (else
+    /// [`noether_core::Error::NonFiniteResult`] with t = NaN).
+    pub fn potential_energy(&self, r: &Matrix3<f64>) -> Result<f64> {
+        check_finite("rotation matrix R", r.as_slice())?;
+        let v = self.potential.potential(r);
+        check_result("potential energy", f64::NAN, &[v])?;
+        Ok(v)
     }
 
-    /// Energy ½ Π·J⁻¹Π + V(R) at a state (see the module's layout).
+    /// Energy E = ½ Π·J⁻¹Π + V(R) at a state (see the module's layout): the state checked as in
+    /// [`orientation`](Self::orientation), and E finite (else
+    /// [`noether_core::Error::NonFiniteResult`] at the state's t).
     pub fn energy(&self, state: &State<Momenta>) -> Result<f64> {
         let q = self.orientation(state)?;
         let pi = self.body_momentum(state)?;
-        Ok(self.kinetic_energy(&pi) + self.potential_energy(&q.to_rotation_matrix().into_inner()))
+        let t = state.t;
+        let kinetic = self.kinetic_energy(&pi).map_err(|e| at_time(e, t))?;
+        let potential = self
+            .potential_energy(&q.to_rotation_matrix().into_inner())
+            .map_err(|e| at_time(e, t))?;
+        let e = kinetic + potential;
+        check_result("energy", t, &[e])?;
+        Ok(e)
     }
 
     /// Body-frame torque M = vee(Aᵀ − A), A = Rᵀ ∂V/∂R, with ∂V/∂R by dual numbers (zero for a free
-    /// body).
-    pub fn torque(&self, r: &Matrix3<f64>) -> Vector3<f64> {
+    /// body). R finite (else [`noether_core::Error::NonFinite`]); a non-finite M (V or its
+    /// derivative outside its domain) is [`noether_core::Error::NonFiniteResult`] with t = NaN.
+    pub fn torque(&self, r: &Matrix3<f64>) -> Result<Vector3<f64>> {
         if self.potential.is_free() {
-            return Vector3::zeros();
+            return Ok(Vector3::zeros());
         }
+        check_finite("rotation matrix R", r.as_slice())?;
         let x: Vec<f64> = r.transpose().as_slice().to_vec(); // row-major entries of R
         let mut g = [0.0; 9];
         gradient(&OnMatrix(&self.potential), 0.0, &x, &[], Block::X, &mut g);
         let dv = Matrix3::from_row_slice(&g);
         let a = r.transpose() * dv;
-        vee(&(a.transpose() - a))
+        let m = vee(&(a.transpose() - a));
+        check_result("torque", f64::NAN, m.as_slice())?;
+        Ok(m)
     }
 
     /// The state at time `t` of the body in orientation `q` turning with body angular velocity
@@ -248,19 +321,27 @@ impl<V: OrientationPotential> RigidBody<V> {
 
     /// The body angular velocity Ω = J⁻¹Π of a state.
     pub fn body_angular_velocity(&self, state: &State<Momenta>) -> Result<Vector3<f64>> {
-        Ok(self.angular_velocity(&self.body_momentum(state)?))
+        self.angular_velocity(&self.body_momentum(state)?)
+            .map_err(|e| at_time(e, state.t))
     }
 
     /// The spatial angular momentum L = R Π of a state (constant for a free body, whose Casimir
-    /// |L| = |Π| the Lie-group integrator keeps to rounding).
+    /// |L| = |Π| the Lie-group integrator keeps to rounding). A Π near the largest float can
+    /// overflow in the rotation: [`noether_core::Error::NonFiniteResult`] at the state's t.
     pub fn spatial_angular_momentum(&self, state: &State<Momenta>) -> Result<Vector3<f64>> {
         let q = self.orientation(state)?;
-        Ok(q * partner_momentum(state))
+        let l = q * partner_momentum(state);
+        check_result("spatial angular momentum L = RΠ", state.t, l.as_slice())?;
+        Ok(l)
     }
 
-    /// The rates (Ω, Π̇) at (R, Π): Π̇ = Π × Ω + M.
-    pub fn euler_rates(&self, r: &Matrix3<f64>, pi: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-        let omega = self.angular_velocity(pi);
-        (omega, pi.cross(&omega) + self.torque(r))
+    /// The rates (Ω, Π̇) at (R, Π): Π̇ = Π × Ω + M; errors as in
+    /// [`angular_velocity`](Self::angular_velocity) and [`torque`](Self::torque), and a non-finite
+    /// Π̇ is [`noether_core::Error::NonFiniteResult`] with t = NaN.
+    pub fn euler_rates(&self, r: &Matrix3<f64>, pi: &Vector3<f64>) -> Result<(Vector3<f64>, Vector3<f64>)> {
+        let omega = self.angular_velocity(pi)?;
+        let dpi = pi.cross(&omega) + self.torque(r)?;
+        check_result("rate of the body angular momentum Π̇", f64::NAN, dpi.as_slice())?;
+        Ok((omega, dpi))
     }
 }

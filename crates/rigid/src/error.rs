@@ -35,6 +35,20 @@ pub enum Error {
         /// Largest principal moment.
         largest: f64,
     },
+    /// An inertia tensor whose principal moments are not normal numbers or whose inverse J⁻¹ is not
+    /// finite (a subnormal moment such as 1e-310, whose reciprocal overflows): Ω = J⁻¹Π could not be
+    /// computed.
+    #[error(
+        "inertia tensor out of range: principal moments {smallest:e} to {largest:e} (each must be at \
+         least {min:e} and J⁻¹ finite)",
+        min = f64::MIN_POSITIVE
+    )]
+    InertiaOutOfRange {
+        /// Smallest principal moment.
+        smallest: f64,
+        /// Largest principal moment.
+        largest: f64,
+    },
     /// A body too flat for matrix coordinates: the kinetic energy ½ tr(Ṙ J_d Ṙᵀ) needs
     /// J_d = ½ tr(J) I − J positive definite, i.e. every principal moment below the sum of the other
     /// two (a lamina has I₃ = I₁ + I₂). The LGVI has no such restriction.

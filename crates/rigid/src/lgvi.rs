@@ -73,11 +73,16 @@ impl DenseProblem for CayleyEquation<'_> {
 impl<V: OrientationPotential> Lgvi<V> {
     /// The integrator for `body`, with Newton tolerances relative to the size of the step's rotation
     /// (residual 1e-14, step 1e-15: the solves end at rounding).
-    pub fn new(body: RigidBody<V>) -> Self {
+    ///
+    /// The body's potential is checked again ([`OrientationPotential::check`]; its fields are
+    /// public, so it may have changed since [`RigidBody::new`]): a NaN g is refused here rather than
+    /// failing every step.
+    pub fn new(body: RigidBody<V>) -> Result<Self> {
+        body.potential.check()?;
         let mut newton = Newton::default();
         newton.tol_residual = 1e-14;
         newton.tol_step = 1e-15;
-        Lgvi { body, newton }
+        Ok(Lgvi { body, newton })
     }
 
     /// Replaces the Newton settings (checked at every solve).
@@ -92,6 +97,10 @@ impl<V: OrientationPotential> Lgvi<V> {
     }
 
     /// One step from (q, Π): the new (q, Π) and the Newton iterations. Nothing is written on failure.
+    ///
+    /// Errors: h not finite and positive (`InvalidStep`), q or Π not finite (`NonFinite`), and a
+    /// torque, Cayley equation or new state that is not finite (`NonFiniteResult`, t = NaN: the
+    /// caller knows the time), never a `NewtonDiverged` with a NaN residual.
     pub fn advance(
         &self,
         q: &UnitQuaternion<f64>,
@@ -99,9 +108,16 @@ impl<V: OrientationPotential> Lgvi<V> {
         h: f64,
     ) -> Result<(UnitQuaternion<f64>, Vector3<f64>, usize)> {
         noether_core::error::check_step(h)?;
+        noether_core::error::check_finite("orientation quaternion", q.coords.as_slice())?;
+        noether_core::error::check_finite("body angular momentum Π", pi.as_slice())?;
         let body = &self.body;
         let r0 = q.to_rotation_matrix().into_inner();
-        let a = pi + body.torque(&r0) * (0.5 * h);
+        let a = pi + body.torque(&r0)? * (0.5 * h);
+        let non_finite =
+            |what| -> crate::Error { noether_core::Error::NonFiniteResult { what, t: f64::NAN }.into() };
+        if !a.iter().all(|x| x.is_finite()) {
+            return Err(non_finite("LGVI momentum Π + h/2 M"));
+        }
         let size = h * a.norm();
         let (f, iterations) = if size == 0.0 {
             (Vector3::zeros(), 0)
@@ -114,20 +130,26 @@ impl<V: OrientationPotential> Lgvi<V> {
                 scale: 1.0 / size,
             };
             let mut x = (body.inertia.inverse() * a * (0.5 * h)).as_slice().to_vec();
-            let info = self.newton.solve(&mut Dense::new(problem), &mut x)?;
+            if !x.iter().all(|v| v.is_finite()) {
+                return Err(non_finite("LGVI Cayley start (h/2) J⁻¹a"));
+            }
+            let info = match self.newton.solve(&mut Dense::new(problem), &mut x) {
+                Ok(info) => info,
+                // A residual that is NaN or infinite is a value out of range, not slow convergence.
+                Err(noether_core::Error::NewtonDiverged { residual, .. }) if !residual.is_finite() => {
+                    return Err(non_finite("LGVI Cayley equation residual"));
+                }
+                Err(e) => return Err(e.into()),
+            };
             (Vector3::from_column_slice(&x), info.iterations)
         };
         let fq = rotation::cayley(&f);
         let q1 = UnitQuaternion::new_normalize(q.quaternion() * fq.quaternion());
         let r1 = q1.to_rotation_matrix().into_inner();
-        let pi1 = fq.inverse() * a + body.torque(&r1) * (0.5 * h);
+        let pi1 = fq.inverse() * a + body.torque(&r1)? * (0.5 * h);
         let finite = pi1.iter().chain(q1.coords.iter()).all(|x| x.is_finite());
         if !finite {
-            return Err(noether_core::Error::NonFiniteResult {
-                what: "state after the LGVI step",
-                t: f64::NAN,
-            }
-            .into());
+            return Err(non_finite("state after the LGVI step"));
         }
         Ok((q1, pi1, iterations))
     }
@@ -139,12 +161,9 @@ impl<V: OrientationPotential> Stepper for Lgvi<V> {
     fn step(&mut self, state: &mut State<Momenta>, h: f64) -> noether_core::Result<StepInfo> {
         let q = self.body.orientation(state)?;
         let pi = self.body.body_momentum(state)?;
-        let (q1, pi1, iterations) = self.advance(&q, &pi, h).map_err(|e| match e {
-            crate::Error::Core(noether_core::Error::NonFiniteResult { what, .. }) => {
-                noether_core::Error::NonFiniteResult { what, t: state.t }
-            }
-            e => e.into(),
-        })?;
+        let (q1, pi1, iterations) = self
+            .advance(&q, &pi, h)
+            .map_err(|e| noether_core::Error::from(e).at_time(state.t))?;
         state.q.copy_from_slice(&rotation::wxyz(q1.quaternion()));
         state.v.copy_from_slice(&[0.0, pi1[0], pi1[1], pi1[2]]);
         state.t += h;
@@ -174,13 +193,13 @@ impl<V: OrientationPotential> Stepper for Lgvi<V> {
         let mut run = || -> Result<()> {
             let q = self.body.orientation(state)?;
             let pi = crate::body::partner_momentum(state);
-            let (omega, dpi) = self.body.euler_rates(&q.to_rotation_matrix().into_inner(), &pi);
+            let (omega, dpi) = self.body.euler_rates(&q.to_rotation_matrix().into_inner(), &pi)?;
             let qd = q.quaternion() * Quaternion::from_imag(omega) * 0.5;
             dq.copy_from_slice(&rotation::wxyz(&qd));
             dv.copy_from_slice(&[0.0, dpi[0], dpi[1], dpi[2]]);
             Ok(())
         };
-        Some(run().map_err(Into::into))
+        Some(run().map_err(|e| noether_core::Error::from(e).at_time(state.t)))
     }
 }
 
@@ -199,7 +218,7 @@ mod tests {
             .to_rotation_matrix()
             .into_inner();
         let j = r * Matrix3::from_diagonal(&Vector3::new(1.0, 2.0, 3.5)) * r.transpose();
-        let body = RigidBody::new(Inertia::tensor(j).unwrap(), crate::Free);
+        let body = RigidBody::new(Inertia::tensor(j).unwrap(), crate::Free).unwrap();
         let (h, a) = (0.1, Vector3::new(1.0, -0.5, 1.5));
         let jm = body.inertia.matrix();
         let problem = CayleyEquation {

@@ -25,12 +25,12 @@
 //! let body = RigidBody::free(1.0, 2.0, 2.5)?;
 //! let mut stepper = rattle(body)?;
 //! let mut s = matrix_state(&stepper, 0.0, &UnitQuaternion::identity(), &Vector3::new(1.0, 0.0, 0.8))?;
-//! let pi0 = body_momentum(&s);
+//! let pi0 = body_momentum(&s)?;
 //! for _ in 0..100 {
 //!     stepper.step(&mut s, 1e-2)?;
 //! }
 //! // |Π| is a Casimir of the free body: kept to the Newton tolerance.
-//! assert!((body_momentum(&s).norm() - pi0.norm()).abs() < 1e-12);
+//! assert!((body_momentum(&s)?.norm() - pi0.norm()).abs() < 1e-12);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -107,7 +107,9 @@ pub type RigidRattle<V> = Rattle<Trapezoidal<MatrixBody<V>>, Orthogonality>;
 /// RATTLE on the orthogonality constraints for `body` (see the [module](self) docs).
 /// [`Error::FlatBody`] when J_d = ½ tr(J) I − J is not positive definite (to the pivot
 /// [`INERTIA_PIVOT`] of the inertia check): the mass matrix of the matrix coordinates is then singular.
+/// The potential is checked as in [`Lgvi::new`](crate::Lgvi::new).
 pub fn rattle<V: OrientationPotential>(body: RigidBody<V>) -> Result<RigidRattle<V>> {
+    body.potential.check()?;
     let m = MatrixBody::new(body);
     let eig = m.jd.symmetric_eigenvalues();
     let (smallest, largest) = (eig.min(), eig.max());
@@ -133,16 +135,23 @@ pub fn matrix_state<V: OrientationPotential>(
         .map_err(|e| noether_core::Error::from(e).into())
 }
 
-/// The body angular momentum Π = vee(RᵀP − PᵀR) of a state in matrix coordinates.
-pub fn body_momentum(state: &State<Momenta>) -> Vector3<f64> {
+/// The body angular momentum Π = vee(RᵀP − PᵀR) of a state in matrix coordinates: nine finite
+/// entries of R and of P (else `Dimension` / `NonFinite`), and Π finite (else `NonFiniteResult`
+/// at the state's t: entries near 1e308 overflow).
+pub fn body_momentum(state: &State<Momenta>) -> Result<Vector3<f64>> {
+    state.validate(9)?;
     let r = Matrix3::from_row_slice(state.q.as_slice());
     let p = Matrix3::from_row_slice(state.v.as_slice());
-    vee(&(r.transpose() * p - p.transpose() * r))
+    let pi = vee(&(r.transpose() * p - p.transpose() * r));
+    noether_core::error::check_result("body angular momentum Π", state.t, pi.as_slice())?;
+    Ok(pi)
 }
 
-/// The rotation matrix of a state in matrix coordinates.
-pub fn rotation(state: &State<Momenta>) -> Matrix3<f64> {
-    Matrix3::from_row_slice(state.q.as_slice())
+/// The rotation matrix R of a state in matrix coordinates, as stored (not re-orthogonalised): the
+/// state checked as in [`body_momentum`].
+pub fn rotation(state: &State<Momenta>) -> Result<Matrix3<f64>> {
+    state.validate(9)?;
+    Ok(Matrix3::from_row_slice(state.q.as_slice()))
 }
 
 fn row_major(m: &Matrix3<f64>) -> [f64; 9] {

@@ -14,13 +14,13 @@ fn end_state(h: f64) -> Vec<f64> {
         g: 9.81,
         center: Vector3::new(0.05, -0.02, 0.3),
     };
-    let body = RigidBody::new(Inertia::principal(0.9, 1.1, 0.4).unwrap(), gravity);
+    let body = RigidBody::new(Inertia::principal(0.9, 1.1, 0.4).unwrap(), gravity).unwrap();
     let mut s: State<Momenta> = body.state(
         0.0,
         &UnitQuaternion::from_euler_angles(0.7, -0.2, 0.3),
         &Vector3::new(0.5, -1.0, 6.0),
     );
-    let mut lgvi = Lgvi::new(body);
+    let mut lgvi = Lgvi::new(body).unwrap();
     for _ in 0..(1.0 / h).round() as usize {
         lgvi.step(&mut s, h).unwrap();
     }

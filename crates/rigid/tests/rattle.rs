@@ -35,11 +35,14 @@ fn start() -> (RigidRattle<Free>, State<Momenta>) {
 fn run(h: f64, n: usize) -> [f64; 4] {
     let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
     let (mut stepper, mut s) = start();
-    let (pi0, l0) = (body_momentum(&s), rotation(&s) * body_momentum(&s));
+    let (pi0, l0) = (
+        body_momentum(&s).unwrap(),
+        rotation(&s).unwrap() * body_momentum(&s).unwrap(),
+    );
     let mut worst = [0.0_f64; 4];
     for _ in 0..n {
         stepper.step(&mut s, h).unwrap();
-        let (r, pi) = (rotation(&s), body_momentum(&s));
+        let (r, pi) = (rotation(&s).unwrap(), body_momentum(&s).unwrap());
         let exact = top.omega(s.t);
         let w = [pi[0] / I[0], pi[1] / I[1], pi[2] / I[2]];
         worst[0] = worst[0].max((0..3).map(|i| (w[i] - exact[i]).abs()).fold(0.0, f64::max));

@@ -176,3 +176,149 @@ fn regress_constraint_force_indices() {
     assert!(f.of_constraint(1).is_err());
     assert!(f.of_constraint_on_particle(0, 1, 2).is_err());
 }
+
+/// A rod φ = (q₀² + q₁² − l²)/2 written as a user would: indexing q[0], q[1] and out[0] directly
+/// (a short q or out panics inside this code if noether passes one through), and √q₀ so that it has a
+/// domain (q₀ < 0 gives NaN).
+struct IndexingRod;
+impl Holonomic for IndexingRod {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn count(&self) -> usize {
+        1
+    }
+    fn constraints<D: Scalar>(&self, _t: D, q: &[D], out: &mut [D]) {
+        out[0] = (q[0] * q[0] + q[1] * q[1] - 1.0) * 0.5 + q[0].sqrt() * 0.0;
+    }
+}
+
+/// Issue 29, item 11: `holonomic::values` (and the other holonomic evaluations) passed an unchecked q
+/// or output to the user's constraint function, which then panicked on `q[1]`; now `Dimension`
+/// before the call, `NonFinite` for NaN input, `NonFiniteResult` outside the domain, and the output
+/// untouched on error.
+#[test]
+fn regress_holonomic_values_unchecked_lengths() {
+    use noether_constraints::holonomic::{acceleration_bias, partial_t, values, velocity_residual};
+    let c = IndexingRod;
+    let dim = |r: Result<()>| {
+        assert!(
+            matches!(r, Err(Error::Core(CoreError::Dimension { .. }))),
+            "{r:?}"
+        )
+    };
+    let mut out = [7.0];
+    dim(values(&c, 0.0, &[0.6], &mut out));
+    dim(values(&c, 0.0, &[0.6, 0.8, 0.0], &mut out));
+    dim(values(&c, 0.0, &[0.6, 0.8], &mut []));
+    dim(values(&c, 0.0, &[0.6, 0.8], &mut [0.0, 0.0]));
+    dim(partial_t(&c, 0.0, &[0.6], &mut out));
+    dim(velocity_residual(&c, 0.0, &[0.6, 0.8], &[1.0], &mut out));
+    dim(velocity_residual(&c, 0.0, &[0.6], &[1.0, 0.0], &mut out));
+    dim(acceleration_bias(
+        &c,
+        0.0,
+        &[0.6, 0.8],
+        &[1.0, 0.0, 0.0],
+        &mut out,
+    ));
+    dim(acceleration_bias(&c, 0.0, &[0.6, 0.8], &[1.0, 0.0], &mut []));
+    assert_eq!(out, [7.0]);
+    let r = values(&c, 0.0, &[f64::NAN, 0.8], &mut out);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::NonFinite { .. }))),
+        "{r:?}"
+    );
+    let r = values(&c, 0.0, &[-0.6, 0.8], &mut out);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::NonFiniteResult { .. }))),
+        "{r:?}"
+    );
+    assert_eq!(out, [7.0], "nothing written on error");
+    values(&c, 0.0, &[0.6, 0.8], &mut out).unwrap();
+    assert!(out[0].abs() < 1e-16);
+    // Φ_q q̇ for q̇ ⟂ q is 0; (Φ_q q̇)_q q̇ = |q̇|².
+    velocity_residual(&c, 0.0, &[0.6, 0.8], &[0.8, -0.6], &mut out).unwrap();
+    assert!(out[0].abs() < 1e-16);
+    acceleration_bias(&c, 0.0, &[0.6, 0.8], &[0.8, -0.6], &mut out).unwrap();
+    assert!((out[0] - 1.0).abs() < 1e-15);
+}
+
+/// Issue 29, item 6: `holonomic::jacobian` into a matrix smaller than m × n silently wrote only part
+/// of Φ_q (and a larger one read past q); now `Dimension` naming the rows or columns, `out` untouched.
+#[test]
+fn regress_holonomic_jacobian_truncates() {
+    use nalgebra::DMatrix;
+    use noether_constraints::holonomic::jacobian;
+    let c = Rod {
+        d: 3,
+        l: 1.0,
+        copies: 2,
+    };
+    for (rows, cols) in [(1, 3), (2, 2), (0, 0), (3, 3), (2, 4)] {
+        let mut j = DMatrix::from_element(rows, cols, 7.0);
+        let r = jacobian(&c, 0.0, &[0.6, 0.8, 0.0], &mut j);
+        match r {
+            Err(Error::Core(CoreError::Dimension { what, expected, got })) => {
+                if rows != 2 {
+                    assert_eq!((what, expected, got), ("rows of Φ_q (output)", 2, rows));
+                } else {
+                    assert_eq!((what, expected, got), ("columns of Φ_q (output)", 3, cols));
+                }
+            }
+            other => panic!("{rows}×{cols}: {other:?}"),
+        }
+        assert!(j.iter().all(|x| *x == 7.0));
+    }
+    let mut j = DMatrix::zeros(2, 3);
+    let r = jacobian(&c, 0.0, &[0.6, 0.8], &mut j);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::Dimension { what: "q", .. }))),
+        "{r:?}"
+    );
+    jacobian(&c, 0.0, &[0.6, 0.8, 0.0], &mut j).unwrap();
+    // Row k is (1 + k) q / l.
+    assert_eq!(j.row(0).iter().copied().collect::<Vec<_>>(), [0.6, 0.8, 0.0]);
+    assert_eq!(j.row(1).iter().copied().collect::<Vec<_>>(), [1.2, 1.6, 0.0]);
+}
+
+/// Issue 29, items 11 and 12: `Constrained::residuals` passed an unchecked q to the user's code (a
+/// panic on a short q) and returned a NaN norm outside the constraint's domain; now a `Result`.
+#[test]
+fn regress_constrained_residuals_checked() {
+    let sys = Constrained::holonomic(
+        Masses {
+            n: 1,
+            d: 2,
+            m: 1.0,
+            g: 9.81,
+        },
+        IndexingRod,
+    )
+    .unwrap();
+    let r = sys.residuals(0.0, &[0.6], &[0.0, 0.0]);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::Dimension { .. }))),
+        "{r:?}"
+    );
+    let r = sys.residuals(0.0, &[0.6, 0.8], &[0.0]);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::Dimension { .. }))),
+        "{r:?}"
+    );
+    let r = sys.residuals(0.0, &[0.6, f64::INFINITY], &[0.0, 0.0]);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::NonFinite { .. }))),
+        "{r:?}"
+    );
+    let r = sys.residuals(0.0, &[-0.6, 0.8], &[0.0, 0.0]);
+    assert!(
+        matches!(r, Err(Error::Core(CoreError::NonFiniteResult { .. }))),
+        "{r:?}"
+    );
+    // On the circle, moving along it: both residuals 0; off it by 0.105 and moving radially.
+    let (pos, vel) = sys.residuals(0.0, &[0.6, 0.8], &[0.8, -0.6]).unwrap();
+    assert!(pos.unwrap().abs() < 1e-15 && vel.abs() < 1e-15);
+    let (pos, vel) = sys.residuals(0.0, &[0.66, 0.88], &[0.6, 0.8]).unwrap();
+    assert!((pos.unwrap() - 0.105).abs() < 1e-15 && (vel - 1.1).abs() < 1e-15);
+}

@@ -268,3 +268,52 @@ fn regress_natural_sizes_and_domain() {
     // V(4, 1) = 2 + 1, T = ½ (1 + 4): exact in binary.
     assert_eq!(nat.energy(&[4.0, 1.0], &[1.0, 2.0]), Ok(5.5));
 }
+
+/// Issue 29, item 11: `EulerLagrange::solve_mass` indexed out of bounds (a panic in the solve) when
+/// the right-hand side b had the wrong length, on both the varying and the constant-mass path; a
+/// non-finite b came back as Ok(NaN). Now `Dimension` / `NonFinite`, and b is left as it was.
+#[test]
+fn regress_solve_mass_wrong_length() {
+    /// L = ½ (q̇₀² + 2 q̇₁²) − q₀²: M = diag(1, 2), declared constant.
+    struct ConstantMass;
+    impl Lagrangian for ConstantMass {
+        fn dof(&self) -> usize {
+            2
+        }
+        fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+            (v[0] * v[0] + v[1] * v[1] * 2.0) * 0.5 - q[0] * q[0]
+        }
+        fn constant_mass_matrix(&self) -> bool {
+            true
+        }
+    }
+    fn check<L: Lagrangian>(el: &EulerLagrange<L>, q: &[f64], v: &[f64]) {
+        // Twice: on the constant path the second call finds the factor cached.
+        for _ in 0..2 {
+            for len in [0, 1, 3] {
+                let mut b = vec![1.0; len];
+                let r = el.solve_mass(0.0, q, v, &mut b);
+                assert!(matches!(r, Err(Error::Dimension { expected: 2, .. })), "{r:?}");
+                assert_eq!(b, vec![1.0; len]);
+            }
+            let mut b = [f64::NAN, 1.0];
+            let r = el.solve_mass(0.0, q, v, &mut b);
+            assert!(matches!(r, Err(Error::NonFinite { .. })), "{r:?}");
+            assert!(b[0].is_nan() && b[1] == 1.0);
+            let mut b = [1.0, 1.0];
+            el.solve_mass(0.0, q, v, &mut b).unwrap();
+            assert!(b.iter().all(|x| x.is_finite()));
+        }
+    }
+    let cm = EulerLagrange::new(ConstantMass);
+    let (q, v) = ([0.1, 0.2], [0.3, -0.1]);
+    check(&EulerLagrange::new(DoublePendulum::default()), &q, &v);
+    check(&cm, &q, &v);
+    // A wrong q on the cached constant path is still refused.
+    let mut b = [1.0, 1.0];
+    let r = cm.solve_mass(0.0, &[0.1], &v, &mut b);
+    assert!(matches!(r, Err(Error::Dimension { .. })), "{r:?}");
+    // M = diag(1, 2).
+    cm.solve_mass(0.0, &q, &v, &mut b).unwrap();
+    assert!((b[0] - 1.0).abs() < 1e-15 && (b[1] - 0.5).abs() < 1e-15, "{b:?}");
+}
