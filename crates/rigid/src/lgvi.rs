@@ -139,6 +139,7 @@ impl<V: OrientationPotential> Stepper for Lgvi<V> {
     fn step(&mut self, state: &mut State<Momenta>, h: f64) -> noether_core::Result<StepInfo> {
         let q = self.body.orientation(state)?;
         let pi = self.body.body_momentum(state)?;
+        noether_core::error::check_time_resolution(state.t, h)?;
         let (q1, pi1, iterations) = self.advance(&q, &pi, h).map_err(|e| match e {
             crate::Error::Core(noether_core::Error::NonFiniteResult { what, .. }) => {
                 noether_core::Error::NonFiniteResult { what, t: state.t }
