@@ -301,3 +301,17 @@ fn bad_settings() {
     mine.advance(10).unwrap();
     assert_eq!((mine.k(), mine.reorthonormalizations()), (1, 1));
 }
+
+/// Issue 29 item 7: from t₀ = 1e20 a step of 0.05 does not move t; the spectrum was ±inf (every block
+/// logged with zero elapsed time). Now the first step is refused with `StepBelowTimeResolution`.
+#[test]
+fn regress_lyapunov_step_below_time_resolution() {
+    let rk4 = Rk4::new(HamiltonEquations::new(Oscillator { omega: 2.0 }));
+    let mut lyap = Lyapunov::new(rk4, State::new(1e20, [1.0], [0.0]), 2, 0.05, 10).unwrap();
+    let err = lyap.advance(20).unwrap_err();
+    assert_eq!(
+        err,
+        Error::Core(noether_core::Error::StepBelowTimeResolution { t: 1e20, h: 0.05 }),
+        "{err}"
+    );
+}

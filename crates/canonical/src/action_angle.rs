@@ -227,9 +227,13 @@ impl<H: Hamiltonian> ActionAngle<H> {
 
     /// The angle θ ∈ [0, 2π) of the phase point (q, p) on the libration `lib` (its branch from the sign
     /// of p − p*(q)).
+    ///
+    /// A NaN or infinite q or p is [`noether_core::Error::NonFinite`].
     pub fn angle(&self, lib: &Libration, q: f64, p: f64) -> Result<f64> {
+        noether_core::error::check_finite("q", &[q])?;
+        noether_core::error::check_finite("p", &[p])?;
         let (ps, _) = self.momentum_minimum(q, p)?;
-        Ok(lib.angle(q, p > ps))
+        lib.angle(q, p > ps)
     }
 
     /// The rotation at `energy` of a coordinate periodic with `period` (2π for an angle), on the branch
@@ -276,33 +280,45 @@ pub struct Libration {
 }
 
 impl Libration {
-    /// The time to go from q₋ to `q` on the upper branch (p > p*): ∫_{q₋}^{q} dq/(∂H/∂p).
-    pub fn time_upper(&self, q: f64) -> f64 {
-        cosine_integral(&self.upper, self.phi(q))
+    /// The time to go from q₋ to `q` on the upper branch (p > p*): ∫_{q₋}^{q} dq/(∂H/∂p). A q
+    /// outside [q₋, q₊] is taken at the nearer turning point; a NaN or infinite q is
+    /// [`noether_core::Error::NonFinite`] (it was a silent NaN before).
+    pub fn time_upper(&self, q: f64) -> Result<f64> {
+        let t = cosine_integral(&self.upper, self.phi(q)?);
+        Ok(noether_core::error::finite_result("libration time", f64::NAN, t)?)
     }
 
-    /// The time to go from q₊ back to `q` on the lower branch (p < p*).
-    pub fn time_lower(&self, q: f64) -> f64 {
-        cosine_integral(&self.lower, PI) - cosine_integral(&self.lower, self.phi(q))
+    /// The time to go from q₊ back to `q` on the lower branch (p < p*) (q as in
+    /// [`time_upper`](Self::time_upper)).
+    pub fn time_lower(&self, q: f64) -> Result<f64> {
+        let t = cosine_integral(&self.lower, PI) - cosine_integral(&self.lower, self.phi(q)?);
+        Ok(noether_core::error::finite_result("libration time", f64::NAN, t)?)
     }
 
     /// The angle θ ∈ [0, 2π) at coordinate `q` of this orbit: ω times the time since the lower turning
     /// point, on the upper branch (p > p*(q)) when `upper` and on the lower one otherwise
-    /// ([`ActionAngle::angle`] decides the branch from p).
-    pub fn angle(&self, q: f64, upper: bool) -> f64 {
+    /// ([`ActionAngle::angle`] decides the branch from p). A NaN or infinite q is
+    /// [`noether_core::Error::NonFinite`], never a NaN angle.
+    pub fn angle(&self, q: f64, upper: bool) -> Result<f64> {
         let t = if upper {
-            self.time_upper(q)
+            self.time_upper(q)?
         } else {
-            cosine_integral(&self.upper, PI) + self.time_lower(q)
+            cosine_integral(&self.upper, PI) + self.time_lower(q)?
         };
-        (self.frequency * t).rem_euclid(2.0 * PI)
+        let theta = (self.frequency * t).rem_euclid(2.0 * PI);
+        Ok(noether_core::error::finite_result(
+            "libration angle",
+            f64::NAN,
+            theta,
+        )?)
     }
 
-    /// φ ∈ [0, π] with q = c − h cos φ.
-    fn phi(&self, q: f64) -> f64 {
+    /// φ ∈ [0, π] with q = c − h cos φ (q finite, else [`noether_core::Error::NonFinite`]).
+    fn phi(&self, q: f64) -> Result<f64> {
+        noether_core::error::check_finite("q", &[q])?;
         let c = 0.5 * (self.q_min + self.q_max);
         let h = 0.5 * (self.q_max - self.q_min);
-        ((c - q) / h).clamp(-1.0, 1.0).acos()
+        Ok(((c - q) / h).clamp(-1.0, 1.0).acos())
     }
 }
 
@@ -460,8 +476,14 @@ pub(crate) fn turning_points<C: Curve>(c: &C, e: f64, q_inside: f64, step: f64) 
         let mut h = step;
         let mut found = None;
         let mut k = 0;
-        while k < 128 {
+        // 64 steps of `step`, then doubling: 0.05·2¹⁰³⁰ passes f64::MAX, so the search reaches any
+        // finite turning point (the oscillator at E = 1e300 has them at ±1.4e150; a cap of 128 steps
+        // stopped at 1.8e18).
+        while k < 64 + 1100 {
             let b = a + s * h;
+            if !b.is_finite() {
+                break;
+            }
             let gb = g(b);
             if !gb.is_finite() {
                 // Outside the model's domain: come closer.

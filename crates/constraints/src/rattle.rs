@@ -530,6 +530,7 @@ where
     type Partner = Momenta;
     fn step(&mut self, state: &mut State<Momenta>, h: f64) -> noether_core::Result<StepInfo> {
         check_step(h)?;
+        noether_core::error::check_time_resolution(state.t, h)?;
         // A state that is exactly the last output is on the manifold; anything else is checked.
         let (v0, continued) = match &self.cache {
             Some((s, v)) if s == state => (v.clone(), true),

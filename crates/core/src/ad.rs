@@ -30,6 +30,7 @@
 //!   carrying an N×N Hessian through every operation (a 40-link chain: 38 µs, against 414 µs for the
 //!   chunked kernels above; docs/benchmarks.md).
 
+mod derivatives;
 mod grad;
 mod jet;
 mod tape;

@@ -297,10 +297,11 @@ impl<'a, S: Stepper> Driver<'a, S> {
     /// step index goes into a non-finite-state error.
     fn advance(&mut self, h: f64) -> Result<StepInfo> {
         let t = self.state.t;
-        // `t + h <= t` also catches a NaN; the second test, a step that moves t by not ~h.
-        if t + h <= t || (t + h).is_nan() || (t + h - t - h).abs() > 0.01 * h {
+        // A step the grid or the controller shrank to nothing is below the resolution too.
+        if h <= 0.0 {
             return Err(Error::StepBelowTimeResolution { t, h });
         }
+        crate::error::check_time_resolution(t, h)?;
         let step = self.steps_taken;
         let res = self.stepper.step(&mut self.state, h).and_then(|info| {
             if self.state.is_finite() {

@@ -342,6 +342,37 @@ pub fn check_step(h: f64) -> Result<()> {
     }
 }
 
+/// Checks that a step of size `h` from time `t` moves the time axis by h: Ok when t + h, as rounded,
+/// differs from t by h to 1 %,
+///
+/// ```text
+/// t + h ≠ t   and   |(t + h) − t − h| ≤ 0.01 |h|   (in floating point),
+/// ```
+///
+/// else [`Error::StepBelowTimeResolution`] (at t = 1e20 a step of 1e-3 does not move t at all; at
+/// t = 1e15 a step of 1e-3 moves it by 0 or 0.125). Every stepper of noether checks its step with
+/// it, and so does the [`Driver`](crate::Driver), so a method never integrates over one interval while
+/// the state's time records another. A NaN or zero `h` is [`Error::InvalidStep`], a non-finite `t`
+/// [`Error::NonFinite`] (so the order of the checks does not matter). `h` may be negative (a
+/// backward step); for h > 0 the test is the driver's `t + h <= t || (t + h).is_nan() ||
+/// (t + h - t - h).abs() > 0.01 * h`.
+#[inline]
+pub fn check_time_resolution(t: f64, h: f64) -> Result<()> {
+    if !h.is_finite() || h == 0.0 {
+        return Err(Error::InvalidStep { h });
+    }
+    if !t.is_finite() {
+        return Err(Error::NonFinite { what: "t", index: 0 });
+    }
+    let end = t + h;
+    // Written so that a NaN fails: both comparisons are false for NaN.
+    if end != t && (end - t - h).abs() <= 0.01 * h.abs() {
+        Ok(())
+    } else {
+        Err(Error::StepBelowTimeResolution { t, h })
+    }
+}
+
 /// Checks that a setting (a tolerance, a scale) is finite and positive; returns it.
 pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {

@@ -65,7 +65,14 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
     fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
         self.problem.jacobian(x, &mut self.jac)?;
         self.lu = None;
-        let lu = DenseFactor::lu(self.jac.clone()).map_err(|e| e.in_matrix("Newton Jacobian"))?;
+        let lu = DenseFactor::lu(self.jac.clone()).map_err(|e| match e {
+            // A NaN or infinite entry: the model's non-finite result, as for the residual.
+            crate::linalg::FactorError::NonFinite => Error::NonFiniteResult {
+                what: "Newton Jacobian",
+                t: f64::NAN,
+            },
+            e => e.in_matrix("Newton Jacobian"),
+        })?;
         self.lu = Some(lu);
         Ok(())
     }
@@ -100,8 +107,12 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// same sign step after step (measured: the variational midpoint's angular momentum on Kepler drifted
 /// 1.6e-12 in 10⁵ steps, against 3.3e-14 without it).
 ///
-/// The solve fails ([`Error::NewtonDiverged`]) only when the residual becomes non-finite or the cap
-/// `max_iterations` is reached.
+/// The solve fails with [`Error::NewtonDiverged`] (iterations, last finite residual) only when the cap
+/// `max_iterations` is reached, and with [`Error::NonFiniteResult`] (`what` = "Newton residual", t =
+/// NaN) when the residual is NaN or infinite at the guess, or stays so after a correction halved 40
+/// times toward the last iterate (a model evaluated outside its domain, e.g. √q at q < 0: the error
+/// contract's non-finite result, not a divergence). [`Dense`] reports a NaN or infinite Jacobian
+/// entry the same way (`what` = "Newton Jacobian").
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Newton {
@@ -204,7 +215,7 @@ impl Newton {
         sys.residual(x, &mut r)?;
         let mut rnorm = max_norm(&r);
         if !rnorm.is_finite() {
-            return Err(self.diverged(0, rnorm));
+            return Err(non_finite_residual());
         }
         if rnorm == 0.0 {
             // Exactly on the root: every correction would be exactly zero.
@@ -246,7 +257,7 @@ impl Newton {
                 new_norm = max_norm(&r);
             }
             if !new_norm.is_finite() {
-                return Err(self.diverged(info.iterations, new_norm));
+                return Err(non_finite_residual());
             }
             // Keep the factor only while it contracts the residual well.
             keep = new_norm <= self.contraction * rnorm;
@@ -271,11 +282,23 @@ impl Newton {
     }
 
     fn diverged(&self, iterations: usize, residual: f64) -> Error {
+        debug_assert!(residual.is_finite());
         Error::NewtonDiverged {
             iterations,
             residual,
             tolerance: self.tol_residual,
         }
+    }
+}
+
+/// The error of a residual that is NaN or infinite (at the guess, or after a correction halved 40
+/// times back toward the last iterate): the model left its domain, which is not a divergence of
+/// Newton's method. `t` is NaN here; a caller that knows the time sets it with
+/// [`Error::at_time`].
+fn non_finite_residual() -> Error {
+    Error::NonFiniteResult {
+        what: "Newton residual",
+        t: f64::NAN,
     }
 }
 

@@ -54,7 +54,12 @@ impl StepInfo {
 /// A one-step method.
 ///
 /// Contract: `step` advances `state` (time included) by one step of (proposed) size `h > 0`; on
-/// error the state is left exactly as it was. The other methods let the [`Driver`](crate::Driver)
+/// error the state is left exactly as it was. A step that the time axis cannot resolve at `state.t`
+/// (t + h not t + h to 1 %, [`check_time_resolution`](crate::error::check_time_resolution)) is
+/// refused with [`Error::StepBelowTimeResolution`](crate::Error::StepBelowTimeResolution): every
+/// stepper of noether checks it at its entry, so its direct callers (a [`Driver`](crate::Driver),
+/// [`tangent::run_jacobian`](crate::tangent::run_jacobian), Lyapunov spectra, shooting) all get it.
+/// A stepper written outside noether should call the same function. The other methods let the [`Driver`](crate::Driver)
 /// choose step sizes and interpolate between steps; their defaults describe a fixed-step method
 /// without a continuous extension or a vector field.
 pub trait Stepper {

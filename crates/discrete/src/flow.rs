@@ -2,7 +2,7 @@
 //! as a [`DiscreteFlow`]; every flow is also a core [`Stepper`](noether_core::Stepper) on a
 //! `State<Momenta>` (q, p).
 
-use noether_core::error::{check_phase_point, check_step};
+use noether_core::error::{check_phase_point, check_step, check_time_resolution};
 use noether_core::{Error, Momenta, Result, State, StepInfo};
 
 /// A discrete flow (q, p) ↦ (q', p') over a step h, the discrete Hamiltonian map of a discrete Lagrangian.
@@ -61,6 +61,7 @@ pub(crate) fn step_state<F: DiscreteFlow + ?Sized>(
 ) -> Result<StepInfo> {
     check_step(h)?;
     state.validate(flow.dof())?;
+    check_time_resolution(state.t, h)?;
     let t = state.t;
     let iterations = flow.flow(t, h, state.q.as_mut_slice(), state.v.as_mut_slice())?;
     state.t = t + h;

@@ -279,7 +279,7 @@ impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
             hxy: DMatrix::zeros(n, n * s),
         };
         let mut sys = Dense::new(problem);
-        let info = newton.solve(&mut sys, &mut y)?;
+        let info = newton.solve(&mut sys, &mut y).map_err(|e| e.at_time(t))?;
         // The last residual was evaluated at the solution: ∂S/∂q^s is the new momentum.
         let p1 = sys.problem.gy[(s - 1) * n..].to_vec();
         let q1 = &y[(s - 1) * n..];

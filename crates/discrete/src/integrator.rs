@@ -310,7 +310,7 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
             fp: &mut self.fp,
         };
         let newton = effective_newton(&self.newton, p);
-        let info = newton.solve(&mut sys, &mut self.d)?;
+        let info = newton.solve(&mut sys, &mut self.d).map_err(|e| e.at_time(t))?;
         if info.iterations > 0 {
             self.factor_h = h;
         }

@@ -238,7 +238,9 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
         };
         // A factor of the last step's Jacobian (same h) is reused while it contracts the residual.
         let factored = *system.factor_h == h;
-        let info = newton.solve_reusing(&mut system, &mut self.d, factored)?;
+        let info = newton
+            .solve_reusing(&mut system, &mut self.d, factored)
+            .map_err(|e| e.at_time(t))?;
         if info.iterations == 0 {
             let factored = *system.factor_h == h;
             correct_once(&mut system, &mut self.d, factored)?;

@@ -126,6 +126,7 @@ pub(crate) fn step_state_tangent<F: DiscreteTangentFlow + ?Sized>(
 ) -> Result<StepInfo> {
     noether_core::error::check_step(h)?;
     state.validate(flow.dof())?;
+    noether_core::error::check_time_resolution(state.t, h)?;
     check_shape(psi, flow.dof())?;
     let t = state.t;
     let iterations = flow.flow_tangent(t, h, state.q.as_mut_slice(), state.v.as_mut_slice(), psi)?;

@@ -161,6 +161,7 @@ impl<V: OrientationPotential> Stepper for Lgvi<V> {
     fn step(&mut self, state: &mut State<Momenta>, h: f64) -> noether_core::Result<StepInfo> {
         let q = self.body.orientation(state)?;
         let pi = self.body.body_momentum(state)?;
+        noether_core::error::check_time_resolution(state.t, h)?;
         let (q1, pi1, iterations) = self
             .advance(&q, &pi, h)
             .map_err(|e| noether_core::Error::from(e).at_time(state.t))?;

@@ -439,3 +439,92 @@ fn closed_form_adiabatic_invariant_of_a_ramped_oscillator() {
         assert!((ratio - 4.0).abs() < 0.5, "ratio {ratio}");
     }
 }
+
+/// Issue 29 item 13c: the oscillator H = ½(p² + q²) at E = 1e300 has its turning points at
+/// ±√(2E) = ±1.41e150; the outward search stopped after 128 steps at q = 1.8e18 with
+/// `NoTurningPoint`. It now doubles its step to the end of the f64 range. J = E/ω, ω = 1.
+#[test]
+fn regress_libration_huge_energy_finds_the_turning_points() {
+    let aa = ActionAngle::new(Oscillator { m: 1.0, w: 1.0 }).unwrap();
+    let e = 1e300;
+    let lib = aa.libration(e, 0.0).unwrap();
+    let q_turn = (2.0 * e).sqrt();
+    assert!(rel(lib.q_max, q_turn) < 1e-14, "{lib:?}");
+    assert!(rel(lib.q_min, -q_turn) < 1e-14, "{lib:?}");
+    assert!(rel(lib.action, e) < 1e-13, "{lib:?}");
+    assert!(rel(lib.frequency, 1.0) < 1e-13, "{lib:?}");
+}
+
+/// Issue 29 item 13a/c: `Libration::angle` returned NaN silently for a NaN q, and
+/// `ActionAngle::angle` at a NaN point reported `NewtonDiverged { iterations: 0, residual: NaN }`;
+/// both are `NonFinite` now.
+#[test]
+fn regress_angle_nan_is_non_finite_input() {
+    let aa = ActionAngle::new(Oscillator { m: 1.0, w: 1.0 }).unwrap();
+    let lib = aa.libration(0.5, 0.0).unwrap();
+    for q in [f64::NAN, f64::INFINITY] {
+        assert!(
+            matches!(
+                lib.angle(q, true),
+                Err(Error::Core(noether_core::Error::NonFinite { .. }))
+            ),
+            "{q}"
+        );
+        assert!(matches!(
+            lib.time_upper(q),
+            Err(Error::Core(noether_core::Error::NonFinite { .. }))
+        ));
+        assert!(matches!(
+            aa.angle(&lib, q, 0.1),
+            Err(Error::Core(noether_core::Error::NonFinite { .. }))
+        ));
+        assert!(matches!(
+            aa.angle(&lib, 0.1, q),
+            Err(Error::Core(noether_core::Error::NonFinite { .. }))
+        ));
+    }
+    // A model that is NaN where asked: the Newton of p* reports a non-finite result, not a divergence.
+    struct Sqrt;
+    impl Hamiltonian for Sqrt {
+        fn dof(&self) -> usize {
+            1
+        }
+        fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+            p[0] * p[0] * 0.5 + q[0].sqrt()
+        }
+    }
+    let e = ActionAngle::new(Sqrt)
+        .unwrap()
+        .momentum_minimum(-1.0, 0.0)
+        .unwrap_err();
+    assert!(
+        matches!(e, Error::Core(noether_core::Error::NonFiniteResult { .. })),
+        "{e:?}"
+    );
+}
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// `Libration::angle`, `time_upper` and `time_lower` of one orbit at any f64 q (NaN, ±∞,
+        /// huge, subnormal): a finite value or `NonFinite`, never NaN.
+        #[test]
+        fn libration_angle_never_nan(bits in any::<u64>(), upper in any::<bool>()) {
+            let q = f64::from_bits(bits);
+            let lib = ActionAngle::new(Oscillator { m: 1.0, w: 1.0 }).unwrap().libration(0.5, 0.0).unwrap();
+            match lib.angle(q, upper) {
+                Ok(theta) => prop_assert!(q.is_finite() && (0.0..2.0 * PI).contains(&theta)),
+                Err(e) => {
+                    let non_finite = matches!(e, Error::Core(noether_core::Error::NonFinite { .. }));
+                    prop_assert!(!q.is_finite() && non_finite, "{e:?}");
+                }
+            }
+            prop_assert_eq!(lib.time_upper(q).is_ok(), q.is_finite());
+            prop_assert_eq!(lib.time_lower(q).is_ok(), q.is_finite());
+        }
+    }
+}

@@ -8,3 +8,4 @@ mod impulse;
 mod models;
 mod nonholonomic;
 mod rattle;
+mod time_resolution;

@@ -29,8 +29,8 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{DefaultAllocator, Dim, OVector};
 use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
-    impl_comparisons, impl_derivatives, impl_dual_struct, impl_first_derivatives, impl_float_const,
-    impl_from_f, impl_from_primitive, impl_inv, impl_iterator, impl_num, impl_signed, impl_zero_one,
+    impl_comparisons, impl_dual_struct, impl_float_const, impl_from_f, impl_from_primitive, impl_inv,
+    impl_iterator, impl_num, impl_signed, impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -297,7 +297,7 @@ where
     }
 }
 
-impl_first_derivatives!(GradJet, [eps], [D], [D]);
+crate::ad::derivatives::jet_derivatives!(first, 1, GradJet, [eps], [D], [D]);
 impl_from_f!(GradJet, [eps], [D], [D]);
 impl_zero_one!(GradJet, [D], [D]);
 

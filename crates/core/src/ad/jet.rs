@@ -23,9 +23,8 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{DefaultAllocator, Dim, U1};
 use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
-    impl_assign_ops, impl_comparisons, impl_derivatives, impl_dual_struct, impl_float_const, impl_from_f,
-    impl_from_primitive, impl_inv, impl_iterator, impl_neg, impl_num, impl_second_derivatives, impl_signed,
-    impl_zero_one,
+    impl_assign_ops, impl_comparisons, impl_dual_struct, impl_float_const, impl_from_f, impl_from_primitive,
+    impl_inv, impl_iterator, impl_neg, impl_num, impl_signed, impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -354,7 +353,15 @@ where
     }
 }
 
-impl_second_derivatives!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
+crate::ad::derivatives::jet_derivatives!(
+    second,
+    2,
+    LagrangeJet,
+    [gx, gs, gw, hsw, hww],
+    [D],
+    [U1, D],
+    [D, D]
+);
 impl_from_f!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);
 impl_zero_one!(LagrangeJet, [D], [U1, D], [D, D]);
 impl_neg!(LagrangeJet, [gx, gs, gw, hsw, hww], [D], [U1, D], [D, D]);

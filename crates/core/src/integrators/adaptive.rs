@@ -32,7 +32,7 @@
 //! three more evaluations of the vector field per step on it).
 
 use crate::dense::DenseEval;
-use crate::error::check_step;
+use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Dynamics, Error, Result, State, StepInfo, Stepper};
 
 /// The coefficients and formulas of an embedded pair with dense output.
@@ -411,7 +411,9 @@ pub(super) fn check_tolerances(atol: f64, rtol: f64, h_min: f64) -> Result<()> {
 /// (`last_err` is the error estimate of the last rejected trial).
 #[inline]
 pub(super) fn check_underflow(t: f64, h: f64, h_min: f64, last_err: f64) -> Result<()> {
-    if h < h_min || h <= 10.0 * f64::EPSILON * t.abs() {
+    // A trial step that t + h cannot resolve to 1 % (crate::error::check_time_resolution) is an
+    // underflow too: the state's time would record another interval than the one integrated.
+    if h < h_min || h <= 10.0 * f64::EPSILON * t.abs() || check_time_resolution(t, h).is_err() {
         return Err(Error::StepSizeUnderflow {
             t,
             h,
@@ -760,6 +762,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.n)?;
+        check_time_resolution(state.t, h)?;
         self.system
             .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
         let evaluations = self.evaluations;

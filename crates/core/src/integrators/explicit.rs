@@ -2,7 +2,7 @@
 //!
 //! All three step any [`Dynamics`] on (q, v), v = q̇ or p, and leave the state untouched on error.
 
-use crate::error::check_step;
+use crate::error::{check_step, check_time_resolution};
 use crate::integrators::LinearizedDynamics;
 use crate::tangent::{check_tangent_shape, explicit_rk_tangent, step_then_tangent};
 use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper, TangentStepper};
@@ -120,6 +120,7 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.system.dof())?;
+        check_time_resolution(state.t, h)?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
         self.system.admissible(t, q, v)?;
         let y = &mut self.y;
@@ -188,6 +189,7 @@ impl<S: Dynamics> Stepper for Rk4<S> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.system.dof())?;
+        check_time_resolution(state.t, h)?;
         let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
         self.system.admissible(t, q, v)?;
         let (sys, y) = (&self.system, &mut self.y);

@@ -10,9 +10,15 @@
 //! with dᵀ = bᵀA⁻¹ (no extra evaluation of F), by the core [`Newton`] solver on the s·2n unknowns with
 //! the exact Jacobian δ_ij I − h a_ij J(Y_j), J = ∂F/∂y from [`LinearizedDynamics`] (for a Hamiltonian:
 //! J = Ω ∇²H with the Hessian by dual numbers). The LU factor is reused across iterations while the
-//! residual contracts well (modified Newton). The starting guess extrapolates the collocation
-//! polynomial of the previous step (Hairer-Lubich-Wanner VIII.6.1) when the step continues from where
-//! the last one ended, and is Z_i = c_i h F(y₀) otherwise. The tolerances of the solver are relative:
+//! residual contracts well (modified Newton). By default the starting guess extrapolates the
+//! collocation polynomial of the previous step (Hairer-Lubich-Wanner VIII.6.1) when the step continues
+//! from where the last one ended, and a failed solve from that guess is retried once from the cold
+//! guess Z_i = c_i h F(t, y₀) before the step fails (the extrapolation can land outside Newton's basin
+//! at large steps where the cold guess does not: pendulum at h = 0.4–0.8, issue 29). With
+//! [`Gauss::warm_start`]`(false)` every solve starts from the cold guess, a function of the step
+//! (t, y₀, h) alone: a stepper continuing a run and a fresh one from the same state then agree to the
+//! last bit, so a run restarted from a saved state continues bit for bit (Newton's converged iterate
+//! depends on its start in the last bits). The tolerances of the solver are relative:
 //! ‖residual‖∞ ≤ tol_residual · (1 + ‖y₀‖∞), and the step tolerance likewise; by default both are
 //! 1e-15, a solve to rounding (Newton's round-off-aware stopping rule ends it when the increments stop
 //! decreasing), so that quadratic invariants are kept to rounding at every step size.
@@ -32,7 +38,7 @@
 //!   VI.4 (symplecticity), VIII.6 (implementation).
 //! - E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, IV.8 (stage values as unknowns).
 
-use crate::error::check_step;
+use crate::error::{check_step, check_time_resolution};
 use crate::natural::{Natural, Potential, PotentialField};
 use crate::newton::{max_norm, Dense, DenseProblem, Newton};
 use crate::{
@@ -153,6 +159,7 @@ pub struct Gauss<S> {
     c: Vec<f64>,
     d: Vec<f64>,
     newton: Newton,
+    warm: bool,
     last: Option<LastStep>,
 }
 
@@ -204,6 +211,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
             c,
             d,
             newton: default_newton(),
+            warm: true,
             last: None,
         })
     }
@@ -227,14 +235,27 @@ impl<S: LinearizedDynamics> Gauss<S> {
         self
     }
 
+    /// Starts each Newton solve from the extrapolated collocation polynomial of the last step when
+    /// the step continues it (`true`), or always from the cold guess Z_i = c_i h F(t, y₀) (`false`:
+    /// results independent of the history, bit for bit); the default is `true`. See the
+    /// [module](self) docs.
+    pub fn warm_start(mut self, on: bool) -> Self {
+        self.warm = on;
+        self
+    }
+
     /// The system stepped.
     pub fn system(&self) -> &S {
         &self.system
     }
 
-    /// Starting guess for Z at step (t, y0, h).
-    fn guess(&self, t: f64, y0: &[f64], h: f64, z: &mut [f64]) -> Result<()> {
+    /// The extrapolated starting guess for Z at step (t, y0, h) from the last step, when warm starts
+    /// are on and the step continues the last one: `true` when `z` holds it.
+    fn warm_guess(&self, t: f64, y0: &[f64], h: f64, z: &mut [f64]) -> bool {
         let (s, m) = (self.s, y0.len());
+        if !self.warm {
+            return false;
+        }
         if let Some(last) = self.last.as_ref().filter(|l| l.t_end == t && l.y_end == y0) {
             // u(τ) through (0, y_start), (c_j, Y_j); Z_i = u(1 + c_i h/h_old) − y₀.
             let mut nodes = vec![0.0];
@@ -258,10 +279,14 @@ impl<S: LinearizedDynamics> Gauss<S> {
                     zi.iter_mut().zip(vals).for_each(|(z, v)| *z += w * v);
                 }
             }
-            if z.iter().all(|x| x.is_finite()) {
-                return Ok(());
-            }
+            return z.iter().all(|x| x.is_finite());
         }
+        false
+    }
+
+    /// The cold starting guess Z_i = c_i h F(t, y₀): a function of the step alone.
+    fn cold_guess(&self, t: f64, y0: &[f64], h: f64, z: &mut [f64]) -> Result<()> {
+        let (s, m) = (self.s, y0.len());
         let n = m / 2;
         let mut f = vec![0.0; m];
         let (fq, fv) = f.split_at_mut(n);
@@ -371,25 +396,41 @@ impl<S: LinearizedDynamics> Gauss<S> {
         }
     }
 
-    /// Solves the stage equations of one step from `state`: (y₀, converged Z, Newton iterations).
-    fn solve_stages(&self, state: &State<S::Partner>, h: f64) -> Result<(Vec<f64>, Vec<f64>, usize)> {
+    /// Solves the stage equations of one step from `state`: (y₀, converged Z, Newton iterations,
+    /// failed solves). A solve from the warm guess that fails is retried from the cold guess.
+    fn solve_stages(&self, state: &State<S::Partner>, h: f64) -> Result<(Vec<f64>, Vec<f64>, usize, usize)> {
         check_step(h)?;
         let n = self.system.dof();
         state.validate(n)?;
+        check_time_resolution(state.t, h)?;
         let (s, m, t) = (self.s, 2 * n, state.t);
         let mut y0 = Vec::with_capacity(m);
         y0.extend_from_slice(state.q.as_slice());
         y0.extend_from_slice(state.v.as_slice());
         let mut z = vec![0.0; s * m];
-        self.guess(t, &y0, h, &mut z)?;
         // Both tolerances relative to 1 + ‖y₀‖∞ (Z is an increment of y₀).
         let mut newton = self.newton;
         let scale = 1.0 + max_norm(&y0);
         newton.tol_residual *= scale;
         newton.tol_step *= scale;
         let mut sys = Dense::new(self.stage_problem(t, h, &y0));
+        let (mut iterations, mut failures) = (0, 0);
+        if self.warm_guess(t, &y0, h, &mut z) {
+            match newton.solve(&mut sys, &mut z) {
+                Ok(info) => return Ok((y0, z, info.iterations, 0)),
+                // Whatever went wrong from the extrapolated guess (no convergence, a singular
+                // Jacobian or a non-finite residual on the way), the cold guess decides.
+                Err(e) => {
+                    failures = 1;
+                    if let Error::NewtonDiverged { iterations: k, .. } = e {
+                        iterations = k;
+                    }
+                }
+            }
+        }
+        self.cold_guess(t, &y0, h, &mut z)?;
         let info = newton.solve(&mut sys, &mut z).map_err(|e| e.at_time(t))?;
-        Ok((y0, z, info.iterations))
+        Ok((y0, z, iterations + info.iterations, failures))
     }
 
     /// y₁ = y₀ + Σ d_i Z_i, checked finite.
@@ -416,25 +457,27 @@ impl<S: LinearizedDynamics> Gauss<S> {
         state: &mut State<S::Partner>,
         h: f64,
         (y0, y1, z): (Vec<f64>, Vec<f64>, &[f64]),
-        iterations: usize,
+        (iterations, failures): (usize, usize),
     ) -> StepInfo {
         let (s, m) = (self.s, y0.len());
         let n = m / 2;
         state.q.as_mut_slice().copy_from_slice(&y1[..n]);
         state.v.as_mut_slice().copy_from_slice(&y1[n..]);
         state.t += h;
-        let stages = (0..s * m).map(|k| y0[k % m] + z[k]).collect();
-        self.last = Some(LastStep {
-            t_end: state.t,
-            h,
-            y_start: y0,
-            y_end: y1,
-            stages,
-        });
+        if self.warm {
+            let stages = (0..s * m).map(|k| y0[k % m] + z[k]).collect();
+            self.last = Some(LastStep {
+                t_end: state.t,
+                h,
+                y_start: y0,
+                y_end: y1,
+                stages,
+            });
+        }
         // One vector field per stage and residual (the start guess costs one more on a fresh start).
         StepInfo::fixed(h)
-            .with_evaluations(s * (iterations + 1))
-            .with_newton(iterations, 0)
+            .with_evaluations(s * (iterations + 1 + failures))
+            .with_newton(iterations, failures)
     }
 
     /// Ψ of the step (t, y₀, h) with converged stage increments `z`, by the implicit-function theorem
@@ -467,9 +510,9 @@ impl<S: LinearizedDynamics> Gauss<S> {
 impl<S: LinearizedDynamics> Stepper for Gauss<S> {
     type Partner = S::Partner;
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
-        let (y0, z, iterations) = self.solve_stages(state, h)?;
+        let (y0, z, iterations, failures) = self.solve_stages(state, h)?;
         let y1 = self.new_state(state.t, &y0, &z)?;
-        Ok(self.commit(state, h, (y0, y1, &z), iterations))
+        Ok(self.commit(state, h, (y0, y1, &z), (iterations, failures)))
     }
     fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
         Some(
@@ -512,10 +555,10 @@ impl<S: LinearizedDynamics> crate::TangentStepper for Gauss<S> {
         psi: &mut DMatrix<f64>,
     ) -> Result<StepInfo> {
         crate::tangent::check_tangent_shape(psi, self.system.dof())?;
-        let (y0, z, iterations) = self.solve_stages(state, h)?;
+        let (y0, z, iterations, failures) = self.solve_stages(state, h)?;
         let y1 = self.new_state(state.t, &y0, &z)?;
         let out = self.stage_tangent(state.t, h, &y0, &z)?;
         psi.copy_from(&out);
-        Ok(self.commit(state, h, (y0, y1, &z), iterations))
+        Ok(self.commit(state, h, (y0, y1, &z), (iterations, failures)))
     }
 }

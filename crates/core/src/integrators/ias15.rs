@@ -77,7 +77,7 @@
 
 use super::SplitDynamics;
 use crate::dense::DenseEval;
-use crate::error::check_step;
+use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 
 /// Gauss-Radau nodes h₀ = 0 < h₁ < … < h₇ of [0, 1].
@@ -860,6 +860,7 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.n)?;
+        check_time_resolution(state.t, h)?;
         let t = state.t;
         let (q, v) = (state.q.as_slice(), state.v.as_slice());
         self.system.admissible(t, q, v)?;

@@ -65,7 +65,7 @@ use super::adaptive::{
     initial_step_size, settings_methods, stage_sum, Controller, Settings, StageArgument, Stages,
 };
 use super::SplitDynamics;
-use crate::error::check_step;
+use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 
 /// The coefficients of an embedded Runge-Kutta-Nyström pair for q̈ = f(q) (see the [module](self)
@@ -493,6 +493,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         state.validate(self.n)?;
+        check_time_resolution(state.t, h)?;
         self.system
             .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
         let n = self.n;

@@ -32,7 +32,7 @@
 
 use crate::ad::{self, Block, Field};
 use crate::dynamics::{rate_by_slices, rates_by_slices};
-use crate::error::{check_finite, check_len, check_result, check_step, finite_result};
+use crate::error::{check_finite, check_len, check_result, check_step, check_time_resolution, finite_result};
 use crate::integrators::LinearizedDynamics;
 use crate::natural::{Natural, Potential};
 use crate::tangent::{check_tangent_shape, step_then_tangent};
@@ -342,6 +342,7 @@ impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         check_state(state, self.system.dof())?;
+        check_time_resolution(state.t, h)?;
         let t = state.t;
         let w = &mut self.work;
         w.q.copy_from_slice(state.q.as_slice());
@@ -593,6 +594,7 @@ impl<S: SplitDynamics> Stepper for Composition<S> {
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
         check_step(h)?;
         check_state(state, self.system.dof())?;
+        check_time_resolution(state.t, h)?;
         let t = state.t;
         self.work.q.copy_from_slice(state.q.as_slice());
         self.work.v.copy_from_slice(state.v.as_slice());

@@ -316,4 +316,84 @@ fn regress_solve_mass_wrong_length() {
     // M = diag(1, 2).
     cm.solve_mass(0.0, &q, &v, &mut b).unwrap();
     assert!((b[0] - 1.0).abs() < 1e-15 && (b[1] - 0.5).abs() < 1e-15, "{b:?}");
+/// L = ½q̇² − c·q^k (and − c·|q|^k, the error contract's advice), for the issue-29 powers.
+struct Power {
+    k: f64,
+    abs: bool,
+}
+impl Lagrangian for Power {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let base = if self.abs { q[0].abs() } else { q[0] };
+        v[0] * v[0] * 0.5 - base.powf(self.k)
+    }
+}
+impl Hamiltonian for Power {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+        let base = if self.abs { q[0].abs() } else { q[0] };
+        p[0] * p[0] * 0.5 + base.powf(self.k)
+    }
+}
+impl noether_core::Potential for Power {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        let base = if self.abs { q[0].abs() } else { q[0] };
+        base.powf(self.k)
+    }
+}
+
+/// Issue 29 item 13b: num-dual's `powf` forms xⁿ as x^(n−3)·x³, ∞·0 = NaN at x = 0 even for the
+/// value, so the energy of ½v² − q^0.5 or ½v² − q^1.5 at q = 0 was refused (`NonFiniteResult`), and
+/// the accelerations of ½v² − q^1.5 (and of the contract's own |q|^1.5) too although V′(0) = 0.
+/// noether's jets now take each power by itself at 0: the energy is ½v², the force of q^1.5 is 0
+/// (closed form), and only the genuinely infinite force of q^0.5 is refused.
+#[test]
+fn regress_powf_at_zero_energy_and_forces() {
+    let (q, v) = ([0.0], [0.6]);
+    for k in [0.5, 1.5, 2.5] {
+        for abs in [false, true] {
+            let el = EulerLagrange::new(Power { k, abs });
+            assert_eq!(el.energy(0.0, &q, &v).unwrap(), 0.18, "k = {k}, abs = {abs}");
+            let ham = HamiltonEquations::new(Power { k, abs });
+            assert_eq!(ham.energy(0.0, &q, &v).unwrap(), 0.18, "k = {k}, abs = {abs}");
+            let nat = noether_core::Natural::unit(Power { k, abs });
+            assert_eq!(nat.energy(&q, &v).unwrap(), 0.18, "k = {k}, abs = {abs}");
+            let mut a = [f64::NAN];
+            let acc = el.accelerations(0.0, &q, &v, &mut a);
+            let (mut dq, mut dp) = ([f64::NAN], [f64::NAN]);
+            let rates = ham.rates(0.0, &q, &v, &mut dq, &mut dp);
+            let mut f = [f64::NAN];
+            let forces = nat.forces(&q, &mut f);
+            if k > 1.0 {
+                // V′(0) = k·0^(k−1) = 0.
+                acc.unwrap();
+                rates.unwrap();
+                forces.unwrap();
+                assert_eq!(
+                    (a[0], dq[0], dp[0], f[0]),
+                    (0.0, 0.6, 0.0, 0.0),
+                    "k = {k}, abs = {abs}"
+                );
+            } else {
+                // V′(0) = ½·0^(−½) = ∞: refused, not NaN.
+                for r in [acc, rates, forces] {
+                    assert!(matches!(r, Err(Error::NonFiniteResult { .. })), "k = {k}: {r:?}");
+                }
+            }
+        }
+    }
+    // Away from 0 the jets' powf is num-dual's to the bit: V′(q) = 1.5·q^0.5.
+    let el = EulerLagrange::new(Power { k: 1.5, abs: false });
+    let mut a = [0.0];
+    el.accelerations(0.0, &[0.3], &[0.0], &mut a).unwrap();
+    use num_dual::DualNum;
+    let d = num_dual::first_derivative(|x: num_dual::Dual64| x.powf(1.5), 0.3).1;
+    assert_eq!(a[0], -d);
 }

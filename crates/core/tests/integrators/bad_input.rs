@@ -429,3 +429,65 @@ fn bad_input_newton_nan_tolerance() {
     let (x, _) = solve_dense(&ok.contraction(0.5).unwrap(), Line, &[3.0]).unwrap();
     assert_eq!(x[0], 1.0);
 }
+
+/// Issue 29 item 7: a step that does not move t (t = 1e20, h = 1e-3: t + h == t) or moves it by not
+/// ~h (t = 1e15, h = 1e-3: t + h − t = 0 or 0.125) is refused by every bare stepper with
+/// `StepBelowTimeResolution`, the state unchanged; before, RK4 and the others returned Ok with t
+/// unchanged (or moved by 0.125 while integrating over 1e-3).
+#[test]
+fn regress_step_below_time_resolution_bare_steppers() {
+    fn check<K: Partner>(s: &mut dyn Stepper<Partner = K>) {
+        for (t, h) in [(1e20, 1e-3), (1e15, 1e-3), (-1e15, 1e-3)] {
+            let mut state = State::<K>::new(t, [1.0], [0.0]);
+            let before = state.clone();
+            let err = s.step(&mut state, h).unwrap_err();
+            assert_eq!(
+                err,
+                Error::StepBelowTimeResolution { t, h },
+                "{}: t = {t}",
+                s.name()
+            );
+            assert_eq!(state, before);
+        }
+        // A step the axis resolves is taken, at the same large t (above the adaptive methods' floor
+        // of 10 ulps of t, 2.2 here), from the equilibrium so that no error estimate shrinks it.
+        let mut state = State::<K>::new(1e15, [0.0], [0.0]);
+        s.step(&mut state, 100.0).unwrap();
+        assert_eq!(state.t, 1e15 + 100.0, "{}", s.name());
+    }
+    for_all_steppers!(|s| {
+        check(&mut *s);
+    });
+    check(&mut Ias15::new(Natural::unit(PendulumV)).unwrap());
+}
+
+/// The shared test itself (`noether_core::error::check_time_resolution`, used by every stepper and
+/// the driver): its boundary at 1 %, a negative step, and NaN or zero input.
+#[test]
+fn regress_check_time_resolution_boundaries() {
+    use noether_core::error::check_time_resolution as check;
+    assert!(check(0.0, 1e-300).is_ok());
+    assert!(check(1e15, 1.0).is_ok());
+    assert!(check(-1e15, -1.0).is_ok());
+    // ulp(1e15) = 0.125: a step of 12.55 is rounded by 0.05 = 0.4 %, a step of 0.3 by 0.05 = 17 %.
+    assert!(check(1e15, 12.55).is_ok());
+    assert!(matches!(
+        check(1e15, 0.3),
+        Err(Error::StepBelowTimeResolution { .. })
+    ));
+    assert!(matches!(
+        check(1e20, 1e-3),
+        Err(Error::StepBelowTimeResolution { .. })
+    ));
+    assert!(matches!(
+        check(1e20, -1e-3),
+        Err(Error::StepBelowTimeResolution { .. })
+    ));
+    assert!(matches!(check(0.0, f64::NAN), Err(Error::InvalidStep { .. })));
+    assert!(matches!(check(0.0, 0.0), Err(Error::InvalidStep { .. })));
+    assert!(matches!(
+        check(f64::NAN, 1.0),
+        Err(Error::NonFinite { what: "t", .. })
+    ));
+    assert!(matches!(check(f64::INFINITY, 1.0), Err(Error::NonFinite { .. })));
+}

@@ -225,3 +225,105 @@ fn regress_newton_corrects_a_guess_within_tolerance() {
     assert!(info.iterations >= 1, "{info:?}");
     assert!((x[0] - 2f64.sqrt()).abs() <= 2.3e-16, "{}", x[0] - 2f64.sqrt());
 }
+
+/// The three Gauss methods on the pendulum H = ½p² − cos q, with or without warm starts.
+fn pendulum_gauss(stages: usize, warm: bool) -> Gauss<HamiltonEquations<PendulumH>> {
+    Gauss::new(HamiltonEquations::new(PendulumH), stages)
+        .unwrap()
+        .warm_start(warm)
+}
+
+/// Issue 29 item 10: with warm starts (the extrapolated collocation polynomial of the last step),
+/// implicit midpoint and Gauss 4/6 failed with `NewtonDiverged` at residuals 1.6–140× the tolerance
+/// where a fresh stepper from the same state converged (pendulum, h = 0.4–0.8: 18–35 failures in 40
+/// starts × 200 steps). A failed warm solve is now retried from the cold guess: wherever a fresh
+/// stepper takes the step, the warm one takes it too.
+#[test]
+fn regress_gauss_warm_start_retries_from_the_cold_guess() {
+    for stages in 1..=3 {
+        for h in [0.4, 0.6, 0.8] {
+            let (mut retried, mut steps) = (0, 0);
+            for k in 1..=40 {
+                let mut warm = pendulum_gauss(stages, true);
+                let mut s = State::new(0.0, [0.075 * k as f64], [0.5]);
+                for _ in 0..200 {
+                    let mut fresh_state = s.clone();
+                    let fresh = pendulum_gauss(stages, false).step(&mut fresh_state, h);
+                    let before = s.clone();
+                    match warm.step(&mut s, h) {
+                        Ok(info) => retried += info.newton_failures,
+                        Err(e) => {
+                            assert!(fresh.is_err(), "{stages} stages, h = {h}: warm {e}, fresh Ok");
+                            assert_eq!(s, before);
+                            break;
+                        }
+                    }
+                    steps += 1;
+                }
+            }
+            eprintln!("{stages} stages, h = {h}: {steps} steps, {retried} retried from the cold guess");
+        }
+    }
+}
+
+/// Issue 29 item 10: with `warm_start(false)` the starting guess depends on the step alone, so a stepper that
+/// continues a run and a fresh stepper from the same state give the same new state to the last bit
+/// (a run restarted from a saved state continues bit for bit); Kepler e = 0.6 at T/100 and the
+/// pendulum at h = 0.5. With warm starts (the default) the guess extrapolates the last step and the
+/// two differ in the last bits.
+#[test]
+fn regress_gauss_continued_and_fresh_steppers_agree_bitwise() {
+    fn check<S: Stepper<Partner = Momenta>>(mk: impl Fn() -> S, start: State<Momenta>, h: f64) {
+        let mut run = mk();
+        let mut s = start;
+        for _ in 0..300 {
+            let mut restarted = s.clone();
+            mk().step(&mut restarted, h).unwrap();
+            run.step(&mut s, h).unwrap();
+            assert_eq!(s, restarted, "{}", run.name());
+        }
+    }
+    for stages in 1..=3 {
+        let sys = HamiltonEquations::new(KeplerH);
+        check(
+            || Gauss::new(&sys, stages).unwrap().warm_start(false),
+            kepler_start(0.6),
+            TAU / 100.0,
+        );
+        check(
+            || pendulum_gauss(stages, false),
+            State::new(0.0, [2.0], [0.0]),
+            0.5,
+        );
+    }
+}
+
+/// The cost of history-free starting guesses (run with --nocapture): Newton iterations per step,
+/// cold against warm, Kepler e = 0.6 over 10 orbits at T/100, T/1000 and the pendulum at h = 0.1.
+#[test]
+fn regress_gauss_iterations_cold_against_warm() {
+    fn iterations<S: Stepper<Partner = Momenta>>(mut st: S, mut s: State<Momenta>, h: f64, n: usize) -> f64 {
+        let mut total = 0;
+        for _ in 0..n {
+            total += st.step(&mut s, h).unwrap().newton_iterations;
+        }
+        total as f64 / n as f64
+    }
+    let sys = HamiltonEquations::new(KeplerH);
+    for stages in 1..=3 {
+        for div in [100, 1000] {
+            let h = TAU / div as f64;
+            let mk = |warm| Gauss::new(&sys, stages).unwrap().warm_start(warm);
+            let cold = iterations(mk(false), kepler_start(0.6), h, 10 * div);
+            let warm = iterations(mk(true), kepler_start(0.6), h, 10 * div);
+            eprintln!(
+                "Gauss {stages} stages, Kepler T/{div}: {cold:.2} iterations per step cold, {warm:.2} warm"
+            );
+            assert!(cold <= 2.0 * warm + 2.0);
+        }
+        let start = State::new(0.0, [2.0], [0.0]);
+        let cold = iterations(pendulum_gauss(stages, false), start.clone(), 0.1, 1000);
+        let warm = iterations(pendulum_gauss(stages, true), start, 0.1, 1000);
+        eprintln!("Gauss {stages} stages, pendulum h = 0.1: {cold:.2} cold, {warm:.2} warm");
+    }
+}

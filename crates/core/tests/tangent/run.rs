@@ -183,3 +183,20 @@ fn run_errors_are_typed_and_leave_state_and_tangents_unchanged() {
     assert_eq!(s, start);
     assert_eq!(w, DMatrix::from_element(2, 1, 1.0));
 }
+
+/// Issue 29 item 7: `run_jacobian` and `propagate` from t = 1e20 (t + h == t) are refused with
+/// `StepBelowTimeResolution`, state and tangent vectors unchanged; before, they returned Ok with t
+/// never moving.
+#[test]
+fn regress_run_jacobian_step_below_time_resolution() {
+    let mut rk4 = Rk4::new(HamiltonEquations::new(HenonHeiles));
+    let mut s = State::new(1e20, [0.0, 0.1], [0.3, 0.0]);
+    let before = s.clone();
+    let err = run_jacobian(&mut rk4, &mut s, 1e-3, 10).unwrap_err();
+    assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
+    assert_eq!(s, before);
+    let mut w = DMatrix::identity(4, 2);
+    let err = propagate(&mut rk4, &mut s, 1e-3, 10, &mut w).unwrap_err();
+    assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
+    assert_eq!((s, w), (before, DMatrix::identity(4, 2)));
+}

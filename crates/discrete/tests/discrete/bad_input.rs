@@ -120,3 +120,23 @@ impl noether_core::Lagrangian for Damped {
         out[0] = -v[0];
     }
 }
+
+/// Issue 29 item 7: a variational step that does not move t (t = 1e20, h = 1e-3) is refused with
+/// `StepBelowTimeResolution`, by the step and by the tangent step, the state unchanged; before, both
+/// returned Ok with t unchanged.
+#[test]
+fn regress_variational_step_below_time_resolution() {
+    use noether_core::TangentStepper;
+    let mut vi = VariationalIntegrator::new(Midpoint::new(Pendulum));
+    let mut s = State::new(1e20, [1.0], [0.0]);
+    let err = vi.step(&mut s, 1e-3).unwrap_err();
+    assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
+    let mut psi = nalgebra::DMatrix::zeros(2, 2);
+    let err = vi.step_tangent(&mut s, 1e-3, &mut psi).unwrap_err();
+    assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
+    assert_eq!(s, State::new(1e20, [1.0], [0.0]));
+    let mut g = Galerkin::order6(Pendulum).unwrap();
+    let err = g.step(&mut s, 1e-3).unwrap_err();
+    assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
+    assert_eq!(s, State::new(1e20, [1.0], [0.0]));
+}

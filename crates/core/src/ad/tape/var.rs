@@ -1,16 +1,17 @@
 //! The recording scalar of the [tape](super): a value and the handle of its node, with the
 //! number-type boilerplate of num-dual.
 //!
-//! The elementary functions come from num-dual's `impl_second_derivatives!` through
+//! The elementary functions come from num-dual's `impl_second_derivatives!` (with `powf` at 0 fixed,
+//! `ad/derivatives.rs`) through
 //! [`Taped::chain_rule`] (one recorded unary operation with φ', φ''); the four arithmetic operators
 //! record binary operations with their partials. Adding a constant keeps the node (d(a + c) = da), so
 //! offsets cost nothing on the tape.
 
 use super::{record, SINK};
-use num_dual::{chain_rule, first, impl_derivatives, second, third, zeroth};
+use num_dual::{chain_rule, first, second, third, zeroth};
 use num_dual::{
     impl_comparisons, impl_dual_struct, impl_float_const, impl_from_f, impl_from_primitive, impl_inv,
-    impl_iterator, impl_num, impl_second_derivatives, impl_signed, impl_zero_one,
+    impl_iterator, impl_num, impl_signed, impl_zero_one,
 };
 use num_dual::{DualNum, DualNumFloat, DualStruct};
 use num_traits::{Float, FloatConst, FromPrimitive, Inv, Num, One, Signed, Zero};
@@ -309,7 +310,7 @@ impl<T: DualNum<F>, F: fmt::Display> fmt::Display for Taped<T, F> {
     }
 }
 
-impl_second_derivatives!(Taped, [arg]);
+crate::ad::derivatives::jet_derivatives!(second, 2, Taped, [arg]);
 impl_from_f!(Taped, [arg]);
 impl_zero_one!(Taped);
 impl_inv!(Taped);
