@@ -7,7 +7,7 @@ use noether_rigid::{Lgvi, RigidBody};
 /// (before: Ok with t unchanged).
 #[test]
 fn regress_lgvi_step_below_time_resolution() {
-    let mut lgvi = Lgvi::new(RigidBody::free(1.0, 2.0, 3.0).unwrap());
+    let mut lgvi = Lgvi::new(RigidBody::free(1.0, 2.0, 3.0).unwrap()).unwrap();
     let mut s: State<Momenta> = State::new(1e20, [1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.5, 0.0]);
     let before = s.clone();
     let err = lgvi.step(&mut s, 1e-3).unwrap_err();

@@ -316,6 +316,8 @@ fn regress_solve_mass_wrong_length() {
     // M = diag(1, 2).
     cm.solve_mass(0.0, &q, &v, &mut b).unwrap();
     assert!((b[0] - 1.0).abs() < 1e-15 && (b[1] - 0.5).abs() < 1e-15, "{b:?}");
+}
+
 /// L = ½q̇² − c·q^k (and − c·|q|^k, the error contract's advice), for the issue-29 powers.
 struct Power {
     k: f64,
