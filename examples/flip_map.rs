@@ -105,14 +105,14 @@ pub fn run_grid(n: usize, t_end: f64, opts: &Options) -> Result<Report, BoxError
     let mut worst_mirror = 0.0_f64;
     let mut pairs = 0usize;
     for (i, &(flip, de)) in out.iter().enumerate() {
-        let p = grid.member(i);
+        let p = grid.member(i)?;
         worst_energy = worst_energy.max(de);
         flipped += usize::from(flip.is_some());
         if no_flip_region(p[0], p[1]) {
             inside += 1;
             inside_flipped += usize::from(flip.is_some());
         }
-        let m = grid.multi_index(i);
+        let m = grid.multi_index(i)?;
         let mirror = grid
             .index_of(&[n - 1 - m[0], n - 1 - m[1]])
             .ok_or("mirror outside the grid")?;

@@ -17,7 +17,9 @@
 //!
 //! **Solving for q̇_c inside generic code** is done as [`LegendreTransform`](noether_core::LegendreTransform)
 //! does for q̇(p): the real velocities u₀ = q̇_c by core's [`Newton`] on
-//! ∂L/∂q̇_c − β = 0 (warm-started from the last solve), with the mass block M_cc = ∂²L/∂q̇_c² by
+//! ∂L/∂q̇_c − β = 0 (from u = 0 at every call, so that L_R is a function of its arguments alone, to the
+//! last bit, whatever was evaluated before and on whichever thread: a `Routh` shared by the members of
+//! an ensemble gives the same bits as one per member), with the mass block M_cc = ∂²L/∂q̇_c² by
 //! dual numbers; then, in the caller's scalar D, k = ⌊D::NDERIV/2⌋ chord steps
 //! u ← u − M_cc(u₀)⁻¹ (∂L/∂q̇_c(u) − β), ∂L/∂q̇_c in D by nested duals `Dual<D, f64>` (a `Dual<D, f64>`
 //! is itself a `DualNum<f64> + Copy`, so core's [`Scalar`] covers it). Each step makes u exact to one
@@ -56,7 +58,6 @@ use nalgebra::DMatrix;
 use noether_core::newton::{solve_dense, DenseProblem, Newton};
 use noether_core::{EulerLagrange, Lagrangian, Partner, Scalar, Solution};
 use num_dual::Dual;
-use std::sync::Mutex;
 
 /// The reduced Lagrangian L_R = −R of a Lagrangian with cyclic coordinates at given conserved momenta
 /// (see the module docs).
@@ -65,7 +66,6 @@ pub struct Routh<L> {
     cyclic: Vec<usize>,
     rest: Vec<usize>,
     momenta: Vec<f64>,
-    warm: Mutex<Vec<f64>>,
 }
 
 impl<L: Lagrangian + std::fmt::Debug> std::fmt::Debug for Routh<L> {
@@ -121,7 +121,6 @@ impl<L: Lagrangian> Routh<L> {
             cyclic: cyclic.to_vec(),
             rest,
             momenta: momenta.to_vec(),
-            warm: Mutex::new(Vec::new()),
         })
     }
 
@@ -204,17 +203,13 @@ impl<L: Lagrangian> Routh<L> {
         (q, v)
     }
 
-    /// The real solve: u = q̇_c and M_cc(u)⁻¹.
+    /// The real solve: u = q̇_c and M_cc(u)⁻¹, Newton from u = 0 (the same start at every call: the
+    /// result depends on (t, r, ṙ) alone).
     fn solve(&self, t: f64, r: &[f64], dr: &[f64]) -> Result<(Vec<f64>, DMatrix<f64>)> {
         let m = self.cyclic.len();
         noether_core::error::check_len("reduced coordinates", r, self.rest.len())?;
         noether_core::error::check_len("reduced velocities", dr, self.rest.len())?;
-        let start = self
-            .warm
-            .try_lock()
-            .ok()
-            .and_then(|w| (w.len() == m).then(|| w.clone()))
-            .unwrap_or_else(|| vec![0.0; m]);
+        let start = vec![0.0; m];
         let problem = CyclicMomenta {
             routh: self,
             t,
@@ -230,9 +225,6 @@ impl<L: Lagrangian> Routh<L> {
             what: "cyclic mass block ∂²L/∂q̇_c²",
             pivot_ratio: f64::NAN,
         })?;
-        if let Ok(mut w) = self.warm.try_lock() {
-            w.clone_from(&u);
-        }
         Ok((u, inverse))
     }
 

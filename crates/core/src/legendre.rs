@@ -11,9 +11,19 @@
 //! [`HamiltonEquations`](crate::HamiltonEquations) apply to a Lagrangian written once.
 //!
 //! **The real solve.** The real part q̇₀ is found by the crate's [`Newton`](crate::Newton) with the
-//! AD mass matrix as Jacobian (the inverse Legendre map of [`EulerLagrange`]), warm-started from the
-//! last solve, then polished by one more Newton step with M(t, q, q̇₀) factored by Cholesky (so q̇₀ is
-//! the root to rounding and M is known positive definite at it).
+//! AD mass matrix as Jacobian (the inverse Legendre map of [`EulerLagrange`]), then polished by one
+//! more Newton step with M(t, q, q̇₀) factored by Cholesky (so q̇₀ is the root to rounding and M is
+//! known positive definite at it). Every solve starts from the same point, one Newton step from q̇ = 0,
+//!
+//! ```text
+//! q̇_start = M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0))      (halved until L is finite there),
+//! ```
+//!
+//! which is the root itself when L is quadratic in q̇. The result is a function of (t, q, p) alone, to
+//! the last bit: not of earlier calls, nor of which thread made them, so a transform shared by the
+//! members of an ensemble gives the same bits as one per member on any number of threads. (Until issue
+//! 29 the start was the previous solve, kept behind a `Mutex`: results then depended on the order of
+//! calls across threads, in the last bits.)
 //!
 //! **The derivatives, by the implicit-function theorem.** The model is evaluated with a dual scalar
 //! D (first derivatives for Hamilton's equations, second for the Jacobians of Gauss-Legendre). The
@@ -81,7 +91,7 @@ use crate::lagrange::LagrangianField;
 use crate::linalg::positive_definite_mass as positive_definite;
 use crate::newton::max_norm;
 use crate::{Error, EulerLagrange, Hamiltonian, Lagrangian, Result, Scalar};
-use nalgebra::{Const, DMatrix, DVector, U1};
+use nalgebra::{Const, DMatrix, DVector, SVector, U1};
 use num_dual::{Dual, Dual2Vec};
 use std::sync::{Mutex, OnceLock};
 
@@ -89,23 +99,37 @@ use std::sync::{Mutex, OnceLock};
 /// in q̇: see the [module documentation](self) for the solve, the exactness of its derivatives
 /// (one Newton step in the dual scalar per two derivative orders beyond the first) and its errors.
 ///
-/// `Sync`: the warm start (the last real solution q̇₀) is behind a [`Mutex`], taken with `try_lock`;
-/// a thread that finds it held starts cold, from q̇ = M(t, q, 0)⁻¹ p. The value of H does not depend
-/// on the start (L convex in q̇: the solution is unique).
+/// Deterministic and `Sync`: every solve starts from the same point computed from (t, q, p) (see the
+/// module documentation), so H and its derivatives are functions of their arguments alone, to the
+/// last bit, whatever was called before and on whichever thread. The last solve is remembered with
+/// the exact (t, q, p) it was made at (behind a [`Mutex`](std::sync::Mutex) taken with `try_lock`) and
+/// reused only at that same point: the two gradients of
+/// [`HamiltonEquations::rates`](crate::HamiltonEquations::rates) and the three blocks of its Hessian
+/// are evaluated at one point. A hit returns what a new solve would, so the memory changes the cost,
+/// never the result.
 pub struct LegendreTransform<L> {
     equations: EulerLagrange<L>,
-    warm: Mutex<Vec<f64>>,
     constant_inverse: OnceLock<Result<DMatrix<f64>>>,
+    last: Mutex<Option<(Vec<u64>, Solved)>>,
 }
 
 /// A real solve: the velocities q̇₀ and, when asked for, M(t, q, q̇₀)⁻¹.
+#[derive(Clone)]
 struct Solved {
     v: Vec<f64>,
     inverse: Option<DMatrix<f64>>,
 }
 
+/// The exact bits of (t, q, p): the key of a remembered solve.
+fn key<'a>(t: f64, q: &'a [f64], p: &'a [f64]) -> impl Iterator<Item = u64> + 'a {
+    std::iter::once(t)
+        .chain(q.iter().copied())
+        .chain(p.iter().copied())
+        .map(f64::to_bits)
+}
+
 impl<L: Lagrangian + Clone> Clone for LegendreTransform<L> {
-    /// A transform of a copy of the Lagrangian, with an empty warm start.
+    /// A transform of a copy of the Lagrangian.
     fn clone(&self) -> Self {
         LegendreTransform::new(self.equations.lagrangian().clone())
     }
@@ -124,8 +148,8 @@ impl<L: Lagrangian> LegendreTransform<L> {
     pub fn new(lagrangian: L) -> Self {
         LegendreTransform {
             equations: EulerLagrange::new(lagrangian),
-            warm: Mutex::new(Vec::new()),
             constant_inverse: OnceLock::new(),
+            last: Mutex::new(None),
         }
     }
 
@@ -166,29 +190,22 @@ impl<L: Lagrangian> LegendreTransform<L> {
         if self.lagrangian().constant_mass_matrix() {
             return self.solve_quadratic(t, q, p, inverse);
         }
-        // Warm start from the last solution when there is one (and the lock is free).
-        let warm = self
-            .warm
-            .try_lock()
-            .ok()
-            .and_then(|w| (w.len() == n).then(|| w.clone()));
-        let (start, was_warm) = match warm {
-            Some(v) => (v, true),
-            None => (self.equations.velocity_start(t, q, p)?, false),
-        };
+        // The same point as the last solve (and the inverse, if asked for, kept): its result.
+        if let Ok(last) = self.last.try_lock() {
+            if let Some((k, solved)) = last.as_ref() {
+                if (solved.inverse.is_some() || !inverse) && k.iter().copied().eq(key(t, q, p)) {
+                    return Ok(Solved {
+                        v: solved.v.clone(),
+                        inverse: inverse.then(|| solved.inverse.clone()).flatten(),
+                    });
+                }
+            }
+        }
+        let (mut v, mut g, mut m) = self.start(t, q, p)?;
         let scale = 1.0 + max_norm(p);
-        let (mut g, mut m) = self.momenta_and_mass(t, q, &start);
-        let mut v = start;
         // The residual ∂L/∂q̇ − p; Newton unless the start already solves to the inverse map's tolerance.
         if residual(&mut g, p) > 1e-13 * scale {
-            let solved = match self.equations.velocities_from(t, q, p, &v) {
-                Err(_) if was_warm => {
-                    let cold = self.equations.velocity_start(t, q, p)?;
-                    self.equations.velocities_from(t, q, p, &cold)
-                }
-                other => other,
-            }?;
-            v = solved.data.into();
+            v = self.equations.velocities_from(t, q, p, &v)?.data.into();
             (g, m) = self.momenta_and_mass(t, q, &v);
             residual(&mut g, p);
         }
@@ -203,13 +220,45 @@ impl<L: Lagrangian> LegendreTransform<L> {
                 t,
             });
         }
-        if let Ok(mut w) = self.warm.try_lock() {
-            w.clone_from(&v);
-        }
-        Ok(Solved {
+        let solved = Solved {
             v,
             inverse: inverse.then(|| chol.inverse()),
-        })
+        };
+        if let Ok(mut last) = self.last.try_lock() {
+            *last = Some((key(t, q, p).collect(), solved.clone()));
+        }
+        Ok(solved)
+    }
+
+    /// The start of the real solve, a function of (t, q, p) alone: one Newton step from q̇ = 0,
+    /// q̇ = M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)), halved until ∂L/∂q̇ and M are finite there (p/m may lie
+    /// outside the model's domain, |q̇| < c say); with ∂L/∂q̇ and M at it. Where M(t, q, 0) is not
+    /// positive definite, the inverse Legendre map's own start M(t, q, 0)⁻¹ p.
+    fn start(&self, t: f64, q: &[f64], p: &[f64]) -> Result<(Vec<f64>, Vec<f64>, DMatrix<f64>)> {
+        let n = p.len();
+        let step = if n <= MAX_FIXED {
+            crate::with_width!(n, start_w::<L>(self.lagrangian(), t, q, p))
+        } else {
+            let (g0, m0) = self.momenta_and_mass(t, q, &vec![0.0; n]);
+            positive_definite(m0, t).ok().map(|chol| {
+                let mut r = DVector::from_iterator(n, p.iter().zip(&g0).map(|(pi, gi)| pi - gi));
+                chol.solve_mut(&mut r);
+                r.data.into()
+            })
+        };
+        let mut v = match step {
+            Some(v) if v.iter().all(|x: &f64| x.is_finite()) => v,
+            _ => self.equations.velocity_start(t, q, p)?,
+        };
+        let (mut g, mut m) = self.momenta_and_mass(t, q, &v);
+        for _ in 0..60 {
+            if g.iter().chain(m.iter()).all(|x| x.is_finite()) {
+                break;
+            }
+            v.iter_mut().for_each(|x| *x *= 0.5);
+            (g, m) = self.momenta_and_mass(t, q, &v);
+        }
+        Ok((v, g, m))
     }
 
     /// L quadratic in q̇ with a constant M: q̇₀ = M⁻¹ (p − ∂L/∂q̇(t, q, 0)), M inverted once.
@@ -278,6 +327,30 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
         g.as_slice()[..n].to_vec(),
         DMatrix::from_fn(n, n, |i, j| h[(i, j)]),
     )
+}
+
+/// [`LegendreTransform::start`] for n ≤ W: one `Dual2Vec<W>` evaluation at q̇ = 0 for ∂L/∂q̇ and M,
+/// and M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)) by a Cholesky factorization on the stack (M padded to W × W
+/// with the identity); `None` where M(t, q, 0) is not positive definite.
+fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -> Option<Vec<f64>> {
+    type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
+    let n = p.len();
+    let qs = Buf::<D2<W>, W>::new(q.len(), |i| D2::<W>::from_re(q[i]));
+    let vs = Buf::<D2<W>, W>::new(n, |i| D2::<W>::from_re(0.0).derivative(i));
+    let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
+    let g = r.v1.unwrap_generic(U1, Const::<W>);
+    let mut m = r.v2.unwrap_generic(Const::<W>, Const::<W>);
+    let mut b = SVector::<f64, W>::zeros();
+    for i in 0..W {
+        if i < n {
+            b[i] = p[i] - g[i];
+        } else {
+            m[(i, i)] = 1.0;
+        }
+    }
+    let chol = m.cholesky()?;
+    chol.solve_mut(&mut b);
+    Some(b.as_slice()[..n].to_vec())
 }
 
 /// g ← g − p; returns ‖g − p‖∞.

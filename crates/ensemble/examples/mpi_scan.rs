@@ -136,7 +136,7 @@ fn run() -> Result<bool, Box<dyn std::error::Error>> {
     // 20000 members); tolerance 1e-11.
     let mut worst = 0.0_f64;
     for (i, t) in local_runs.iter().enumerate() {
-        let a = ensemble.members().member(i);
+        let a = ensemble.members().member(i)?;
         worst = worst.max((t - elliptic_k((0.5 * a).sin())).abs() / t);
     }
     println!("verify: worst |T/4 − K(sin(a/2))| / T/4 = {worst:.2e} (tolerance 1e-11)");

@@ -13,9 +13,11 @@
 //!   solution (a deflection angle, a first-event time), so trajectories are dropped as members finish;
 //! - **collection**: [`Ensemble::run`] gives every member's result in member order ([`Runs`]);
 //!   [`Ensemble::reduce`] folds them into a histogram, a mean, or any [`Reducer`], without keeping them
-//!   ([`Reduced`]). A member that fails is reported with its index and error while the others
-//!   complete. A member's closure should return its failures as errors: a panic inside it is not
-//!   caught (rayon re-raises it in the caller) and ends the whole run.
+//!   ([`Reduced`]). A member that fails is reported with its index and error ([`MemberError`]) while
+//!   the others complete; a member whose closure panics is one of them too: the panic is caught and
+//!   its message kept ([`MemberError::Panicked`]). A closure should still return its failures as
+//!   errors (a panic's message is also printed by the panic hook, and a build with
+//!   `panic = "abort"` cannot catch it).
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -80,7 +82,7 @@ mod mpi_run;
 mod reduce;
 mod wire;
 
-pub use error::{Error, Result};
+pub use error::{Error, MemberError, Result};
 pub use members::{member_rng, Axis, Grid, MemberRng, Members, Sampler};
 #[cfg(feature = "mpi")]
 pub use mpi;
@@ -91,12 +93,13 @@ pub use wire::Wire;
 
 use rayon::prelude::*;
 
-/// A failed member: its index and its error.
+/// A failed member: its index and its error (from [`Ensemble::reduce`] a [`MemberError`]: what its
+/// run returned, or the message of its panic).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure<E> {
     /// Index of the member.
     pub index: usize,
-    /// What its run returned.
+    /// Why it failed.
     pub error: E,
 }
 
@@ -284,17 +287,31 @@ impl<M: Members, F> Ensemble<M, F> {
         self.members.len().div_ceil(self.chunk())
     }
 
-    /// Runs member `index` alone (to look into one member of a large ensemble).
-    pub fn run_member<S, E>(&self, index: usize) -> std::result::Result<S, E>
+    /// Runs member `index` alone (to look into one member of a large ensemble): its result, or
+    /// [`MemberError::Failed`] with what its run returned, [`MemberError::Panicked`] with the message
+    /// of a panic in it (or in the construction of its parameters), [`MemberError::Ensemble`] with
+    /// [`Error::NoSuchMember`] for an index out of range.
+    pub fn run_member<S, E>(&self, index: usize) -> std::result::Result<S, MemberError<E>>
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
     {
-        (self.simulate)(index, &self.members.member(index))
+        error::check_member(index, self.members.len())?;
+        // The closure is only called: a panic in it leaves nothing of ours half-updated, and the
+        // caller's state is the closure's own business (AssertUnwindSafe).
+        let run = std::panic::AssertUnwindSafe(|| {
+            let params = self.members.member(index)?;
+            (self.simulate)(index, &params).map_err(MemberError::Failed)
+        });
+        std::panic::catch_unwind(run).unwrap_or_else(|payload| {
+            Err(MemberError::Panicked {
+                message: error::panic_message(payload.as_ref()),
+            })
+        })
     }
 
     /// Runs every member (in parallel on rayon's current pool) and returns the results in member
-    /// order.
-    pub fn run<S, E>(&self) -> Runs<S, E>
+    /// order; a member that failed or panicked has its [`MemberError`].
+    pub fn run<S, E>(&self) -> Runs<S, MemberError<E>>
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         S: Send,
@@ -306,7 +323,7 @@ impl<M: Members, F> Ensemble<M, F> {
     }
 
     /// The results of members `range`, in order.
-    fn run_range<S, E>(&self, range: std::ops::Range<usize>) -> Vec<std::result::Result<S, E>>
+    fn run_range<S, E>(&self, range: std::ops::Range<usize>) -> Vec<std::result::Result<S, MemberError<E>>>
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         S: Send,
@@ -327,8 +344,9 @@ impl<M: Members, F> Ensemble<M, F> {
 
     /// Reduces every member's output with `reducer`, keeping none of them: the chunks run in
     /// parallel on rayon's current pool, and the result is bit-identical for any number of threads
-    /// (see the [crate] docs).
-    pub fn reduce<S, E, R>(&self, reducer: &R) -> Reduced<R::Acc, E>
+    /// (see the [crate] docs). Members that failed or panicked are left out of the value and listed
+    /// with their [`MemberError`].
+    pub fn reduce<S, E, R>(&self, reducer: &R) -> Reduced<R::Acc, MemberError<E>>
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         R: Reducer<S>,
@@ -347,7 +365,7 @@ impl<M: Members, F> Ensemble<M, F> {
         &self,
         reducer: &R,
         chunks: std::ops::Range<usize>,
-    ) -> (Vec<R::Acc>, Vec<Failure<E>>)
+    ) -> (Vec<R::Acc>, Vec<Failure<MemberError<E>>>)
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         R: Reducer<S>,
@@ -356,7 +374,7 @@ impl<M: Members, F> Ensemble<M, F> {
         let (n, chunk) = (self.members.len(), self.chunk());
         let first = chunks.start * chunk;
         let bar = Progress::new(self.progress, (chunks.end * chunk).min(n).saturating_sub(first));
-        let folded: Vec<(R::Acc, Vec<Failure<E>>)> = chunks
+        let folded: Vec<(R::Acc, Vec<Failure<MemberError<E>>>)> = chunks
             .into_par_iter()
             .map(|c| {
                 let mut acc = reducer.identity();

@@ -2,6 +2,7 @@
 //! sampler. Member `i` is a pure function of `i`, so every member can be built on any thread or rank,
 //! in any order, and comes out the same.
 
+use crate::error::check_member;
 use crate::{Error, Result};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -17,8 +18,9 @@ pub trait Members: Sync {
     fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// The parameters of member `index` (< [`len`](Self::len)).
-    fn member(&self, index: usize) -> Self::Param;
+    /// The parameters of member `index`, or [`Error::NoSuchMember`] when `index` ≥
+    /// [`len`](Self::len) (never a panic, nor another member's parameters).
+    fn member(&self, index: usize) -> Result<Self::Param>;
 }
 
 /// A list of members, given one by one.
@@ -27,8 +29,9 @@ impl<P: Clone + Send + Sync> Members for Vec<P> {
     fn len(&self) -> usize {
         Vec::len(self)
     }
-    fn member(&self, index: usize) -> P {
-        self[index].clone()
+    fn member(&self, index: usize) -> Result<P> {
+        check_member(index, self.len())?;
+        Ok(self[index].clone())
     }
 }
 
@@ -38,8 +41,9 @@ impl<P: Clone + Send + Sync> Members for &[P] {
     fn len(&self) -> usize {
         <[P]>::len(self)
     }
-    fn member(&self, index: usize) -> P {
-        self[index].clone()
+    fn member(&self, index: usize) -> Result<P> {
+        check_member(index, self.len())?;
+        Ok(self[index].clone())
     }
 }
 
@@ -50,29 +54,27 @@ pub struct Axis {
 }
 
 impl Axis {
-    /// `n` equally spaced values from `lo` to `hi`, both included (`n = 1` gives `lo`).
+    /// `n` equally spaced values from `lo` to `hi`, both included (`n = 1` gives `lo`):
+    /// lo + i (hi − lo)/(n − 1), the last one `hi` itself. Where hi − lo overflows (bounds near ±f64::MAX)
+    /// the same points are computed at half scale, 2 (lo/2 + i (hi/2 − lo/2)/(n − 1)), so they stay
+    /// finite and in [lo, hi].
     pub fn linspace(lo: f64, hi: f64, n: usize) -> Result<Self> {
         check_range(lo, hi, n)?;
-        let step = if n > 1 { (hi - lo) / (n - 1) as f64 } else { 0.0 };
+        let at = spacing(lo, hi, n.saturating_sub(1).max(1));
         Ok(Axis {
             values: (0..n)
-                .map(|i| {
-                    if i + 1 == n && n > 1 {
-                        hi
-                    } else {
-                        lo + step * i as f64
-                    }
-                })
+                .map(|i| if i + 1 == n && n > 1 { hi } else { at(i as f64) })
                 .collect(),
         })
     }
 
-    /// The centres of `n` equal cells that tile [lo, hi]: lo + (i + ½)(hi − lo)/n (a heat map's pixels).
+    /// The centres of `n` equal cells that tile [lo, hi]: lo + (i + ½)(hi − lo)/n (a heat map's pixels;
+    /// at half scale where hi − lo overflows, as in [`linspace`](Self::linspace)).
     pub fn centres(lo: f64, hi: f64, n: usize) -> Result<Self> {
         check_range(lo, hi, n)?;
-        let step = (hi - lo) / n as f64;
+        let at = spacing(lo, hi, n);
         Ok(Axis {
-            values: (0..n).map(|i| lo + step * (i as f64 + 0.5)).collect(),
+            values: (0..n).map(|i| at(i as f64 + 0.5)).collect(),
         })
     }
 
@@ -111,6 +113,25 @@ impl Axis {
     }
 }
 
+/// The point lo + s (hi − lo)/cells of [lo, hi] (finite lo ≤ hi, cells ≥ 1, 0 ≤ s ≤ cells): directly
+/// while hi − lo is finite, else at half scale (halving is exact there: the numbers are huge), clamped
+/// to [lo, hi] against the last rounding.
+fn spacing(lo: f64, hi: f64, cells: usize) -> impl Fn(f64) -> f64 {
+    let direct = (hi - lo).is_finite();
+    let step = if direct {
+        (hi - lo) / cells as f64
+    } else {
+        (0.5 * hi - 0.5 * lo) / cells as f64
+    };
+    move |s| {
+        if direct {
+            lo + step * s
+        } else {
+            (2.0 * (0.5 * lo + step * s)).clamp(lo, hi)
+        }
+    }
+}
+
 fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
     if n == 0 {
         return Err(Error::InvalidParameter {
@@ -145,9 +166,10 @@ fn check_range(lo: f64, hi: f64, n: usize) -> Result<()> {
 /// use noether_ensemble::{Axis, Grid, Members};
 /// let grid = Grid::new(vec![Axis::linspace(0.0, 1.0, 3)?, Axis::values(vec![10.0, 20.0])?])?;
 /// assert_eq!(grid.len(), 6);
-/// assert_eq!(grid.member(1), vec![0.0, 20.0]);
-/// assert_eq!(grid.member(4), vec![1.0, 10.0]);
-/// assert_eq!(grid.multi_index(5), vec![2, 1]);
+/// assert_eq!(grid.member(1)?, vec![0.0, 20.0]);
+/// assert_eq!(grid.member(4)?, vec![1.0, 10.0]);
+/// assert_eq!(grid.multi_index(5)?, vec![2, 1]);
+/// assert!(grid.member(6).is_err()); // not member 0 again
 /// # Ok::<(), noether_ensemble::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -187,15 +209,17 @@ impl Grid {
         self.axes.iter().map(Axis::len).collect()
     }
 
-    /// The multi-index (one index per axis) of member `index`.
-    pub fn multi_index(&self, index: usize) -> Vec<usize> {
+    /// The multi-index (one index per axis) of member `index`, or [`Error::NoSuchMember`] when it is
+    /// not in the grid.
+    pub fn multi_index(&self, index: usize) -> Result<Vec<usize>> {
+        check_member(index, self.len)?;
         let mut rest = index;
         let mut idx = vec![0; self.axes.len()];
         for (k, a) in self.axes.iter().enumerate().rev() {
             idx[k] = rest % a.len();
             rest /= a.len();
         }
-        idx
+        Ok(idx)
     }
 
     /// The member index of a multi-index (`None` if it is out of the grid or of the wrong length).
@@ -219,12 +243,13 @@ impl Members for Grid {
     fn len(&self) -> usize {
         self.len
     }
-    fn member(&self, index: usize) -> Vec<f64> {
-        self.multi_index(index)
+    fn member(&self, index: usize) -> Result<Vec<f64>> {
+        Ok(self
+            .multi_index(index)?
             .iter()
             .zip(&self.axes)
             .map(|(&m, a)| a.values[m])
-            .collect()
+            .collect())
     }
 }
 
@@ -239,8 +264,9 @@ pub type MemberRng = ChaCha8Rng;
 /// ```
 /// use noether_ensemble::{rand::Rng, Members, Sampler};
 /// let s = Sampler::new(1000, 42, |rng| rng.random_range(0.0..1.0));
-/// assert_eq!(s.member(7), s.member(7)); // a function of (seed, index)
-/// assert_ne!(s.member(7), s.member(8));
+/// assert_eq!(s.member(7)?, s.member(7)?); // a function of (seed, index)
+/// assert_ne!(s.member(7)?, s.member(8)?);
+/// # Ok::<(), noether_ensemble::Error>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct Sampler<F> {
@@ -275,7 +301,8 @@ impl<P: Send, F: Fn(&mut MemberRng) -> P + Sync> Members for Sampler<F> {
     fn len(&self) -> usize {
         self.n
     }
-    fn member(&self, index: usize) -> P {
-        (self.draw)(&mut member_rng(self.seed, index))
+    fn member(&self, index: usize) -> Result<P> {
+        check_member(index, self.n)?;
+        Ok((self.draw)(&mut member_rng(self.seed, index)))
     }
 }

@@ -59,27 +59,45 @@ impl Histogram {
         Ok(Histogram { lo, hi, bins })
     }
 
-    /// The bin edges (bins + 1 values from lo to hi).
+    /// The bin edges (bins + 1 values from lo to hi): lo + i (hi − lo)/bins, the last one `hi`. Where
+    /// hi − lo overflows (bounds near ±f64::MAX) they are computed at half scale,
+    /// 2 (lo/2 + i (hi/2 − lo/2)/bins), which is exact scaling there.
     pub fn edges(&self) -> Vec<f64> {
-        let w = (self.hi - self.lo) / self.bins as f64;
-        (0..=self.bins)
-            .map(|i| {
-                if i == self.bins {
-                    self.hi
-                } else {
-                    self.lo + w * i as f64
-                }
-            })
-            .collect()
+        (0..=self.bins).map(|i| self.edge(i)).collect()
     }
 
-    /// The bin of `x`, if it falls in [lo, hi).
+    /// Edge `i` ≤ bins (see [`edges`](Self::edges)).
+    fn edge(&self, i: usize) -> f64 {
+        if i >= self.bins {
+            self.hi
+        } else if (self.hi - self.lo).is_finite() {
+            self.lo + (self.hi - self.lo) / self.bins as f64 * i as f64
+        } else {
+            let w = (0.5 * self.hi - 0.5 * self.lo) / self.bins as f64;
+            (2.0 * (0.5 * self.lo + w * i as f64)).clamp(self.lo, self.hi)
+        }
+    }
+
+    /// The bin of `x`, if it falls in [lo, hi): the `i` with edge i ≤ x < edge i + 1 of
+    /// [`edges`](Self::edges). Found as ⌊bins (x − lo)/(hi − lo)⌋ (at half scale,
+    /// ⌊bins (x/2 − lo/2)/(hi/2 − lo/2)⌋, where hi − lo overflows), then moved by one where rounding
+    /// put it across an edge.
     pub fn bin(&self, x: f64) -> Option<usize> {
         if !(x >= self.lo && x < self.hi) {
             return None;
         }
-        let i = ((x - self.lo) / (self.hi - self.lo) * self.bins as f64) as usize;
-        Some(i.min(self.bins - 1))
+        let fraction = if (self.hi - self.lo).is_finite() {
+            (x - self.lo) / (self.hi - self.lo)
+        } else {
+            (0.5 * x - 0.5 * self.lo) / (0.5 * self.hi - 0.5 * self.lo)
+        };
+        let mut i = ((fraction * self.bins as f64) as usize).min(self.bins - 1);
+        if i > 0 && x < self.edge(i) {
+            i -= 1;
+        } else if i + 1 < self.bins && x >= self.edge(i + 1) {
+            i += 1;
+        }
+        Some(i)
     }
 }
 

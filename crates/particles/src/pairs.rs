@@ -118,30 +118,67 @@ pub struct CellList {
 }
 
 impl CellList {
-    /// Builds the list for positions `x` (length 3N) and cutoff `rc`.
-    pub fn build(&mut self, x: &[f64], rc: f64) {
+    /// Builds the list for positions `x` (length 3N, finite) and cutoff `rc` (finite, > 0): cells of
+    /// side ≥ rc over the particles' bounding box, no more than about 2N + 8 of them. Errors:
+    /// `InvalidParameter` for the cutoff, `Dimension` for a length that is not a multiple of 3,
+    /// `NonFinite` for a position (all as [`Error::Core`]); the list is left as it was.
+    pub fn build(&mut self, x: &[f64], rc: f64) -> Result<()> {
+        if !(rc.is_finite() && rc > 0.0) {
+            return Err(Error::Core(noether_core::Error::InvalidParameter {
+                name: "cell list cutoff",
+                value: rc,
+                reason: "the cutoff must be finite and positive",
+            }));
+        }
+        noether_core::error::check_len("positions", x, 3 * (x.len() / 3))?;
+        noether_core::error::check_finite("positions", x)?;
+        self.fill(x, rc);
+        Ok(())
+    }
+
+    /// Builds the list for a cutoff `rc` known to be finite and positive; returns whether every
+    /// position is finite (when one is not, all particles share one cell and the caller reports it).
+    ///
+    /// The extents are taken at half scale, (hi − lo)/2 = hi/2 − lo/2, and so is each particle's offset
+    /// from the box's corner: the same numbers as at full scale (halving is exact), but finite for
+    /// positions out to ±f64::MAX, where hi − lo overflows.
+    fn fill(&mut self, x: &[f64], rc: f64) -> bool {
         let n = x.len() / 3;
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
+        // x·0 is 0 for finite x and NaN otherwise (min and max skip a NaN).
+        let mut poison = 0.0;
         for p in x.chunks_exact(3) {
             for k in 0..3 {
                 lo[k] = lo[k].min(p[k]);
                 hi[k] = hi[k].max(p[k]);
+                poison += p[k] * 0.0;
             }
         }
-        if n == 0 || lo.iter().chain(&hi).any(|c| !c.is_finite()) {
-            // Nothing to grid, or non-finite positions (reported by the caller after the evaluation).
+        let finite = poison == 0.0;
+        if n == 0 || !finite {
             lo = [0.0; 3];
             hi = [0.0; 3];
         }
         // Cells no smaller than rc, and no more cells than ~2N (a lone far-away particle must not
         // create a huge empty grid). Counted in f64: at extents like 1e20 the integer counts would
         // overflow.
+        let half: [f64; 3] = std::array::from_fn(|k| 0.5 * hi[k] - 0.5 * lo[k]);
         let mut side = rc;
         let limit = (2 * n + 8) as f64;
-        let cells = |s: f64| -> [f64; 3] { std::array::from_fn(|k| ((hi[k] - lo[k]) / s).floor() + 1.0) };
+        let cells = |s: f64| -> [f64; 3] {
+            // A flat direction is one cell (0/0 at a subnormal side would be NaN).
+            std::array::from_fn(|k| {
+                if half[k] > 0.0 {
+                    (half[k] / (0.5 * s)).floor() + 1.0
+                } else {
+                    1.0
+                }
+            })
+        };
         while cells(side).iter().product::<f64>() > limit {
-            side *= 1.25;
+            // ×1.25 would round a subnormal side back to itself.
+            side *= if side < f64::MIN_POSITIVE { 2.0 } else { 1.25 };
         }
         let dims: [usize; 3] = cells(side).map(|c| c as usize);
         let ncell = dims.iter().product::<usize>();
@@ -151,7 +188,10 @@ impl CellList {
         self.start.clear();
         self.start.resize(ncell + 1, 0);
         let cell_of = |p: &[f64]| -> usize {
-            let c: [usize; 3] = std::array::from_fn(|k| (((p[k] - lo[k]) / side) as usize).min(dims[k] - 1));
+            let c: [usize; 3] = std::array::from_fn(|k| {
+                // NaN (a non-finite position) casts to 0: cell 0, reported by the caller.
+                (((0.5 * p[k] - 0.5 * lo[k]) / (0.5 * side)) as usize).min(dims[k] - 1)
+            });
             c[0] + dims[0] * (c[1] + dims[1] * c[2])
         };
         for p in x.chunks_exact(3) {
@@ -168,6 +208,7 @@ impl CellList {
             self.order[fill[c] as usize] = i as u32;
             fill[c] += 1;
         }
+        finite
     }
 
     /// Number of cells.
@@ -314,7 +355,9 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
     }
     fn energy(&self, _t: f64, x: &[f64], ps: &[Particle]) -> f64 {
         let mut s = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-        s.cells.build(x, self.rc);
+        if !s.cells.fill(x, self.rc) {
+            return f64::NAN;
+        }
         let rc2 = self.rc * self.rc;
         let mut total = 0.0;
         for c in 0..s.cells.cells() {
@@ -327,7 +370,11 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
     fn add_forces(&self, _t: f64, x: &[f64], ps: &[Particle], f: &mut [f64], parallel: bool) -> f64 {
         let mut guard = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
         let s = &mut *guard;
-        s.cells.build(x, self.rc);
+        if !s.cells.fill(x, self.rc) {
+            // A non-finite position has no neighbours in the list: the energy says so, and the caller
+            // reports the position (not an Ok(0) from the pairs it could not find).
+            return f64::NAN;
+        }
         let rc2 = self.rc * self.rc;
         let cells = &s.cells;
         let [nx, ny, nz] = cells.dims;
@@ -358,7 +405,8 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
     }
     fn add_hessian(&self, _t: f64, x: &[f64], ps: &[Particle], out: &mut Triplets) {
         let mut s = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-        s.cells.build(x, self.rc);
+        // The caller checked that the positions are finite.
+        s.cells.fill(x, self.rc);
         for c in 0..s.cells.cells() {
             s.cells.for_pairs_of_cell(c, x, self.rc * self.rc, |i, j, r| {
                 push_pair_block(out, i, j, pair_hessian(&self.potential, r, &ps[i], &ps[j]));
@@ -367,7 +415,7 @@ impl<P: PairPotential> Interaction for ShortRange<P> {
     }
     fn find_singular(&self, _t: f64, x: &[f64], ps: &[Particle]) -> Option<Error> {
         let mut s = self.scratch.lock().unwrap_or_else(|e| e.into_inner());
-        s.cells.build(x, self.rc);
+        s.cells.fill(x, self.rc);
         let mut found = None;
         for c in 0..s.cells.cells() {
             s.cells.for_pairs_of_cell(c, x, self.rc * self.rc, |i, j, r| {

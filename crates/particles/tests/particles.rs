@@ -5,7 +5,7 @@
 use noether_core::ad::{self, Block, Field};
 use noether_core::{EulerLagrange, Lagrangian, Scalar};
 use noether_particles::prelude::*;
-use noether_particles::Error;
+use noether_particles::{CellList, Error};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 
 fn random_positions(n: usize, box_len: f64, rng: &mut StdRng) -> Vec<Vec3> {
@@ -810,4 +810,98 @@ fn closed_form_ias15_two_body_kepler() {
         sol.stats()
     );
     assert!(closure < 5e-13 && de < 1e-15, "{closure:e} {de:e}");
+}
+
+/// Issue 29 item 6: a NaN position under a short-range law returned Ok(0.0) (the cell list found no
+/// pair for it, so nothing was NaN). Now it is `NonFinite` naming the position, as under every other
+/// interaction, and the energy too.
+#[test]
+fn regress_short_range_nan_position_is_an_error() {
+    let sys = System::new(vec![Particle::new(1.0); 3])
+        .unwrap()
+        .with(ShortRange::new(LennardJones::with_cutoff(1.0, 1.0, 2.5)).unwrap())
+        .unwrap();
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        for k in 0..9 {
+            let mut x = [[0.0, 0.0, 0.0], [1.1, 0.0, 0.0], [5.0, 0.0, 0.0]].concat();
+            x[k] = bad;
+            let mut f = vec![0.0; 9];
+            let r = sys.potential_forces(0.0, &x, &mut f);
+            assert!(
+                matches!(r, Err(Error::Core(noether_core::Error::NonFinite { index, .. })) if index == k),
+                "x[{k}] = {bad}: {r:?}"
+            );
+            assert!(sys.potential_energy(0.0, &x).is_err());
+            let mut a = vec![0.0; 9];
+            assert!(sys.accelerations(0.0, &x, &[0.0; 9], &mut a).is_err());
+        }
+    }
+}
+
+/// Issue 29 item 11: particles at ±1e308 made the cell list's extent overflow (a panic), and
+/// `CellList::build` with a cutoff of 0, NaN or −1 indexed out of bounds. Now the far particles are
+/// gridded at half scale (they are 2e308 apart: no pair, zero forces), and a bad cutoff or position
+/// is a typed error.
+#[test]
+fn regress_cell_list_at_the_ends_of_f64_and_bad_cutoffs() {
+    let sys = System::new(vec![Particle::new(1.0); 4])
+        .unwrap()
+        .with(ShortRange::new(LennardJones::with_cutoff(1.0, 1.0, 2.5)).unwrap())
+        .unwrap();
+    for (a, b) in [
+        (-1e308, 1e308),
+        (-f64::MAX, f64::MAX),
+        (0.0, f64::MAX),
+        (-f64::MAX, 1.0),
+    ] {
+        // Two far particles and a near pair next to one of them.
+        let x = [[a, 0.0, 0.0], [b, 0.0, 0.0], [b, 1.0, 0.0], [b, 2.2, 0.0]].concat();
+        let mut f = vec![7.0; 12];
+        let e = sys.potential_forces(0.0, &x, &mut f).unwrap();
+        let (e12, e23) = (lj(1.0), lj(1.2));
+        assert_eq!(&f[..3], &[0.0; 3], "the lone far particle at {a}");
+        assert!(f.iter().all(|c| c.is_finite()));
+        // Particles 1, 2, 3: pairs (1,2) at 1.0 and (2,3) at 1.2 (1,3 at 2.2 < 2.5 too).
+        let e13 = lj(2.2);
+        assert!(
+            (e - (e12 + e23 + e13)).abs() < 1e-12,
+            "{e} vs {}",
+            e12 + e23 + e13
+        );
+        assert_eq!(sys.potential_energy(0.0, &x).unwrap().to_bits(), e.to_bits());
+        let mut cells = CellList::default();
+        cells.build(&x, 2.5).unwrap();
+        assert!(cells.cells() >= 1);
+    }
+    let x = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]].concat();
+    let mut cells = CellList::default();
+    for rc in [0.0, -1.0, f64::NAN, f64::INFINITY, -0.0] {
+        let r = cells.build(&x, rc);
+        assert!(
+            matches!(r, Err(Error::Core(noether_core::Error::InvalidParameter { .. }))),
+            "cutoff {rc}: {r:?}"
+        );
+    }
+    assert!(matches!(
+        cells.build(&[0.0, f64::NAN, 0.0], 1.0),
+        Err(Error::Core(noether_core::Error::NonFinite { index: 1, .. }))
+    ));
+    assert!(matches!(
+        cells.build(&[0.0; 4], 1.0),
+        Err(Error::Core(noether_core::Error::Dimension { .. }))
+    ));
+    assert_eq!(
+        cells.cells(),
+        0,
+        "a failed build leaves the list as it was (empty)"
+    );
+    cells.build(&x, 5e-324).unwrap();
+    cells.build(&x, 1e308).unwrap();
+    assert_eq!(cells.cells(), 1);
+}
+
+/// The truncated and shifted Lennard-Jones energy of `LennardJones::with_cutoff(1.0, 1.0, 2.5)`.
+fn lj(r: f64) -> f64 {
+    let u = |r: f64| r.powi(-12) - 2.0 * r.powi(-6);
+    u(r) - u(2.5)
 }

@@ -198,3 +198,90 @@ fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
     assert!(d_closed < 2e-13, "{d_closed:e}");
     assert!(d_phi < 2e-12, "{d_phi:e}");
 }
+
+/// A planar particle with a velocity-dependent inertia in φ, L = ṙ²/2 + r² (cosh φ̇ − 1) + 1/r: φ is
+/// cyclic, p_φ = r² sinh φ̇, so Newton for φ̇ = asinh(β/r²) takes several iterations (not one, as for
+/// a quadratic L), and where it starts shows in its last iterate.
+#[derive(Clone, Copy)]
+struct StiffPlanar;
+impl Lagrangian for StiffPlanar {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        v[0] * v[0] * 0.5 + q[0] * q[0] * (v[1].cosh() - 1.0) + q[0].recip()
+    }
+}
+
+/// Issue 29 item 5: Routh's solve for the cyclic velocities was warm-started from the last solve
+/// (shared, behind a `Mutex`), so L_R and its derivatives depended on what had been evaluated before
+/// (and, in an ensemble sharing one `Routh`, on which thread ran what). Now every point gives the
+/// same bits as a fresh `Routh`, after any history and on any thread.
+#[test]
+fn regress_routh_is_independent_of_call_history_and_threads() {
+    let beta = 2.7;
+    let points: Vec<(f64, f64)> = (0..200)
+        .map(|i| (0.6 + 0.013 * i as f64, 0.3 * (0.37 * i as f64).sin()))
+        .collect();
+    let fresh = |&(r, dr): &(f64, f64)| {
+        let routh = Routh::new(StiffPlanar, &[1], &[beta]).unwrap();
+        let el = EulerLagrange::new(&routh);
+        let mut a = [0.0];
+        el.accelerations(0.0, &[r], &[dr], &mut a).unwrap();
+        let u = routh.cyclic_velocities(0.0, &[r], &[dr]).unwrap()[0];
+        [routh.lagrangian(0.0, &[r], &[dr]), a[0], u].map(f64::to_bits)
+    };
+    let expected: Vec<[u64; 3]> = points.iter().map(fresh).collect();
+    // The solve converges to asinh(β/r²) (to Newton's tolerance).
+    for (&(r, dr), e) in points.iter().zip(&expected) {
+        let u = f64::from_bits(e[2]);
+        assert!(
+            (u - (beta / (r * r)).asinh()).abs() < 1e-12,
+            "u = {u} at r = {r}, ṙ = {dr}"
+        );
+    }
+    // One shared Routh: the points in order, in reverse, and interleaved on four threads.
+    let shared = Routh::new(StiffPlanar, &[1], &[beta]).unwrap();
+    let el = EulerLagrange::new(&shared);
+    let eval = |&(r, dr): &(f64, f64)| {
+        let mut a = [0.0];
+        el.accelerations(0.0, &[r], &[dr], &mut a).unwrap();
+        let u = shared.cyclic_velocities(0.0, &[r], &[dr]).unwrap()[0];
+        [shared.lagrangian(0.0, &[r], &[dr]), a[0], u].map(f64::to_bits)
+    };
+    let forward: Vec<[u64; 3]> = points.iter().map(eval).collect();
+    let mut backward: Vec<[u64; 3]> = points.iter().rev().map(eval).collect();
+    backward.reverse();
+    let differ = |got: &[[u64; 3]]| {
+        (0..got.len())
+            .filter(|&i| got[i] != expected[i])
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        differ(&forward),
+        Vec::<usize>::new(),
+        "points that differ after the previous point"
+    );
+    assert_eq!(
+        differ(&backward),
+        Vec::<usize>::new(),
+        "points that differ after the next point"
+    );
+    let threaded: Vec<Vec<(usize, [u64; 3])>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..4)
+            .map(|k| {
+                let (points, eval) = (&points, &eval);
+                s.spawn(move || {
+                    (k..points.len())
+                        .step_by(4)
+                        .map(|i| (i, eval(&points[i])))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for (i, bits) in threaded.into_iter().flatten() {
+        assert_eq!(bits, expected[i], "point {i} on a thread");
+    }
+}

@@ -461,3 +461,78 @@ fn ad_vs_hand_legendre_transform_quadratic_path() {
     // Measured: worst 6.7e-16.
     eprintln!("charge, constant M: worst relative error {worst:e}");
 }
+
+/// Issue 29 item 5: the transform's solve for q̇ was warm-started from the last solve (shared behind a
+/// `Mutex`), so H and its derivatives at a point depended in the last bits on what had been evaluated
+/// before, and on which thread. Now every point gives the bits of a fresh transform, after any
+/// history and on any thread (L = 0.8 (cosh θ̇₁ − 1) + ½ θ̇₂² + θ̇₁ θ̇₂ cos θ₁/4 + cos θ₁: Newton needs
+/// several iterations).
+#[test]
+fn regress_legendre_transform_is_independent_of_call_history_and_threads() {
+    #[derive(Clone, Copy)]
+    struct Stiff;
+    impl Lagrangian for Stiff {
+        fn dof(&self) -> usize {
+            2
+        }
+        fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+            (v[0].cosh() - 1.0) * 0.8 + v[1] * v[1] * 0.5 + v[0] * v[1] * q[0].cos() * 0.25 + q[0].cos()
+        }
+    }
+    let points: Vec<([f64; 2], [f64; 2])> = (0..60)
+        .map(|i| {
+            let s = i as f64;
+            (
+                [0.3 * (0.7 * s).sin(), 0.1 * s],
+                [1.5 * (0.37 * s).cos(), 0.2 - 0.01 * s],
+            )
+        })
+        .collect();
+    let bits = |h: &HamiltonEquations<LegendreTransform<Stiff>>, (q, p): &([f64; 2], [f64; 2])| {
+        let (mut dq, mut dp) = ([0.0; 2], [0.0; 2]);
+        h.rates(0.0, q, p, &mut dq, &mut dp).unwrap();
+        let hess = h.hessian(0.0, q, p).unwrap();
+        let e = h.energy(0.0, q, p).unwrap();
+        let mut out: Vec<u64> = [e, dq[0], dq[1], dp[0], dp[1]]
+            .iter()
+            .map(|x| x.to_bits())
+            .collect();
+        out.extend(hess.iter().map(|x| x.to_bits()));
+        out
+    };
+    let expected: Vec<Vec<u64>> = points
+        .iter()
+        .map(|x| bits(&HamiltonEquations::new(LegendreTransform::new(Stiff)), x))
+        .collect();
+    let shared = HamiltonEquations::new(LegendreTransform::new(Stiff));
+    let differ = |got: &[Vec<u64>]| {
+        (0..got.len())
+            .filter(|&i| got[i] != expected[i])
+            .collect::<Vec<_>>()
+    };
+    let forward: Vec<Vec<u64>> = points.iter().map(|x| bits(&shared, x)).collect();
+    assert_eq!(differ(&forward), Vec::<usize>::new(), "after the previous point");
+    let mut backward: Vec<Vec<u64>> = points.iter().rev().map(|x| bits(&shared, x)).collect();
+    backward.reverse();
+    assert_eq!(differ(&backward), Vec::<usize>::new(), "after the next point");
+    // Four threads on the shared transform, each point evaluated by each thread in its own order.
+    let threaded: Vec<Vec<Vec<u64>>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..4)
+            .map(|k| {
+                let (points, bits, shared) = (&points, &bits, &shared);
+                s.spawn(move || {
+                    let mut out = vec![Vec::new(); points.len()];
+                    for j in 0..points.len() {
+                        let i = (j * [1, 7, 11, 13][k] + k) % points.len();
+                        out[i] = bits(shared, &points[i]);
+                    }
+                    out
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for (k, got) in threaded.iter().enumerate() {
+        assert_eq!(differ(got), Vec::<usize>::new(), "thread {k}");
+    }
+}
