@@ -103,6 +103,9 @@ pub struct Failure<E> {
     pub error: E,
 }
 
+/// The failures of a chunk of members, in member order.
+type Failures<E> = Vec<Failure<MemberError<E>>>;
+
 /// Every member's result, in member order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Runs<T, E> {
@@ -365,7 +368,7 @@ impl<M: Members, F> Ensemble<M, F> {
         &self,
         reducer: &R,
         chunks: std::ops::Range<usize>,
-    ) -> (Vec<R::Acc>, Vec<Failure<MemberError<E>>>)
+    ) -> (Vec<R::Acc>, Failures<E>)
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         R: Reducer<S>,
@@ -374,7 +377,7 @@ impl<M: Members, F> Ensemble<M, F> {
         let (n, chunk) = (self.members.len(), self.chunk());
         let first = chunks.start * chunk;
         let bar = Progress::new(self.progress, (chunks.end * chunk).min(n).saturating_sub(first));
-        let folded: Vec<(R::Acc, Vec<Failure<MemberError<E>>>)> = chunks
+        let folded: Vec<(R::Acc, Failures<E>)> = chunks
             .into_par_iter()
             .map(|c| {
                 let mut acc = reducer.identity();
