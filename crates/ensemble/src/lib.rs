@@ -364,11 +364,7 @@ impl<M: Members, F> Ensemble<M, F> {
     }
 
     /// The accumulators of chunks `chunks`, in order, and the failures in them.
-    fn fold_chunks<S, E, R>(
-        &self,
-        reducer: &R,
-        chunks: std::ops::Range<usize>,
-    ) -> (Vec<R::Acc>, Failures<E>)
+    fn fold_chunks<S, E, R>(&self, reducer: &R, chunks: std::ops::Range<usize>) -> (Vec<R::Acc>, Failures<E>)
     where
         F: Fn(usize, &M::Param) -> std::result::Result<S, E> + Sync,
         R: Reducer<S>,
