@@ -102,7 +102,7 @@ use std::sync::{Mutex, OnceLock};
 /// Deterministic and `Sync`: every solve starts from the same point computed from (t, q, p) (see the
 /// module documentation), so H and its derivatives are functions of their arguments alone, to the
 /// last bit, whatever was called before and on whichever thread. The last solve is remembered with
-/// the exact (t, q, p) it was made at (behind a [`Mutex`](std::sync::Mutex) taken with `try_lock`) and
+/// the exact (t, q, p) it was made at (behind a `Mutex` taken with `try_lock`) and
 /// reused only at that same point: the two gradients of
 /// [`HamiltonEquations::rates`](crate::HamiltonEquations::rates) and the three blocks of its Hessian
 /// are evaluated at one point. A hit returns what a new solve would, so the memory changes the cost,
