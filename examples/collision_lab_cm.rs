@@ -230,7 +230,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     }
     let mut report = Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     };
     report.save(opts, &fig, "collision_lab_cm.svg")?;
     Ok(report)

@@ -88,7 +88,9 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let energy: Vec<f64> = samples.iter().map(PaperSample::energy).collect();
     let worst_e = energy.iter().fold(0.0_f64, |m, e| m.max((e - energy[0]).abs()));
     let injected = energy[0] - v_eq;
-    println!("{NAME}: injected energy {injected:.6e}, largest |E − E₁| {worst_e:.3e}");
+    report.note(format!(
+        "injected energy {injected:.6e}, largest |E − E₁| {worst_e:.3e}"
+    ));
     let bound = (2.0 * ch.paper_step()).powi(2) / 3.0;
     report.checks.push(Check::abs(
         NAME,

@@ -64,15 +64,17 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
             .sum();
         worst_coupling = worst_coupling.max((sys.potential_energy(a) - springs).abs());
         worst_p = worst_p.max((pt + pb - v0).abs() / v0);
-        println!(
-            "{NAME}: v0 = {v0:.4}: p_t/v0 = {:.6e}, p_b/v0 = {:.6e}",
+        report.note(format!(
+            "v0 = {v0:.4}: p_t/v0 = {:.6e}, p_b/v0 = {:.6e}",
             pt / v0,
             pb / v0
-        );
+        ));
         top.push((v0, pt / v0));
         bottom.push((v0, pb / v0));
     }
-    println!("{NAME}: largest coupling energy at the end of a run: {worst_coupling:.3e}");
+    report.note(format!(
+        "largest coupling energy at the end of a run: {worst_coupling:.3e}"
+    ));
     // Coupling energy at the end of each run: the chains are apart (separation ≫ σ), so it is at the
     // level of exp(−d²/(2σ²)) for the nearest pair: measured 0 (underflow).
     report.checks.push(Check::abs(

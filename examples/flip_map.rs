@@ -161,7 +161,7 @@ pub fn run_grid(n: usize, t_end: f64, opts: &Options) -> Result<Report, BoxError
     ];
     let mut report = Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     };
     if opts.out_dir.is_some() {
         let centres = grid.axes()[0].as_slice().to_vec();

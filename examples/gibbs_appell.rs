@@ -369,7 +369,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     disk(&mut checks)?;
     Ok(Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     })
 }
 

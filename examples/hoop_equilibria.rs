@@ -198,7 +198,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     by_simulation(&mut checks)?;
     Ok(Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     })
 }
 

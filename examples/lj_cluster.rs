@@ -105,7 +105,7 @@ pub fn run_steps(steps: usize) -> Result<Report, BoxError> {
             ),
             Check::abs(NAME, format!("|dP| / sum m|v| ({label})"), dp / scale, 0.0, 5e-15),
         ],
-        figures: vec![],
+        ..Default::default()
     })
 }
 

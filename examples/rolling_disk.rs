@@ -127,7 +127,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
             // More than a full turn, so the circle is closed.
             Check::rel(NAME, "heading turned φ̇ t", turned, phi_dot * t_end, 1e-12),
         ],
-        figures: vec![],
+        ..Default::default()
     })
 }
 

@@ -251,7 +251,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     bowl(&mut checks)?;
     Ok(Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     })
 }
 

@@ -167,7 +167,7 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
 
     let mut report = Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     };
     if opts.out_dir.is_some() {
         let fine: Vec<(f64, f64)> = (0..=200)

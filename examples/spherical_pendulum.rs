@@ -199,7 +199,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
                 1e-5,
             ),
         ],
-        figures: vec![],
+        ..Default::default()
     })
 }
 

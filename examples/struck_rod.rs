@@ -231,7 +231,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     }
     Ok(Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     })
 }
 

@@ -116,10 +116,10 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         ("midpoint variational", &vi),
     ] {
         let d: Vec<String> = s.defects.iter().map(|d| format!("{d:.2e}")).collect();
-        println!(
+        report.note(format!(
             "{name}: defects at the four Hénon-Heiles states (h = 0.1): {}",
             d.join(", ")
-        );
+        ));
     }
     report.checks.push(Check::abs(
         ex,
@@ -207,10 +207,10 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.1,
     )?;
     let rev_rk4 = reversibility(&mut Rk4::new(&hh), &states[0], 0.1)?;
-    println!(
+    report.note(format!(
         "round trip ρΦρΦ: midpoint variational {:.1} ulps, RK4 {:.2e} relative",
         rev.ulps, rev_rk4.relative
-    );
+    ));
     report.checks.push(Check::abs(
         ex,
         "midpoint variational: ρΦ_hρΦ_h − id in ulps (= 0)",

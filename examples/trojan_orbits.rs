@@ -109,7 +109,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     }
     let mut report = Report {
         checks,
-        figures: vec![],
+        ..Default::default()
     };
     let mut fig = Figure::new("Restricted three-body problem, rotating frame: orbits started 0.01 from L4")
         .x_label("x")

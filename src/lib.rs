@@ -16,6 +16,7 @@ extern crate self as noether_gallery;
 mod check;
 pub mod closed_form;
 pub mod measure;
+pub mod page;
 
 pub use check::{Check, Tolerance};
 
@@ -40,6 +41,9 @@ pub struct Report {
     pub checks: Vec<Check>,
     /// Pictures written.
     pub figures: Vec<PathBuf>,
+    /// Measurements worth reading beside the checks (one line each): shown on the gallery's page,
+    /// by `--notes`, and by the example run alone.
+    pub notes: Vec<String>,
 }
 
 impl Report {
@@ -51,6 +55,28 @@ impl Report {
         }
         Ok(())
     }
+
+    /// Records a line of measurements (see [`notes`](Self::notes)).
+    pub fn note(&mut self, line: impl Into<String>) {
+        self.notes.push(line.into());
+    }
+}
+
+/// What running an example gave: its report, or the error (or panic) that stopped it.
+pub type Outcome = Result<Report, String>;
+
+/// Runs one example, turning a panic into that example's error.
+pub fn run_caught(ex: &Example, opts: &Options) -> Outcome {
+    std::panic::catch_unwind(|| (ex.run)(opts))
+        .map_err(|p| format!("panicked: {}", panic_message(&p)))
+        .and_then(|r| r.map_err(|e| e.to_string()))
+}
+
+fn panic_message(p: &Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown".into())
 }
 
 /// A worked example of the gallery.
@@ -72,6 +98,9 @@ pub fn example_main(name: &str, run: fn(&Options) -> Result<Report, BoxError>) -
     };
     match run(&opts) {
         Ok(report) => {
+            for n in &report.notes {
+                println!("{n}");
+            }
             for c in &report.checks {
                 println!("{c}");
             }

@@ -1,9 +1,11 @@
-//! The gallery: `cargo run --release` runs every worked example, prints one table of their checks
-//! against closed forms, writes the pictures (SVG) to a folder, and exits non-zero if a check fails.
+//! The gallery: `cargo run --release` runs every worked example, prints one line per example (its
+//! checks against closed forms, the worst error as a fraction of its tolerance), writes the pictures
+//! (SVG) and a page of everything (`index.html`) to a folder, and exits non-zero if a check fails.
+//! `--checks` prints every check, `--notes` the examples' further measurements.
 
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use noether_gallery::{self as gallery, Check, Example, Options, Report, Tolerance};
+use noether_gallery::{self as gallery, Check, Example, Options, Outcome, Tolerance};
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::mpsc;
@@ -19,12 +21,16 @@ struct Cli {
     /// Run only the example NAME (repeatable).
     #[arg(long, value_name = "NAME")]
     only: Vec<String>,
-    /// Folder for the SVG pictures.
+    /// Folder for the SVG pictures and the page of the gallery (index.html).
     #[arg(long, value_name = "DIR", default_value = "gallery-out")]
     out: PathBuf,
+    /// Print every check (quantity, computed, expected, error, tolerance), not one line per example.
+    #[arg(long)]
+    checks: bool,
+    /// Print the examples' further measurements (also on the page).
+    #[arg(long)]
+    notes: bool,
 }
-
-type Outcome = Result<Report, String>;
 
 fn main() {
     let cli = Cli::parse();
@@ -54,44 +60,48 @@ fn main() {
     };
     let start = Instant::now();
     let outcomes = run_all(&chosen, &opts);
+    let seconds = start.elapsed().as_secs_f64();
 
-    let mut rows = Vec::new();
-    let mut figures = Vec::new();
-    let mut failed = 0;
-    for (ex, outcome) in chosen.iter().zip(outcomes) {
-        match outcome {
-            Ok(report) => {
-                failed += report.checks.iter().filter(|c| !c.passed()).count();
-                if report.checks.is_empty() {
-                    failed += 1;
-                    rows.push(error_row(ex.name, "made no checks"));
-                }
-                rows.extend(report.checks.iter().map(row));
-                figures.extend(report.figures);
-            }
-            Err(e) => {
-                failed += 1;
-                rows.push(error_row(ex.name, &e));
+    let runs: Vec<(Example, Outcome)> = chosen.into_iter().zip(outcomes).collect();
+    print_summary(&runs);
+    let rows = check_rows(&runs);
+    let failed: Vec<[String; 7]> = rows.iter().filter(|r| r[6] != "PASS").cloned().collect();
+    if cli.checks {
+        println!();
+        print_table(&rows);
+    } else if !failed.is_empty() {
+        println!("\nFailed:");
+        print_table(&failed);
+    }
+    if cli.notes {
+        for (ex, outcome) in &runs {
+            for n in outcome.iter().flat_map(|r| &r.notes) {
+                println!("{}: {n}", ex.name);
             }
         }
     }
-    print_table(&rows);
-    let total = rows.len();
+    let checks = rows.len();
+    let pictures: usize = runs
+        .iter()
+        .map(|(_, o)| o.as_ref().map_or(0, |r| r.figures.len()))
+        .sum();
     println!(
-        "\n{} checks: {} passed, {} failed ({:.1} s)",
-        total,
-        total - failed,
-        failed,
-        start.elapsed().as_secs_f64()
+        "\n{} checks: {} passed, {} failed ({seconds:.1} s)",
+        checks,
+        checks - failed.len(),
+        failed.len(),
     );
-    if !figures.is_empty() {
-        println!(
-            "{} pictures (SVG) written to {}/",
-            figures.len(),
-            cli.out.display()
-        );
+    match gallery::page::write_index(&cli.out, &runs) {
+        Ok(page) => println!(
+            "{pictures} pictures and the page of every check: {}",
+            page.display()
+        ),
+        Err(e) => {
+            eprintln!("could not write the page into {}: {e}", cli.out.display());
+            std::process::exit(1);
+        }
     }
-    if failed > 0 {
+    if !failed.is_empty() {
         std::process::exit(1);
     }
 }
@@ -109,10 +119,7 @@ fn run_all(examples: &[Example], opts: &Options) -> Vec<Outcome> {
     std::thread::scope(|s| {
         s.spawn(move || {
             examples.par_iter().enumerate().for_each_with(tx, |tx, (i, ex)| {
-                let outcome = std::panic::catch_unwind(|| (ex.run)(opts))
-                    .map_err(|p| panic_message(&p))
-                    .and_then(|r| r.map_err(|e| e.to_string()));
-                let _ = tx.send((i, outcome));
+                let _ = tx.send((i, gallery::run_caught(ex, opts)));
             });
         });
         let mut shown = false;
@@ -142,13 +149,59 @@ fn run_all(examples: &[Example], opts: &Options) -> Vec<Outcome> {
         .collect()
 }
 
-fn panic_message(p: &Box<dyn std::any::Any + Send>) -> String {
-    let msg = p
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| p.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown".into());
-    format!("panicked: {msg}")
+/// One line per example: checks passed of made, the worst error as a fraction of its tolerance
+/// (≤ 1 passes), the verdict. Narrow enough for a terminal; `--checks` and the page give the rest.
+fn print_summary(runs: &[(Example, Outcome)]) {
+    let w = runs.iter().map(|(e, _)| e.name.len()).max().unwrap_or(7).max(7);
+    println!("{:w$}  {:>6}  {:>11}  result", "example", "checks", "worst error");
+    println!("{}  ------  -----------  ------", "-".repeat(w));
+    for (ex, outcome) in runs {
+        match outcome {
+            Ok(r) if !r.checks.is_empty() => {
+                let passed = r.checks.iter().filter(|c| c.passed()).count();
+                let worst = r
+                    .checks
+                    .iter()
+                    .map(|c| match c.error() {
+                        // A check met exactly (tolerance 0 included).
+                        e if e == 0.0 => 0.0,
+                        e => e / c.tol(),
+                    })
+                    .fold(0.0_f64, |m, x| if x.is_nan() { x } else { m.max(x) });
+                let verdict = if passed == r.checks.len() { "PASS" } else { "FAIL" };
+                println!(
+                    "{:w$}  {:>6}  {:>11}  {verdict}",
+                    ex.name,
+                    format!("{passed}/{}", r.checks.len()),
+                    format!("{:.2} tol", worst),
+                );
+            }
+            Ok(_) => println!("{:w$}  {:>6}  {:>11}  FAIL (made no checks)", ex.name, "0/0", "-"),
+            Err(e) => println!("{:w$}  {:>6}  {:>11}  FAIL ({})", ex.name, "-", "-", short(e)),
+        }
+    }
+}
+
+/// The first line of an error, at most 60 characters.
+fn short(e: &str) -> String {
+    let line = e.lines().next().unwrap_or("");
+    match line.char_indices().nth(60) {
+        Some((i, _)) => format!("{}…", &line[..i]),
+        None => line.to_string(),
+    }
+}
+
+/// Every check as a row of the full table, an example's error as a failed row.
+fn check_rows(runs: &[(Example, Outcome)]) -> Vec<[String; 7]> {
+    let mut rows = Vec::new();
+    for (ex, outcome) in runs {
+        match outcome {
+            Ok(report) if report.checks.is_empty() => rows.push(error_row(ex.name, "made no checks")),
+            Ok(report) => rows.extend(report.checks.iter().map(row)),
+            Err(e) => rows.push(error_row(ex.name, e)),
+        }
+    }
+    rows
 }
 
 const HEADER: [&str; 7] = [

@@ -1,7 +1,7 @@
 //! Every gallery example's checks against closed forms must pass (each check states its formula and
 //! tolerance in the example module that makes it).
 
-use noether_gallery::{self as gallery, Options, Report};
+use noether_gallery::{self as gallery, Check, Example, Options, Outcome, Report};
 
 /// Runs the example `name` without pictures and asserts that all its checks pass.
 fn assert_example_passes(name: &str) {
@@ -23,6 +23,123 @@ fn assert_report_passes(name: &str, report: &Report) {
         .map(|c| c.to_string())
         .collect();
     assert!(failed.is_empty(), "failed checks:\n{}", failed.join("\n"));
+}
+
+/// The page `cargo run --release` writes (issue 30 item 13), for every example of the registry: each
+/// has its section and its entry in the contents, and every picture the page shows exists in the
+/// folder beside it. The outcomes are stand-ins (one check and one picture each, every fifth example
+/// failed) so that the test does not draw the whole gallery a second time; the real pictures of two
+/// examples are checked by the next test.
+#[test]
+fn gallery_page_names_every_example_and_every_picture_exists() {
+    let dir = scratch("names");
+    let runs: Vec<(Example, Outcome)> = gallery::all()
+        .into_iter()
+        .enumerate()
+        .map(|(i, ex)| {
+            let outcome = if i % 5 == 4 {
+                Err(format!("{} <failed> & said so", ex.name))
+            } else {
+                let svg = dir.join(format!("{}.svg", ex.name));
+                std::fs::write(&svg, "<svg xmlns=\"http://www.w3.org/2000/svg\"/>").unwrap();
+                Ok(Report {
+                    checks: vec![Check::rel(ex.name, "x", 1.0, 1.0, 1e-15)],
+                    figures: vec![svg],
+                    notes: vec![],
+                })
+            };
+            (ex, outcome)
+        })
+        .collect();
+    let html = page_of(&dir, &runs);
+    for (ex, _) in &runs {
+        assert!(
+            html.contains(&format!("<section id=\"{}\">", ex.name)),
+            "no section for {}",
+            ex.name
+        );
+        assert!(
+            html.contains(&format!("<a href=\"#{0}\">{0}</a>", ex.name)),
+            "{} not in the contents",
+            ex.name
+        );
+    }
+    assert!(
+        html.contains("&lt;failed&gt; &amp; said so"),
+        "an example's error is shown, escaped"
+    );
+    let expected = runs.iter().filter(|(_, o)| o.is_ok()).count();
+    assert_eq!(pictures_shown(&dir, &html), expected);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The page of two real examples with their pictures: every picture they drew is on the page, and
+/// every picture on the page is in the folder.
+#[test]
+fn gallery_page_shows_the_pictures_examples_draw() {
+    let dir = scratch("real");
+    let opts = Options {
+        out_dir: Some(dir.clone()),
+    };
+    let runs: Vec<(Example, Outcome)> = gallery::all()
+        .into_iter()
+        .filter(|e| e.name == "pendulum" || e.name == "bouncing_ball")
+        .map(|ex| {
+            let outcome = gallery::run_caught(&ex, &opts);
+            (ex, outcome)
+        })
+        .collect();
+    assert_eq!(runs.len(), 2);
+    let html = page_of(&dir, &runs);
+    let mut drawn = 0;
+    for (ex, outcome) in &runs {
+        let report = outcome
+            .as_ref()
+            .unwrap_or_else(|e| panic!("{} failed: {e}", ex.name));
+        for f in &report.figures {
+            let rel = f.strip_prefix(&dir).unwrap().to_string_lossy().into_owned();
+            assert!(
+                html.contains(&format!("<img src=\"{rel}\"")),
+                "picture {rel} not on the page"
+            );
+            drawn += 1;
+        }
+    }
+    assert!(drawn >= 2, "the two examples draw {drawn} pictures");
+    assert_eq!(pictures_shown(&dir, &html), drawn);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An empty folder of this test process's own.
+fn scratch(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("noether-gallery-page-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes the page into `dir` and reads it back.
+fn page_of(dir: &std::path::Path, runs: &[(Example, Outcome)]) -> String {
+    let page = gallery::page::write_index(dir, runs).unwrap();
+    assert_eq!(page, dir.join(gallery::page::INDEX));
+    std::fs::read_to_string(page).unwrap()
+}
+
+/// The number of pictures the page shows, each checked to exist in `dir`.
+fn pictures_shown(dir: &std::path::Path, html: &str) -> usize {
+    let shown: Vec<&str> = html
+        .split("<img src=\"")
+        .skip(1)
+        .map(|s| &s[..s.find('"').unwrap()])
+        .collect();
+    for src in &shown {
+        assert!(
+            dir.join(src).is_file(),
+            "the page shows {src}, which is not in {}",
+            dir.display()
+        );
+    }
+    shown.len()
 }
 
 #[test]
