@@ -162,10 +162,13 @@ fn print_summary(runs: &[(Example, Outcome)]) {
                 let worst = r
                     .checks
                     .iter()
-                    .map(|c| match c.error() {
-                        // A check met exactly (tolerance 0 included).
-                        e if e == 0.0 => 0.0,
-                        e => e / c.tol(),
+                    // A check met exactly counts 0 (also when its tolerance is 0).
+                    .map(|c| {
+                        if c.error() == 0.0 {
+                            0.0
+                        } else {
+                            c.error() / c.tol()
+                        }
                     })
                     .fold(0.0_f64, |m, x| if x.is_nan() { x } else { m.max(x) });
                 let verdict = if passed == r.checks.len() { "PASS" } else { "FAIL" };
