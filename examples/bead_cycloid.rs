@@ -82,7 +82,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
                 "period released at y = {:.3} (expected 4π sqrt(a/g))",
                 a * (1.0 - s0.cos())
             ),
-            period(&sol.event_times("x = 0 upwards"))?,
+            period(&sol.event_times("x = 0 upwards")?)?,
             expected,
             1e-11,
         ));

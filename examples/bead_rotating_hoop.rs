@@ -161,7 +161,6 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let (m, a, g) = (1.0_f64, 1.0_f64, 9.81_f64);
     let h = 1e-3;
     let mut checks = Vec::new();
-    let missing = |name: &str| format!("no observed {name}");
 
     // The hoop at ω = 5 (a ω² = 25 > g: the bead's stable rest is off the bottom, see `hoop_equilibria`).
     let omega = 5.0;
@@ -186,12 +185,10 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     if cart.times() != angle.times() {
         return Err("the two formulations were saved at different times".into());
     }
-    let theta_c = cart.observed("θ").ok_or_else(|| missing("θ"))?;
-    let lambda1 = cart.observed("λ₁").ok_or_else(|| missing("λ₁"))?;
-    let lambda2 = cart.observed("λ₂").ok_or_else(|| missing("λ₂"))?;
-    let drift = cart
-        .observed("Jacobi drift")
-        .ok_or_else(|| missing("Jacobi drift"))?;
+    let theta_c = cart.observed("θ")?;
+    let lambda1 = cart.observed("λ₁")?;
+    let lambda2 = cart.observed("λ₂")?;
+    let drift = cart.observed("Jacobi drift")?;
     let (mut d_theta, mut d_n, mut d_perp) = (0.0_f64, 0.0_f64, 0.0_f64);
     for (i, (th, rate)) in angle.q_series(0).into_iter().zip(angle.v_series(0)).enumerate() {
         d_theta = d_theta.max((theta_c[i] - th).abs());

@@ -82,7 +82,7 @@ pub fn radial_period(pot: PowerLaw, lambda: f64, h: f64) -> Result<(f64, f64), B
         )
         .observe("energy error", |s: &State| Ok(((energy(s)? - e0) / e0).abs()))
         .run_steps(MAX_STEPS)?;
-    if sol.event_times("periapsis").is_empty() {
+    if sol.event_times("periapsis")?.is_empty() {
         return Err("no radial period found".into());
     }
     // Unwrapped polar angle: the sum of the (small) angles between successive positions.
@@ -92,11 +92,7 @@ pub fn radial_period(pot: PowerLaw, lambda: f64, h: f64) -> Result<(f64, f64), B
             (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1])
         })
         .sum();
-    let worst = sol
-        .observed("energy error")
-        .ok_or("no energy error recorded")?
-        .into_iter()
-        .fold(0.0_f64, f64::max);
+    let worst = sol.observed("energy error")?.into_iter().fold(0.0_f64, f64::max);
     Ok((phi, worst))
 }
 

@@ -49,8 +49,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         .run_until(1.0)?;
     // Momentum changes only by rounding: each kick adds +F h/2m and −F h/2m.
     let worst_p = sol
-        .observed("P_x")
-        .ok_or("no momentum observed")?
+        .observed("P_x")?
         .into_iter()
         .fold(0.0_f64, |w, p| w.max((p - p0[0]).abs()));
     report.checks.push(Check::abs(
@@ -90,8 +89,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     // π/ω̃ is short by (ωh)²/24 = (π/400)²/24 = 2.570e-6 relative (measured 2.567e-6; resolving
     // the contact only to a step would allow 2h/contact time = 5e-3). Tolerance 3e-6.
     let (t_in, t_out) = match (
-        sol.event_times("contact begins").as_slice(),
-        sol.event_times("contact ends").as_slice(),
+        sol.event_times("contact begins")?.as_slice(),
+        sol.event_times("contact ends")?.as_slice(),
     ) {
         ([t_in], [t_out]) => (*t_in, *t_out),
         _ => return Err("expected one contact".into()),

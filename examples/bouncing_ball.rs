@@ -77,7 +77,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
             el.energy(s.t, s.q.as_slice(), s.v.as_slice())
         })
         .run_until(t_end)?;
-    let impacts = sol.event_times("impact");
+    let impacts = sol.event_times("impact")?;
     report.checks.push(Check::abs(
         "bouncing_ball",
         "number of impacts",
@@ -98,7 +98,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         }
     }
     // The apexes between impacts: y = e²ⁿ h₀ (the energy ½ m (e v)² after the n-th impact rises to m g y).
-    let apexes: Vec<f64> = sol.events_named("apex").map(|r| r.state.q[0]).collect();
+    let apexes: Vec<f64> = sol.events_named("apex")?.map(|r| r.state.q[0]).collect();
     for (n, y) in apexes.iter().enumerate().take(3).map(|(i, y)| (i + 1, *y)) {
         report.checks.push(Check::rel(
             "bouncing_ball",
@@ -110,7 +110,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     }
 
     // Energy after the last impact: each impact keeps e² of it, h = e²ⁿ m g h₀ (n = 10).
-    let energy = sol.observed("energy").ok_or("no energy recorded")?;
+    let energy = sol.observed("energy")?;
     report.checks.push(Check::rel(
         "bouncing_ball",
         format!("energy after {IMPACTS} impacts"),

@@ -127,10 +127,7 @@ pub fn simulate(p: ChargedParticle, v0: [f64; 3], t_end: f64, h: f64) -> Result<
         Ok(())
     })
     .run_steps(n)?;
-    let (vx, vy, vz) = match ["vx", "vy", "vz"].map(|name| sol.observed(name)) {
-        [Some(vx), Some(vy), Some(vz)] => (vx, vy, vz),
-        _ => return Err("no velocity recorded".into()),
-    };
+    let (vx, vy, vz) = (sol.observed("vx")?, sol.observed("vy")?, sol.observed("vz")?);
     Ok(Run {
         t: sol.times().to_vec(),
         r: (0..sol.len())

@@ -100,7 +100,7 @@ impl Collision {
             )
             .max_steps(1_000_000)
             .run_until(4.0 * r_far / v_inf)?;
-        if sol.event_times("back at R").is_empty() {
+        if sol.event_times("back at R")?.is_empty() {
             return Err("the bodies did not separate to R again".into());
         }
         let v = sol.last().v.as_slice();

@@ -41,7 +41,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.0,
         3e-14,
     ));
-    let p_total = traj.observed("Σp").ok_or("no Σp observed")?;
+    let p_total = traj.observed("Σp")?;
     let dp = p_total.iter().map(|p| (p - 20.0 * v0).abs()).fold(0.0, f64::max);
     report
         .checks

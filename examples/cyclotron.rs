@@ -108,7 +108,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
             .sum();
         let t_end = sol.last().t;
         let largest = |name: &str| -> Result<f64, BoxError> {
-            let x = sol.observed(name).ok_or("quantity not recorded")?;
+            let x = sol.observed(name)?;
             Ok(x.into_iter().fold(0.0_f64, f64::max))
         };
         let (r_dev, h_dev, l_dev) = (

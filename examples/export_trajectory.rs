@@ -107,7 +107,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.0,
         2e-11,
     ));
-    let energy = back.observed("energy").ok_or("no energy column")?;
+    let energy = back.observed("energy")?;
     let h0 = 0.5 * model.m * (vy0 * vy0 + model.w1 * model.w1 * x0 * x0);
     let drift = energy.iter().map(|h| (h - h0).abs() / h0).fold(0.0, f64::max);
     report.checks.push(Check::abs(

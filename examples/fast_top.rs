@@ -28,7 +28,7 @@ fn fast_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
     let (pf, pp, e) = constants(&el, &start)?;
     let fast = run_euler(top, start, 3.2)?;
     let minima: Vec<(f64, f64)> = fast
-        .events_named(THETA_MIN)
+        .events_named(THETA_MIN)?
         .map(|r| (r.t, r.state.q[1]))
         .collect();
     let (Some(&(t_first, phi_first)), Some(&(t_last, phi_last)), true) =

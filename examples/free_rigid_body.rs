@@ -134,7 +134,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.0,
         3e-6,
     ));
-    let ups = sol.event_times("Ω₂ = 0 up");
+    let ups = sol.event_times("Ω₂ = 0 up")?;
     if ups.len() < 5 {
         return Err(format!("expected 5 crossings of Ω₂, saw {}", ups.len()).into());
     }

@@ -280,8 +280,8 @@ fn euler(checks: &mut Vec<Check>) -> Result<(), BoxError> {
             (casimir(s.v.as_slice()) - l0) / l0
         })
         .run_until(10.0)?;
-    let de = max_abs(&sol.observed("dE").ok_or("no dE")?);
-    let dl = max_abs(&sol.observed("dL").ok_or("no dL")?);
+    let de = max_abs(&sol.observed("dE")?);
+    let dl = max_abs(&sol.observed("dL")?);
     // RK4, h = 1e-3, 10 s: measured 1.5e-14 and 7.9e-15: 5e-14.
     checks.push(Check::abs(
         NAME,
@@ -341,7 +341,7 @@ fn disk(checks: &mut Vec<Check>) -> Result<(), BoxError> {
     let start = State::new(0.0, q0, [R * th0 * ph0.cos(), R * th0 * ph0.sin(), th0, phd]);
     let m_sol = Driver::with_step(Projected::new(Rk4::new(&mult), mult.constraints()), start, 1e-3)?
         .run_until(10.0)?;
-    let err = max_abs(&ga_sol.observed("err").ok_or("no err")?);
+    let err = max_abs(&ga_sol.observed("err")?);
     let dq = (&ga_sol.last().q - &m_sol.last().q).amax();
     // RK4, h = 1e-3, 10 s: θ̇ measured 4.1e-13 (truncation): 1e-12; the two runs' q at the end differ by
     // 1.9e-14 (rounding): 1e-13.

@@ -195,7 +195,7 @@ pub fn run_euler(top: HeavyTop, start: State, t_end: f64) -> Result<Solution, Bo
 
 /// The largest |x − x(0)| of an observed series.
 fn max_deviation(sol: &Solution, name: &str) -> Result<f64, BoxError> {
-    let x = sol.observed(name).ok_or(format!("{name} was not observed"))?;
+    let x = sol.observed(name)?;
     Ok(x.iter().fold(0.0_f64, |m, v| m.max((v - x[0]).abs())))
 }
 
@@ -225,7 +225,7 @@ fn nutating_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
     // φ̇ along the run against (p_φ − p_ψ cos θ)/(I₁ sin²θ) with the initial constants: the same
     // tolerance, relative to |φ̇(0)| (measured 4.4e-14): 1e-13.
     let dphi0: f64 = 0.5;
-    let dev = run.observed(PRECESSION_DEV).ok_or("precession not observed")?;
+    let dev = run.observed(PRECESSION_DEV)?;
     report.checks.push(Check::abs(
         NAME,
         "max |φ̇ − (p_φ − p_ψ cos θ)/(I₁ sin²θ)| / |φ̇(0)|",

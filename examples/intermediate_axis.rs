@@ -53,8 +53,8 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .event(Event::new("Ω₂ = 0 down", omega2).falling())
         .run_until(3.2 * period)?;
-    let ups = sol.event_times("Ω₂ = 0 up");
-    let downs = sol.event_times("Ω₂ = 0 down");
+    let ups = sol.event_times("Ω₂ = 0 up")?;
+    let downs = sol.event_times("Ω₂ = 0 down")?;
     if ups.len() < 3 || downs.is_empty() {
         return Err(format!("expected flips, saw {} up and {} down", ups.len(), downs.len()).into());
     }

@@ -79,7 +79,7 @@ pub fn run_steps(steps: usize) -> Result<Report, BoxError> {
         })
         .run_steps(samples * every)?;
     // The energy after each `every` steps (the first saved row is the start).
-    let observed = sol.observed("energy").ok_or("no energy observed")?;
+    let observed = sol.observed("energy")?;
     let energies = observed
         .get(1..)
         .filter(|es| es.len() == samples)

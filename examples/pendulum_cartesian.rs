@@ -91,13 +91,10 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         })
         .run_until(t_end)?;
 
-    let missing = |name: &str| format!("no observed {name}");
-    let theta = cart.observed("θ").ok_or_else(|| missing("θ"))?;
-    let tension = cart.observed("tension").ok_or_else(|| missing("tension"))?;
-    let radius = cart.observed("|r| − l").ok_or_else(|| missing("|r| − l"))?;
-    let formula = ang
-        .observed("tension formula")
-        .ok_or_else(|| missing("tension formula"))?;
+    let theta = cart.observed("θ")?;
+    let tension = cart.observed("tension")?;
+    let radius = cart.observed("|r| − l")?;
+    let formula = ang.observed("tension formula")?;
     if cart.times() != ang.times() {
         return Err("the two formulations were saved at different times".into());
     }

@@ -176,8 +176,8 @@ fn turntable(checks: &mut Vec<Check>) -> Result<(), BoxError> {
         })
         .observe("wz", move |s: &State<QuasiVelocities>| s.v[2] - w0[2])
         .run_until(2.0 * 2.0 * PI / nu)?;
-    let err = max_abs(&sol.observed("err").ok_or("no err")?);
-    let dwz = max_abs(&sol.observed("wz").ok_or("no wz")?);
+    let err = max_abs(&sol.observed("err")?);
+    let dwz = max_abs(&sol.observed("wz")?);
     // RK4, h = 2e-3, two orbits: measured 3.2e-13 m (5.7e-12 at h = 4e-3, RK4's h⁴): 1e-12.
     checks.push(Check::abs(
         NAME,

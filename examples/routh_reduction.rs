@@ -93,7 +93,7 @@ fn kepler(report: &mut Report) -> Result<(), BoxError> {
         .keep_dense_output(true)
         .event(Event::new("pericentre", |s: &State| s.v[0]).rising())
         .run_until(3.2 * period)?;
-    let peri = sol.event_times("pericentre");
+    let peri = sol.event_times("pericentre")?;
     let phi = routh.reconstruct(&sol, &[0.0], &peri)?;
     let last = peri.len().checked_sub(1).ok_or("no pericentre passage")?;
     // Measured 2.4e-15 and 1.2e-13 rad after three periods (DOP853's global error at 1e-14).

@@ -92,14 +92,10 @@ pub fn deflection(kappa: f64, energy: f64, b: f64, r_far: f64) -> Result<(f64, f
         .observe("energy error", |s: &State| Ok(((energy_of(s)? - e0) / e0).abs()))
         .max_steps(MAX_STEPS)
         .run_until(t_bound)?;
-    if sol.event_times("back at R").is_empty() {
+    if sol.event_times("back at R")?.is_empty() {
         return Err("the particle did not come back out to R".into());
     }
-    let worst = sol
-        .observed("energy error")
-        .ok_or("no energy error recorded")?
-        .into_iter()
-        .fold(0.0_f64, f64::max);
+    let worst = sol.observed("energy error")?.into_iter().fold(0.0_f64, f64::max);
     let end = sol.last();
     Ok((end.v[1].atan2(end.v[0]), worst))
 }

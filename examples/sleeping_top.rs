@@ -66,7 +66,7 @@ fn sleeping_top(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
         })
     };
     let max_tilt = |sol: &Solution| -> Result<f64, BoxError> {
-        let tilts = sol.observed("tilt").ok_or("tilt not observed")?;
+        let tilts = sol.observed("tilt")?;
         Ok(tilts.into_iter().fold(0.0_f64, f64::max))
     };
     for s in [2.0, 1.1] {

@@ -114,9 +114,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         let c = cart.q(i);
         dr = dr.max((0..3).map(|k| (c[k] - r[k]).abs()).fold(0.0, f64::max));
     }
-    let missing = |name: &str| format!("no observed {name}");
-    let de = max_abs(&cart.observed("E drift").ok_or_else(|| missing("E drift"))?);
-    let dl = max_abs(&cart.observed("L_z drift").ok_or_else(|| missing("L_z drift"))?);
+    let de = max_abs(&cart.observed("E drift")?);
+    let dl = max_abs(&cart.observed("L_z drift")?);
 
     // Turning points of θ: the roots of E = L_z²/(2 m l² sin²θ) − m g l cos θ. One is θ₀ = 1 (released
     // with θ̇ = 0); the other is the root of V_eff(θ) − E on (0, θ₀), by core's bracketed root finder.
@@ -124,11 +123,11 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let (lo, hi) = (1e-6, 1.0 - 1e-6);
     let theta_min_expected = bracketed_root(veff, (lo, veff(lo)), (hi, veff(hi)))?;
     let tmax = cart
-        .events_named("θ largest")
+        .events_named("θ largest")?
         .map(|e| theta_of(&e.state))
         .fold(f64::NEG_INFINITY, f64::max);
     let tmin = cart
-        .events_named("θ smallest")
+        .events_named("θ smallest")?
         .map(|e| theta_of(&e.state))
         .fold(f64::INFINITY, f64::min);
 
@@ -148,9 +147,9 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         });
     let vi = driver.run_steps(steps)?;
     let worst_phi = driver.stepper().max_residual().0;
-    let dl_vi = max_abs(&vi.observed("L_z drift").ok_or_else(|| missing("L_z drift"))?);
+    let dl_vi = max_abs(&vi.observed("L_z drift")?);
     // The energy error after each step (row 0 is the start): its range over the first and last tenth.
-    let de_vi = vi.observed("E error").ok_or_else(|| missing("E error"))?;
+    let de_vi = vi.observed("E error")?;
     let tenth = steps / 10;
     let de_first = max_abs(&de_vi[1..=tenth]);
     let de_last = max_abs(&de_vi[steps - tenth + 1..=steps]);

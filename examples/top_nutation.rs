@@ -40,8 +40,10 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let cubic = nutation_cubic(&top, pf, pp, e);
     let roots = cubic_roots(cubic).ok_or("the nutation cubic has one real root")?;
     let (theta_min, theta_max) = (roots[1].acos(), roots[0].acos());
-    let thetas = |name: &str| -> Vec<f64> { run.events_named(name).map(|r| r.state.q[0]).collect() };
-    let (maxima, minima) = (thetas(THETA_MAX), thetas(THETA_MIN));
+    let thetas = |name: &str| -> noether::core::Result<Vec<f64>> {
+        Ok(run.events_named(name)?.map(|r| r.state.q[0]).collect())
+    };
+    let (maxima, minima) = (thetas(THETA_MAX)?, thetas(THETA_MIN)?);
     if maxima.len() < 3 || minima.len() < 3 {
         return Err(format!(
             "expected several nutations in the run, saw {} minima and {} maxima",
@@ -84,7 +86,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // dt = du/sqrt(f(u)); the quadrature converges geometrically, the events are located to ~1e-14
     // (measured 6.5e-14; RK4 samples with a parabola: 2.4e-11); 2e-13.
     let (period, _) = nutation_quadrature(&top, cubic, roots, pf, pp);
-    let observed = mean_period(&run.event_times(THETA_MAX)).ok_or("fewer than two maxima of θ")?;
+    let observed = mean_period(&run.event_times(THETA_MAX)?).ok_or("fewer than two maxima of θ")?;
     report.checks.push(Check::rel(
         NAME,
         "nutation period vs quadrature of the cubic",

@@ -137,12 +137,12 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let mut worst_max: f64 = 0.0;
     let mut worst_min: f64 = 0.0;
     let mut maxima = vec![];
-    for rec in sol.events_named(THETA_MAX) {
+    for rec in sol.events_named(THETA_MAX)? {
         let r = rot(&b, &rec.state)?;
         worst_max = worst_max.max((theta(&r) - theta_max).abs() / theta_max);
         maxima.push((rec.state.t, r[(0, 2)].atan2(-r[(1, 2)])));
     }
-    for rec in sol.events_named(THETA_MIN) {
+    for rec in sol.events_named(THETA_MIN)? {
         worst_min = worst_min.max((theta(&rot(&b, &rec.state)?) - theta_min).abs() / theta_min);
     }
     if maxima.len() < 3 {
@@ -219,11 +219,11 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let over = run_top(b, s0, 12.0)?;
     let (mut worst_max, mut worst_min): (f64, f64) = (0.0, 0.0);
     let (mut n_max, mut n_min) = (0, 0);
-    for rec in over.events_named(THETA_MAX) {
+    for rec in over.events_named(THETA_MAX)? {
         worst_max = worst_max.max((theta(&rot(&b, &rec.state)?) - theta_top).abs() / theta_top);
         n_max += 1;
     }
-    for rec in over.events_named(THETA_MIN) {
+    for rec in over.events_named(THETA_MIN)? {
         worst_min = worst_min.max(theta(&rot(&b, &rec.state)?));
         n_min += 1;
     }

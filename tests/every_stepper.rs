@@ -44,7 +44,9 @@ fn measure<S: Stepper>(stepper: S, start: State<S::Partner>, h: Option<f64>) -> 
     let output_error = (0..sol.len())
         .map(|i| (sol.q(i)[0] - sol.times()[i].cos()).abs())
         .fold(0.0, f64::max);
-    let fired = sol.event_times("x = 0 downwards");
+    let fired = sol
+        .event_times("x = 0 downwards")
+        .expect("the event is registered");
     let event_error = fired
         .iter()
         .zip([0.5 * PI, 2.5 * PI])

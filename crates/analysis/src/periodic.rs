@@ -133,7 +133,12 @@ fn finite_value(what: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(noether_core::Error::NonFiniteResult { what, t: 0.0 }.into())
+        Err(noether_core::Error::NonFiniteResult {
+            what,
+            t: 0.0,
+            component: None,
+        }
+        .into())
     }
 }
 
@@ -146,6 +151,7 @@ fn gradient_of<F: Field>(f: &F, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [
         return Err(noether_core::Error::NonFiniteResult {
             what: "first integral gradient",
             t: 0.0,
+            component: None,
         }
         .into());
     }
@@ -218,6 +224,7 @@ pub fn floquet(m: &DMatrix<f64>, trivial: usize, tol: f64) -> Result<Floquet> {
         return Err(noether_core::Error::NonFiniteResult {
             what: "monodromy matrix",
             t: 0.0,
+            component: None,
         }
         .into());
     }
@@ -466,6 +473,7 @@ impl<S: TangentStepper> Shooting<S> {
                 iterations,
                 residual,
                 tolerance,
+                ..
             }) => Error::ShootingDiverged {
                 iterations,
                 residual,

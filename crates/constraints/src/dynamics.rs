@@ -218,6 +218,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
             return Err(CoreError::NonFiniteResult {
                 what: "constrained equations of motion",
                 t,
+                component: None,
             }
             .into());
         }
@@ -264,6 +265,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
             return Err(CoreError::NonFiniteResult {
                 what: "position constraint residual φ(t, q)",
                 t,
+                component: None,
             }
             .into());
         }
@@ -271,6 +273,7 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
             return Err(CoreError::NonFiniteResult {
                 what: "velocity constraint residual A q̇ + a",
                 t,
+                component: None,
             }
             .into());
         }

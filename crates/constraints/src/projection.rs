@@ -179,6 +179,7 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
         return Err(CoreError::NonFiniteResult {
             what: "projected state",
             t,
+            component: None,
         }
         .into());
     }

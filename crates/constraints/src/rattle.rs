@@ -371,6 +371,7 @@ where
             return Err(CoreError::NonFiniteResult {
                 what: "state after the step",
                 t: t0,
+                component: None,
             });
         }
         self.last = RattleInfo {

@@ -18,7 +18,7 @@
 //!     .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
 //!     .run_until(5.0)?;
 //! assert_eq!(sol.len(), 101);
-//! let up = sol.event_times("θ = 0 upwards");
+//! let up = sol.event_times("θ = 0 upwards")?;
 //! let period = up[1] - up[0]; // ≈ 2π sqrt(l/g) (1 + θ₀²/16)
 //! assert!((period - 2.0 * std::f64::consts::PI / 9.81f64.sqrt() * (1.0 + 0.01 / 16.0)).abs() < 1e-5);
 //! # Ok::<(), noether_core::Error>(())
@@ -310,6 +310,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 Err(Error::NonFiniteResult {
                     what: "state after the step",
                     t,
+                    component: None,
                 })
             }
         });
@@ -322,7 +323,12 @@ impl<'a, S: Stepper> Driver<'a, S> {
                 Ok(info)
             }
             // The model says what failed and when; the driver adds which step of the run.
-            Err(Error::NonFiniteResult { what, .. }) => Err(Error::NonFiniteState { what, step, t }),
+            Err(Error::NonFiniteResult { what, component, .. }) => Err(Error::NonFiniteState {
+                what,
+                step,
+                t,
+                component,
+            }),
             Err(e) => Err(e),
         }
     }
@@ -634,6 +640,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
                     Error::NonFiniteResult { t, .. } => Error::NonFiniteResult {
                         what: "event function inside the step",
                         t,
+                        component: None,
                     },
                     e => e,
                 })?;

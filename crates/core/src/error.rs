@@ -59,10 +59,11 @@ pub enum Error {
         /// at most [`SINGULAR_PIVOT`](crate::linalg::SINGULAR_PIVOT)).
         pivot_ratio: f64,
     },
-    /// The mass matrix ∂²L/∂q̇² is regular but not positive definite where a Lagrangian convex in q̇
-    /// is required (the Legendre transform to a Hamiltonian: p = ∂L/∂q̇ then need not have one
-    /// solution q̇).
-    #[error("mass matrix ∂²L/∂q̇² is not positive definite at t = {t} (smallest eigenvalue {eigenvalue:e} relative to the largest in magnitude): the Legendre transform needs L convex in q̇")]
+    /// The mass matrix ∂²L/∂q̇² is regular but not positive definite (a negative mass; a kinetic
+    /// energy ½ q̇ᵀ M q̇ that is negative for some q̇): Lagrange's equations of
+    /// [`EulerLagrange`](crate::EulerLagrange) and the Legendre transform to a Hamiltonian (where
+    /// p = ∂L/∂q̇ then need not have one solution q̇) both require L convex in q̇.
+    #[error("the mass matrix ∂²L/∂q̇² is not positive definite at t = {t} (smallest eigenvalue {eigenvalue:e} relative to the largest in magnitude): the kinetic energy must be positive for every q̇ ≠ 0; check the signs of the masses and of the kinetic terms of L")]
     IndefiniteMassMatrix {
         /// Time at which it was found.
         t: f64,
@@ -82,7 +83,7 @@ pub enum Error {
         pivot_ratio: f64,
     },
     /// Newton's method did not converge.
-    #[error("Newton did not converge after {iterations} iterations: residual norm {residual:e} (tolerance {tolerance:e})")]
+    #[error("Newton did not converge after {iterations} iterations{}: residual norm {residual:e} (tolerance {tolerance:e}); for an implicit step, try a smaller step", at_t(*t))]
     NewtonDiverged {
         /// Iterations performed.
         iterations: usize,
@@ -90,21 +91,26 @@ pub enum Error {
         residual: f64,
         /// Requested tolerance.
         tolerance: f64,
+        /// Time of the step or evaluation that needed the solve, set by the caller that knows it
+        /// ([`Error::at_time`]); NaN otherwise.
+        t: f64,
     },
     /// A model or a step produced NaN or infinity (a quantity that should be finite, at time `t`).
     /// Model-level code and single steps report this; a [`Driver`](crate::Driver) turns it into
     /// [`NonFiniteState`](Self::NonFiniteState) with the step index.
-    #[error("the model produced a non-finite {what} at t = {t}")]
+    #[error("the model gave NaN or ±∞ for its {what}{}{}: check the model's parameters, and that the state is inside the model's domain", component_of(*component), at_t(*t))]
     NonFiniteResult {
         /// The quantity that came out non-finite ("accelerations", "energy", "state after the step", ...).
         what: &'static str,
         /// Time of the evaluation (the start of the step); NaN for a quantity computed without a time
         /// (a kinetic or potential energy of a model that does not depend on t).
         t: f64,
+        /// The first component of `what` that is not finite, when it is a vector and known.
+        component: Option<usize>,
     },
     /// A run produced NaN or infinity: [`NonFiniteResult`](Self::NonFiniteResult) with the step index
     /// added by the driver.
-    #[error("the model produced a non-finite {what} at step {step}, t = {t}")]
+    #[error("the model gave NaN or ±∞ for its {what}{} at step {step}, t = {t}: check the model's parameters, and that the state is inside the model's domain", component_of(*component))]
     NonFiniteState {
         /// The quantity that came out non-finite.
         what: &'static str,
@@ -112,6 +118,8 @@ pub enum Error {
         step: usize,
         /// Time at the start of the failing step.
         t: f64,
+        /// The first component of `what` that is not finite, when known.
+        component: Option<usize>,
     },
     /// Adaptive step-size control gave up.
     #[error("step size underflow at t = {t}: h = {h:e} (error estimate {error:e})")]
@@ -151,6 +159,18 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A name that the run does not know: an observer or an event asked of a
+    /// [`Solution`](crate::Solution) by a name that was never registered (a typo). Lists the names the
+    /// run recorded.
+    #[error("no {kind} named {name:?}; the run recorded: {}", quoted_list(known))]
+    UnknownName {
+        /// What was looked up: "observer" or "event".
+        kind: &'static str,
+        /// The name asked for.
+        name: String,
+        /// The names of that kind the run recorded, in registration order.
+        known: Vec<String>,
+    },
     /// A method was asked to do what it cannot (e.g. an explicit symplectic method on a non-separable system).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
@@ -175,12 +195,23 @@ impl Error {
         Error::Model(ModelError(Arc::new(error)))
     }
 
-    /// This error with the time of a [`Error::NonFiniteResult`] set to `t` (a model evaluated by a
-    /// function without time reports NaN there; the integrator calling it knows t). Other errors
-    /// unchanged.
+    /// This error with the time of a [`Error::NonFiniteResult`] or an [`Error::NewtonDiverged`] set
+    /// to `t` (a model evaluated by a function without time, or a Newton solve, reports NaN there; the
+    /// integrator calling it knows t). Other errors unchanged.
     pub fn at_time(self, t: f64) -> Self {
         match self {
-            Error::NonFiniteResult { what, .. } => Error::NonFiniteResult { what, t },
+            Error::NonFiniteResult { what, component, .. } => Error::NonFiniteResult { what, t, component },
+            Error::NewtonDiverged {
+                iterations,
+                residual,
+                tolerance,
+                ..
+            } => Error::NewtonDiverged {
+                iterations,
+                residual,
+                tolerance,
+                t,
+            },
             other => other,
         }
     }
@@ -278,6 +309,33 @@ impl PartialEq for ModelError {
     }
 }
 
+/// ` at t = 0.5` for a known time, nothing for NaN (a quantity computed without one).
+fn at_t(t: f64) -> String {
+    if t.is_nan() {
+        String::new()
+    } else {
+        format!(" at t = {t}")
+    }
+}
+
+/// ` (component 1)` for a known component, nothing otherwise.
+fn component_of(component: Option<usize>) -> String {
+    component.map(|i| format!(" (component {i})")).unwrap_or_default()
+}
+
+/// `"a", "b"` for the names a, b; `(none)` for none.
+fn quoted_list(names: &[String]) -> String {
+    if names.is_empty() {
+        "(none)".into()
+    } else {
+        names
+            .iter()
+            .map(|n| format!("{n:?}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
 /// Checks that `x` has length `n`.
 #[inline]
 pub fn check_len(what: &'static str, x: &[f64], n: usize) -> Result<()> {
@@ -306,13 +364,17 @@ pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
 
 /// The output twin of [`check_finite`]: Ok when every entry of a computed `x` is finite, else
 /// [`Error::NonFiniteResult`] naming the quantity `what` at time `t` (NaN for a quantity computed
-/// without one).
+/// without one) and, for a vector of more than one entry, the first component that is not finite.
 #[inline]
 pub fn check_result(what: &'static str, t: f64, x: &[f64]) -> Result<()> {
     if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
         Ok(())
     } else {
-        Err(Error::NonFiniteResult { what, t })
+        Err(Error::NonFiniteResult {
+            what,
+            t,
+            component: x.iter().position(|v| !v.is_finite()).filter(|_| x.len() > 1),
+        })
     }
 }
 

@@ -49,6 +49,7 @@ impl<H: Hamiltonian> HamiltonEquations<H> {
             .unwrap_or(Error::NonFiniteResult {
                 what: "Hamiltonian or its derivatives",
                 t,
+                component: None,
             })
     }
 

@@ -20,8 +20,10 @@
 //!   carrying an N×N Hessian through every operation; with a constant mass matrix, the chunked
 //!   gradient and Hessian-vector product kernels of [`ad`] suffice.
 //!
-//! An indefinite (but regular) M is solved by LU; a singular one is reported as
-//! [`Error::SingularMassMatrix`].
+//! M must be positive definite (a positive kinetic energy ½ q̇ᵀ M q̇ for every q̇ ≠ 0): a regular
+//! but indefinite M (a negative mass) is [`Error::IndefiniteMassMatrix`] at the time it is met (t = 0
+//! for a mass matrix that is negative from the start, not a step-size underflow later), a singular
+//! one [`Error::SingularMassMatrix`].
 
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len, check_phase_point, check_result, finite_result};
@@ -52,7 +54,7 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
 /// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: nalgebra's Cholesky of the
 /// static matrix (no heap allocation) with the relative-pivot test of [`linalg`] (pivots d_j = L_jj²,
 /// scale max(d_max, max |m_ij|)). An indefinite, singular or non-finite M goes through
-/// [`linalg::factor_mass`] (LU, or the error it reports).
+/// [`linalg::factor_positive_mass`] for the error it reports.
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
     if let Some(ch) = m.cholesky() {
@@ -62,7 +64,7 @@ fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, 
             return Ok(());
         }
     }
-    linalg::factor_mass(DMatrix::from_column_slice(N, N, m.as_slice()), t)
+    linalg::factor_positive_mass(DMatrix::from_column_slice(N, N, m.as_slice()), t)
         .map(|f| f.solve_in_place(b.as_mut_slice()))
 }
 
@@ -136,12 +138,12 @@ impl<L: Lagrangian> EulerLagrange<L> {
         if self.lagrangian.constant_mass_matrix() {
             return self.constant_factor(t, q, v).cloned();
         }
-        linalg::factor_mass(self.mass_matrix(t, q, v)?, t)
+        linalg::factor_positive_mass(self.mass_matrix(t, q, v)?, t)
     }
 
     fn constant_factor(&self, t: f64, q: &[f64], v: &[f64]) -> Result<&DenseFactor> {
         self.constant_mass
-            .get_or_init(|| linalg::factor_mass(self.mass_matrix(t, q, v)?, t))
+            .get_or_init(|| linalg::factor_positive_mass(self.mass_matrix(t, q, v)?, t))
             .as_ref()
             .map_err(Clone::clone)
     }
@@ -159,7 +161,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         if self.lagrangian.constant_mass_matrix() {
             self.constant_factor(t, q, v)?.solve_in_place(&mut x);
         } else {
-            linalg::factor_mass(self.mass_matrix(t, q, v)?, t)?.solve_in_place(&mut x);
+            linalg::factor_positive_mass(self.mass_matrix(t, q, v)?, t)?.solve_in_place(&mut x);
         }
         check_result("M⁻¹ b", t, &x)?;
         b.copy_from_slice(&x);
@@ -243,7 +245,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         } else {
             let terms = ad::lagrange_terms_taped(&f, t, q, v);
             let b = (terms.grad_x - terms.mixed).data.into();
-            (b, Some(linalg::factor_mass(terms.hess_yy, t)?))
+            (b, Some(linalg::factor_positive_mass(terms.hess_yy, t)?))
         };
         if self.lagrangian.has_generalized_force() {
             let mut qf = vec![0.0; n];

@@ -178,6 +178,7 @@ impl<L: Lagrangian> LegendreTransform<L> {
             return Err(Error::NonFiniteResult {
                 what: "Hamiltonian",
                 t,
+                component: None,
             });
         }
         Ok(h)
@@ -218,6 +219,7 @@ impl<L: Lagrangian> LegendreTransform<L> {
             return Err(Error::NonFiniteResult {
                 what: "velocities q̇ from p",
                 t,
+                component: None,
             });
         }
         let solved = Solved {
@@ -282,6 +284,7 @@ impl<L: Lagrangian> LegendreTransform<L> {
             return Err(Error::NonFiniteResult {
                 what: "velocities q̇ from p",
                 t,
+                component: None,
             });
         }
         Ok(Solved {

@@ -122,6 +122,7 @@ impl FactorError {
             FactorError::NonFinite => Error::NonFiniteResult {
                 what: "mass matrix",
                 t,
+                component: None,
             },
             FactorError::Singular { pivot_ratio } => Error::SingularMassMatrix { t, pivot_ratio },
         }
@@ -285,14 +286,17 @@ pub fn factor_mass(m: DMatrix<f64>, t: f64) -> crate::Result<DenseFactor> {
     DenseFactor::symmetric(m).map_err(|e| e.in_mass_matrix(t))
 }
 
-/// The Cholesky factor of a mass matrix that must be positive definite (the Legendre transform, normal
-/// modes), or why there is none: [`Error::SingularMassMatrix`] (the pivot test), or
-/// [`Error::IndefiniteMassMatrix`] with the smallest eigenvalue relative to the largest in magnitude
-/// (regular with a negative eigenvalue; the eigenvalues are computed only in that case).
-pub fn positive_definite_mass(m: DMatrix<f64>, t: f64) -> crate::Result<nalgebra::Cholesky<f64, Dyn>> {
+/// Factors a mass matrix M = ∂²L/∂q̇² found at time `t` that must be positive definite (the kinetic
+/// energy ½ q̇ᵀ M q̇ > 0 for every q̇ ≠ 0: Lagrange's equations stepped by
+/// [`EulerLagrange`](crate::EulerLagrange), the Legendre transform): its Cholesky factor, or why there
+/// is none: [`Error::SingularMassMatrix`] (the pivot test), [`Error::NonFiniteResult`] (a non-finite
+/// entry), or [`Error::IndefiniteMassMatrix`] with the smallest eigenvalue relative to the largest in
+/// magnitude (regular with a negative eigenvalue, e.g. a negative mass; the eigenvalues are computed
+/// only in that case).
+pub fn factor_positive_mass(m: DMatrix<f64>, t: f64) -> crate::Result<DenseFactor> {
     let f = factor_mass(m.clone(), t)?;
     match f.kind {
-        Kind::Cholesky(c) => Ok(c),
+        Kind::Cholesky(_) => Ok(f),
         Kind::Lu(_) => {
             let eig = m.symmetric_eigenvalues();
             let (lo, hi) = eig.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), e| {
@@ -305,6 +309,19 @@ pub fn positive_definite_mass(m: DMatrix<f64>, t: f64) -> crate::Result<nalgebra
                 eigenvalue: lo / hi,
             })
         }
+    }
+}
+
+/// The Cholesky factor of a mass matrix that must be positive definite (the Legendre transform, normal
+/// modes), or why there is none, as [`factor_positive_mass`].
+pub fn positive_definite_mass(m: DMatrix<f64>, t: f64) -> crate::Result<nalgebra::Cholesky<f64, Dyn>> {
+    match factor_positive_mass(m, t)?.kind {
+        Kind::Cholesky(c) => Ok(c),
+        // factor_positive_mass returns only Cholesky factors.
+        Kind::Lu(_) => Err(Error::SingularMassMatrix {
+            t,
+            pivot_ratio: f64::NAN,
+        }),
     }
 }
 

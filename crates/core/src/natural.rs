@@ -348,6 +348,7 @@ impl<P: Potential> Natural<P> {
             return Err(Error::NonFiniteResult {
                 what: "potential forces",
                 t: f64::NAN,
+                component: None,
             });
         }
         Ok(())

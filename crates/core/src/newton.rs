@@ -70,6 +70,7 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
             crate::linalg::FactorError::NonFinite => Error::NonFiniteResult {
                 what: "Newton Jacobian",
                 t: f64::NAN,
+                component: None,
             },
             e => e.in_matrix("Newton Jacobian"),
         })?;
@@ -287,6 +288,7 @@ impl Newton {
             iterations,
             residual,
             tolerance: self.tol_residual,
+            t: f64::NAN,
         }
     }
 }
@@ -299,6 +301,7 @@ fn non_finite_residual() -> Error {
     Error::NonFiniteResult {
         what: "Newton residual",
         t: f64::NAN,
+        component: None,
     }
 }
 

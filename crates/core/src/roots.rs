@@ -104,6 +104,7 @@ fn finite_at(t: f64, g: f64) -> Result<f64> {
         Err(Error::NonFiniteResult {
             what: "function inside the bracket of a root",
             t,
+            component: None,
         })
     }
 }

@@ -331,7 +331,7 @@ fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
         return Ok(jac);
     };
     // M and q̈ = M⁻¹b from the real parts (the same in every column).
-    let factor = crate::linalg::factor_mass(DMatrix::from_fn(N, N, |r, c| m0[(r, c)].re), t)?;
+    let factor = crate::linalg::factor_positive_mass(DMatrix::from_fn(N, N, |r, c| m0[(r, c)].re), t)?;
     let acc = factor.solve_matrix(&DMatrix::from_fn(N, 1, |r, _| b0[r].re));
     for (j, (b, m)) in columns.iter().enumerate() {
         // δb − (δM) q̈, then M⁻¹.

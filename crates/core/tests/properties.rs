@@ -404,7 +404,7 @@ proptest! {
             _ => Driver::with_step(Rk4::new(Natural::unit(Fall)), start, h).unwrap().event(bounce).run_until(t_end),
         }
         .unwrap();
-        let found = sol.event_times("floor");
+        let found = sol.event_times("floor").unwrap();
         prop_assert_eq!(found.len(), expected.len(), "{:?} vs {:?}", found, expected);
         for (t, x) in found.iter().zip(&expected) {
             // Rounding of a few operations per bounce on values of size t_end (≤ 6 s).

@@ -584,6 +584,7 @@ impl<Ld: DiscreteLagrangian> noether_core::newton::DenseProblem for LinearFamily
             return Err(Error::NonFiniteResult {
                 what: "Hessian of the discrete action over a linear family",
                 t: self.t0,
+                component: None,
             });
         }
         Ok(())

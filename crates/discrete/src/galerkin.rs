@@ -287,6 +287,7 @@ impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t,
+                component: None,
             });
         }
         q.copy_from_slice(q1);

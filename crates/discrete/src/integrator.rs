@@ -334,6 +334,7 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t,
+                component: None,
             });
         }
         // q_{k+1} is the point L_d was evaluated at, so the discrete Noether identity

@@ -260,6 +260,7 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t,
+                component: None,
             });
         }
         q.iter_mut().zip(&self.d).for_each(|(qi, di)| *qi += di);

@@ -132,6 +132,7 @@ impl<P: LocalPotential> DiscreteFlow for Verlet<P> {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t,
+                component: None,
             });
         }
         q.copy_from_slice(&self.q1);

@@ -32,7 +32,7 @@
 //! let sol = Driver::new(Dop853::new(&el), State::new(0.0, [0.3], [0.0]))?
 //!     .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
 //!     .run_until(10.0)?;
-//! let e = sol.observed("energy").unwrap();
+//! let e = sol.observed("energy")?;
 //! assert!((e[e.len() - 1] - e[0]).abs() < 1e-8 * e[0].abs());
 //! # Ok::<(), noether::core::Error>(())
 //! ```

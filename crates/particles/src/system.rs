@@ -196,6 +196,7 @@ impl<I: Interaction> System<I> {
             .unwrap_or(Error::Core(noether_core::Error::NonFiniteResult {
                 what: "forces",
                 t,
+                component: None,
             })))
     }
 
@@ -242,6 +243,7 @@ impl<I: Interaction> System<I> {
                 .unwrap_or(Error::Core(noether_core::Error::NonFiniteResult {
                     what: "potential energy",
                     t,
+                    component: None,
                 })));
         }
         Ok(e)

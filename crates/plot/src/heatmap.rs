@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// use noether_plot::Heatmap;
 /// let (x, y) = (vec![0.0, 1.0, 2.0], vec![0.0, 1.0]);
 /// let values = vec![1.0, 2.0, 3.0, f64::NAN, 5.0, 6.0];
-/// Heatmap::new("values", x, y, values)?.x_label("x").y_label("y").save("map.svg".as_ref())?;
+/// Heatmap::new("values", x, y, values)?.x_label("x").y_label("y").save("map.svg")?;
 /// # Ok::<(), noether_plot::Error>(())
 /// ```
 #[derive(Debug, Clone)]
@@ -94,8 +94,12 @@ impl Heatmap {
         }
     }
 
-    /// Writes the heat map as SVG to `path`.
-    pub fn save(&self, path: &Path) -> Result<PathBuf> {
+    /// Writes the heat map as SVG to `path` (a `&str`, `String`, `Path` or `PathBuf`) and returns the
+    /// path written. A folder that does not exist is [`Error::Write`] naming the path; no folder is
+    /// created.
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<PathBuf> {
+        let path = path.as_ref();
+        super::check_folder(path)?;
         let levels: Vec<f64> = self.values.iter().filter_map(|&v| self.level(v)).collect();
         let lo = levels.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = levels.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -188,7 +192,7 @@ impl Heatmap {
                 )
             }))
             .map_err(draw_error)?;
-        root.present().map_err(draw_error)?;
+        root.present().map_err(super::write_error(path))?;
         Ok(path.to_path_buf())
     }
 }

@@ -17,7 +17,7 @@
 //!     .y_label("y")
 //!     .equal_aspect()
 //!     .series("unit circle", circle)
-//!     .save("circle.svg".as_ref())
+//!     .save("circle.svg")
 //!     .unwrap();
 //! ```
 
@@ -57,9 +57,17 @@ pub enum Error {
         /// What does not fit.
         reason: &'static str,
     },
-    /// The drawing backend failed (file system, font).
+    /// The drawing backend failed (a font).
     #[error("drawing failed: {0}")]
     Draw(String),
+    /// The picture could not be written to `path` (its folder does not exist, no permission).
+    #[error("cannot write the picture to {}: {reason}", path.display())]
+    Write {
+        /// The path asked for.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
 }
 
 /// Result alias of this crate.
@@ -67,6 +75,26 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 fn draw_error<E: std::fmt::Display>(e: E) -> Error {
     Error::Draw(e.to_string())
+}
+
+/// Checks, before anything is drawn, that the folder `path` is to be written into exists
+/// ([`Error::Write`] naming both otherwise).
+fn check_folder(path: &Path) -> Result<()> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(Error::Write {
+            path: path.to_path_buf(),
+            reason: format!("the folder {} does not exist", dir.display()),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// The error of writing the finished picture to `path` (the backend's message kept).
+fn write_error<E: std::fmt::Display>(path: &Path) -> impl FnOnce(E) -> Error + '_ {
+    move |e| Error::Write {
+        path: path.to_path_buf(),
+        reason: e.to_string(),
+    }
 }
 
 /// Series longer than this are thinned (every k-th point kept) before drawing, so the SVG stays small.
@@ -163,8 +191,12 @@ impl Figure {
         self
     }
 
-    /// Writes the figure as SVG to `path`.
-    pub fn save(&self, path: &Path) -> Result<PathBuf> {
+    /// Writes the figure as SVG to `path` (a `&str`, `String`, `Path` or `PathBuf`) and returns the
+    /// path written. A folder that does not exist is [`Error::Write`] naming the path; no folder is
+    /// created.
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<PathBuf> {
+        let path = path.as_ref();
+        check_folder(path)?;
         let (mut x0, mut x1, mut y0, mut y1) = self.bounds()?;
         let named = self.series.iter().any(|s| !s.name.is_empty());
         let (mut legend, covered) = self.legend_corner((x0, x1, y0, y1));
@@ -193,7 +225,7 @@ impl Figure {
         } else {
             self.draw(&root, x0..x1, y0..y1, legend, ticks)?;
         }
-        root.present().map_err(draw_error)?;
+        root.present().map_err(write_error(path))?;
         Ok(path.to_path_buf())
     }
 
@@ -454,5 +486,33 @@ mod tests {
         assert!(Figure::new("empty").save(&dir).is_err());
         let nan = Figure::new("nan").series("s", vec![(f64::NAN, 1.0)]);
         assert!(nan.save(&dir).is_err());
+    }
+
+    #[test]
+    fn bad_input_save_into_a_missing_folder_names_the_path() {
+        // Issue 30 item 12: the error said "drawing failed" with no path. Both pictures refuse before
+        // drawing, naming the file and the missing folder; a &str, a String and a PathBuf are accepted
+        // (impl AsRef<Path>), and a folder that exists is written into.
+        let missing = std::env::temp_dir()
+            .join("noether-plot-no-such-folder")
+            .join("fig.svg");
+        let fig = Figure::new("line").series("s", vec![(0.0, 0.0), (1.0, 1.0)]);
+        let err = fig.save(&missing).unwrap_err();
+        assert!(
+            matches!(&err, Error::Write { path, .. } if path == &missing),
+            "{err}"
+        );
+        let msg = err.to_string();
+        assert!(
+            msg.contains(&missing.display().to_string()) && msg.contains("does not exist"),
+            "{msg}"
+        );
+        let map = Heatmap::new("map", vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0, 2.0, 3.0]).unwrap();
+        let as_str = missing.to_str().unwrap();
+        assert!(matches!(map.save(as_str), Err(Error::Write { .. })));
+        let ok = std::env::temp_dir().join(format!("noether-plot-test-{}.svg", std::process::id()));
+        assert_eq!(fig.save(ok.clone()).unwrap(), ok);
+        assert_eq!(map.save(ok.to_str().unwrap().to_string()).unwrap(), ok);
+        std::fs::remove_file(&ok).unwrap();
     }
 }

@@ -67,7 +67,8 @@ fn check_coordinate<K: Partner>(sol: &Solution<K>, title: &str, j: usize) -> Res
 }
 
 fn observed_values<K: Partner>(sol: &Solution<K>, title: &str, name: &str) -> Result<Vec<f64>> {
-    sol.observed(name).ok_or_else(|| Error::NoSuchSeries {
-        what: format!("observed quantity '{name}' for '{title}'"),
+    // The core error lists the observers the run recorded.
+    sol.observed(name).map_err(|e| Error::NoSuchSeries {
+        what: format!("observed quantity '{name}' for '{title}' ({e})"),
     })
 }

@@ -113,8 +113,14 @@ impl<V: OrientationPotential> Lgvi<V> {
         let body = &self.body;
         let r0 = q.to_rotation_matrix().into_inner();
         let a = pi + body.torque(&r0)? * (0.5 * h);
-        let non_finite =
-            |what| -> crate::Error { noether_core::Error::NonFiniteResult { what, t: f64::NAN }.into() };
+        let non_finite = |what| -> crate::Error {
+            noether_core::Error::NonFiniteResult {
+                what,
+                t: f64::NAN,
+                component: None,
+            }
+            .into()
+        };
         if !a.iter().all(|x| x.is_finite()) {
             return Err(non_finite("LGVI momentum Π + h/2 M"));
         }

@@ -165,7 +165,7 @@ fn regress_energy_non_finite_is_an_error() {
     let s = bad.state(1.0, &UnitQuaternion::identity(), &Vector3::new(0.0, 0.0, 1.0));
     let e = core_err(bad.energy(&s));
     assert!(
-        matches!(e, noether_core::Error::NonFiniteResult { what: "potential energy", t } if t == 1.0),
+        matches!(e, noether_core::Error::NonFiniteResult { what: "potential energy", t, .. } if t == 1.0),
         "{e:?}"
     );
     let tilted = UnitQuaternion::from_euler_angles(0.3, 0.0, 0.0)

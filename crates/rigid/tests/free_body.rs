@@ -62,7 +62,7 @@ fn closed_form_free_asymmetric_top_period() {
         .unwrap()
         .event(noether_core::Event::new("Ω₂ = 0 up", omega2).rising());
     let sol = run.run_until(5.5 * top.period()).unwrap();
-    let times: Vec<f64> = sol.event_times("Ω₂ = 0 up");
+    let times: Vec<f64> = sol.event_times("Ω₂ = 0 up").unwrap();
     assert!(times.len() >= 5, "{times:?}");
     let period = (times[4] - times[0]) / 4.0;
     let rel = (period - top.period()).abs() / top.period();

@@ -65,7 +65,7 @@ fn closed_form_kepler_reduced_to_r() {
         .event(Event::new("pericentre", |s: &State| s.v[0]).rising())
         .run_until(3.2 * period)
         .unwrap();
-    let peri = sol.event_times("pericentre");
+    let peri = sol.event_times("pericentre").unwrap();
     assert_eq!(peri.len(), 3);
     let err_t = peri
         .iter()

@@ -371,7 +371,7 @@ fn closed_form_rolling_disk_agrees_with_the_multiplier_form() -> Result<()> {
     let m_sol = Driver::with_step(Projected::new(Rk4::new(&mult), mult.constraints()), start, 1e-3)?
         .observe("err", move |s: &State| s.v[2] - closed(s.t))
         .run_until(10.0)?;
-    let max = |v: Option<Vec<f64>>| {
+    let max = |v: noether_core::Result<Vec<f64>>| {
         v.map(|v| v.iter().fold(0.0_f64, |m, x| m.max(x.abs())))
             .unwrap_or(f64::NAN)
     };
@@ -452,7 +452,7 @@ fn closed_form_sphere_on_a_turntable() -> Result<()> {
         })
         .observe("wz", move |s: &State<QuasiVelocities>| s.v[2] - w0[2])
         .run_until(2.0 * 2.0 * std::f64::consts::PI / nu)?;
-    let max = |v: Option<Vec<f64>>| {
+    let max = |v: noether_core::Result<Vec<f64>>| {
         v.map(|v| v.iter().fold(0.0_f64, |m, x| m.max(x.abs())))
             .unwrap_or(f64::NAN)
     };

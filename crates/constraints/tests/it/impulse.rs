@@ -284,12 +284,17 @@ fn closed_form_pendulum_bounces_off_a_wall_in_a_run() {
         .event(top)
         .run_until(1.0)
         .unwrap();
-    let t_wall = sol.event_times("wall")[0];
+    let t_wall = sol.event_times("wall").unwrap()[0];
     let w = (3.0 * g / l).sqrt();
     // ω at the wall from the event state: measured 1.6e-14 relative (DOP853 at tolerance 1e-13).
     assert!(close(omega_at_wall[0], -w, 1e-13), "{omega_at_wall:?} vs {w}");
     // cos θ_max, measured 1.2e-14 relative.
-    let first_top = &sol.events_named("top").find(|e| e.t > t_wall).unwrap().state;
+    let first_top = &sol
+        .events_named("top")
+        .unwrap()
+        .find(|e| e.t > t_wall)
+        .unwrap()
+        .state;
     assert!(
         close(first_top.q[0].cos(), 1.0 - e * e, 1e-13),
         "{}",

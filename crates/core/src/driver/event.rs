@@ -61,7 +61,7 @@ pub(crate) enum Action<'a, K> {
 /// let sol = Driver::new(Dop853::new(EulerLagrange::new(Fall)).tolerances(1e-12, 1e-12)?, State::new(0.0, [1.0], [0.0]))?
 ///     .event(bounce)
 ///     .run_until(1.0)?;
-/// let first = sol.event_times("floor")[0];
+/// let first = sol.event_times("floor")?[0];
 /// assert!((first - (2.0 / 9.81f64).sqrt()).abs() < 1e-12); // t = sqrt(2h/g)
 /// # Ok::<(), noether_core::Error>(())
 /// ```

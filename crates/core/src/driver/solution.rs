@@ -71,7 +71,7 @@ pub struct EventRecord<K = Velocities> {
 ///     .run_until(1.0)?;
 /// assert_eq!(sol.len(), 3);
 /// assert!((sol.q(1)[0] - 0.5f64.cos()).abs() < 1e-12); // q = cos t
-/// assert!((sol.observed("energy").unwrap()[2] - 0.5).abs() < 1e-12);
+/// assert!((sol.observed("energy")?[2] - 0.5).abs() < 1e-12);
 /// # Ok::<(), noether_core::Error>(())
 /// ```
 #[derive(Debug, Clone)]
@@ -212,11 +212,27 @@ impl<K: Partner> Solution<K> {
         &self.observer_names
     }
 
-    /// The observed quantity `name` at every saved time; `None` if no observer has that name.
-    pub fn observed(&self, name: &str) -> Option<Vec<f64>> {
-        let j = self.observer_names.iter().position(|n| n == name)?;
+    /// The observed quantity `name` at every saved time (the column of the observer registered as
+    /// `name` by [`Driver::observe`](crate::Driver::observe)).
+    ///
+    /// A name that no observer has (a typo) is [`Error::UnknownName`] listing the observers the run
+    /// recorded.
+    pub fn observed(&self, name: &str) -> Result<Vec<f64>> {
+        let j = self.observer_index(name)?;
         let m = self.observer_names.len();
-        Some(self.observed.iter().skip(j).step_by(m).copied().collect())
+        Ok(self.observed.iter().skip(j).step_by(m).copied().collect())
+    }
+
+    /// The column of the observer `name`, or [`Error::UnknownName`].
+    fn observer_index(&self, name: &str) -> Result<usize> {
+        self.observer_names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "observer",
+                name: name.into(),
+                known: self.observer_names.clone(),
+            })
     }
 
     /// The observed values at row `i`, in column order. Indexing: panics if `i >= len()`.
@@ -230,15 +246,28 @@ impl<K: Partner> Solution<K> {
         &self.events
     }
 
-    /// The firings of the event called `name`, in time order.
-    pub fn events_named<'s>(&'s self, name: &'s str) -> impl Iterator<Item = &'s EventRecord<K>> + 's {
-        let idx = self.event_names.iter().position(|n| n == name);
-        self.events.iter().filter(move |e| Some(e.event) == idx)
+    /// The firings of the event called `name` (as registered by
+    /// [`Driver::event`](crate::Driver::event)), in time order; empty when it never fired.
+    ///
+    /// A name that no event has (a typo) is [`Error::UnknownName`] listing the events of the run.
+    pub fn events_named(&self, name: &str) -> Result<impl Iterator<Item = &EventRecord<K>> + '_> {
+        let idx = self
+            .event_names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| Error::UnknownName {
+                kind: "event",
+                name: name.into(),
+                known: self.event_names.clone(),
+            })?;
+        Ok(self.events.iter().filter(move |e| e.event == idx))
     }
 
-    /// The times at which the event called `name` fired.
-    pub fn event_times(&self, name: &str) -> Vec<f64> {
-        self.events_named(name).map(|e| e.t).collect()
+    /// The times at which the event called `name` fired, in order; empty when it never fired.
+    ///
+    /// A name that no event has (a typo) is [`Error::UnknownName`] listing the events of the run.
+    pub fn event_times(&self, name: &str) -> Result<Vec<f64>> {
+        Ok(self.events_named(name)?.map(|e| e.t).collect())
     }
 
     /// Why the run ended.

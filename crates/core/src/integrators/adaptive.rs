@@ -266,7 +266,10 @@ impl Settings {
 /// `evaluations`, and a method type `M` with `CONTROL_ORDER`); `$f` names what is evaluated.
 macro_rules! settings_methods {
     ($f:literal) => {
-        /// Sets the absolute and relative tolerances: finite, ≥ 0, not both 0.
+        /// Sets the absolute and relative tolerances (atol, rtol): the step is accepted when the error
+        /// estimate of each component i is below atol + rtol·max(|y₀ᵢ|, |y₁ᵢ|). atol must be finite and
+        /// ≥ 0, rtol finite and ≥ [`RTOL_FLOOR`](crate::integrators::RTOL_FLOOR) = 10 ε ≈ 2.2e-15 (what
+        /// f64 can deliver); [`Error::InvalidParameter`] otherwise.
         pub fn tolerances(mut self, atol: f64, rtol: f64) -> Result<Self> {
             super::adaptive::check_tolerances(atol, rtol, self.settings.h_min)?;
             self.settings.atol = atol;
@@ -389,7 +392,14 @@ fn power(x: f64, alpha: f64) -> f64 {
     }
 }
 
-/// Checks the tolerances (finite, ≥ 0, not both 0) and the smallest step `h_min` (finite, ≥ 0).
+/// The smallest relative tolerance an adaptive method accepts: 10 ε ≈ 2.2e-15. Rounding alone
+/// perturbs each step by a few ε of the state, so a smaller rtol cannot be met and only drives the step
+/// size down to underflow. Hairer's RADAU5 refuses `RTOL ≤ 10·UROUND` in the same way ("tolerances are
+/// too small"); noether refuses rather than clamps, so a run is never quietly less accurate than asked.
+pub const RTOL_FLOOR: f64 = 10.0 * f64::EPSILON;
+
+/// Checks the tolerances (atol finite and ≥ 0, rtol finite and ≥ [`RTOL_FLOOR`]) and the smallest step
+/// `h_min` (finite, ≥ 0).
 pub(super) fn check_tolerances(atol: f64, rtol: f64, h_min: f64) -> Result<()> {
     let bad = |name, value, reason| Err(Error::InvalidParameter { name, value, reason });
     if !(atol.is_finite() && atol >= 0.0) {
@@ -398,8 +408,13 @@ pub(super) fn check_tolerances(atol: f64, rtol: f64, h_min: f64) -> Result<()> {
     if !(rtol.is_finite() && rtol >= 0.0) {
         return bad("rtol", rtol, "must be finite and non-negative");
     }
-    if atol == 0.0 && rtol == 0.0 {
-        return bad("atol", 0.0, "atol and rtol cannot both be zero");
+    if rtol < RTOL_FLOOR {
+        return bad(
+            "rtol",
+            rtol,
+            "is below what f64 arithmetic can deliver: the relative tolerance must be at least \
+             10 ε ≈ 2.2e-15 (RTOL_FLOOR)",
+        );
     }
     if !(h_min.is_finite() && h_min >= 0.0) {
         return bad("h_min", h_min, "must be finite and non-negative");
@@ -433,6 +448,30 @@ pub(super) fn finite_stage(r: Result<()>, out: &[f64]) -> Result<bool> {
         Ok(()) => Ok(out.iter().fold(true, |ok, x| ok & x.is_finite())),
         Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
         Err(e) => Err(e),
+    }
+}
+
+/// [`Error::NonFiniteResult`] for rates k = (q̇, then v̇ or ṗ) at t that are not all finite: the
+/// first such component, named as a rate of q ("velocities dq/dt") or of the partner
+/// ("accelerations" of q̇, "momentum rates dp/dt" of p), with its index within that half.
+pub(super) fn rates_error<K: crate::Partner>(t: f64, k: &[f64]) -> Error {
+    let n = k.len() / 2;
+    let Some(i) = k.iter().position(|x| !x.is_finite()) else {
+        return Error::NonFiniteResult {
+            what: "rates",
+            t,
+            component: None,
+        };
+    };
+    let what = match (i < n, K::SYMBOL) {
+        (true, _) => "velocities dq/dt",
+        (false, "v") => "accelerations",
+        (false, _) => "momentum rates dp/dt",
+    };
+    Error::NonFiniteResult {
+        what,
+        t,
+        component: Some(if i < n { i } else { i - n }),
     }
 }
 
@@ -532,6 +571,20 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
 
     fn check_parameters(&self) -> Result<()> {
         check_tolerances(self.settings.atol, self.settings.rtol, self.settings.h_min)
+    }
+
+    /// Why the rates at the start of a step (t, y₀) are not finite: no smaller step can help there,
+    /// so the model's own error is returned (evaluated once more, on this error path only), or, when
+    /// the model returned NaN or ±∞ without one, [`rates_error`] naming the quantity and component.
+    #[cold]
+    fn start_error(&mut self, t: f64) -> Error {
+        let n = self.n;
+        let mut k = vec![0.0; 2 * n];
+        let (dq, dv) = k.split_at_mut(n);
+        match self.system.rates(t, &self.y0[..n], &self.y0[n..], dq, dv) {
+            Err(e) => e.at_time(t),
+            Ok(()) => rates_error::<S::Partner>(t, &k),
+        }
     }
 
     /// The stages of the current step.
@@ -688,7 +741,11 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         for (j, (c, row)) in M::DENSE_STAGES.iter().enumerate() {
             self.combine(h, row);
             if !self.eval(s + 1 + j, t + c * h, true)? {
-                return Err(Error::NonFiniteResult { what: "rates", t });
+                return Err(Error::NonFiniteResult {
+                    what: "rates",
+                    t,
+                    component: None,
+                });
             }
         }
         let mut coeffs = match self.dense.take() {
@@ -720,10 +777,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         self.load(state);
         self.fsal = None;
         if !self.eval(0, state.t, false)? {
-            return Err(Error::NonFiniteResult {
-                what: "rates",
-                t: state.t,
-            });
+            return Err(self.start_error(state.t));
         }
         let y0 = self.y0.clone();
         let k0 = self.stage(0).to_vec();
@@ -775,7 +829,7 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
             let (s, m) = (M::C.len(), 2 * self.n);
             self.k.copy_within(s * m..(s + 1) * m, 0);
         } else if !self.eval(0, t, false)? {
-            return Err(Error::NonFiniteResult { what: "rates", t });
+            return Err(self.start_error(t));
         }
         self.fsal = None;
         let c = self.settings.controller;
@@ -808,7 +862,11 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
                     .with_evaluations(self.evaluations - evaluations));
             }
             if self.settings.fixed {
-                return Err(Error::NonFiniteResult { what: "rates", t });
+                return Err(Error::NonFiniteResult {
+                    what: "rates",
+                    t,
+                    component: None,
+                });
             }
             rejected += 1;
             last_err = err;

@@ -28,6 +28,7 @@ impl Pair {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t: state.t,
+                component: None,
             });
         }
         state.q.as_mut_slice().copy_from_slice(&self.q);
@@ -132,6 +133,7 @@ impl<S: Dynamics, R: FirstOrderRule> Stepper for FirstOrder<S, R> {
                 return Err(Error::NonFiniteResult {
                     what: "velocities",
                     t,
+                    component: None,
                 });
             }
             self.system.position_rates(t, q, &y.v, &mut y.q)?;

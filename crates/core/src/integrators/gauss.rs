@@ -446,6 +446,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t,
+                component: None,
             });
         }
         Ok(y1)

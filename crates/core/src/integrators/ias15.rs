@@ -811,6 +811,7 @@ impl<S: SplitDynamics> Ias15<S> {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t: state.t,
+                component: None,
             });
         }
         self.have_cached = true;
@@ -880,6 +881,7 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t,
+                component: None,
             });
         }
         self.have_cached = false;
@@ -901,6 +903,7 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
                         return Err(Error::NonFiniteResult {
                             what: "accelerations",
                             t,
+                            component: None,
                         });
                     }
                     rejected += 1;
@@ -915,6 +918,7 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
                             iterations: MAX_ITERATIONS,
                             residual: err,
                             tolerance: PC_TOLERANCE,
+                            t,
                         });
                     }
                     rejected += 1;
@@ -951,6 +955,7 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
                 return Err(Error::NonFiniteResult {
                     what: "state after the step",
                     t,
+                    component: None,
                 });
             }
             if self.dense_allowed && self.dense_requested {

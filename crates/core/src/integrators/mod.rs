@@ -21,7 +21,7 @@ pub mod ias15;
 pub mod nystrom;
 pub mod symplectic;
 
-pub use adaptive::{Adaptive, Controller, EmbeddedPair, Stages};
+pub use adaptive::{Adaptive, Controller, EmbeddedPair, Stages, RTOL_FLOOR};
 pub use default_method::DefaultMethod;
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};

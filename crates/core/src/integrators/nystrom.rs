@@ -523,6 +523,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t,
+                component: None,
             });
         }
         self.k[..n].copy_from_slice(&self.a1);
@@ -542,6 +543,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                         return Err(Error::NonFiniteResult {
                             what: "accelerations",
                             t: t + h,
+                            component: None,
                         });
                     }
                     self.fsal = true;
@@ -572,6 +574,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
                 return Err(Error::NonFiniteResult {
                     what: "accelerations",
                     t,
+                    component: None,
                 });
             }
             rejected += 1;
@@ -603,6 +606,7 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t: state.t,
+                component: None,
             });
         }
         self.h_last = 0.0;

@@ -305,6 +305,7 @@ impl Work {
             return Err(Error::NonFiniteResult {
                 what: "state after the step",
                 t: state.t,
+                component: None,
             });
         }
         state.q.as_mut_slice().copy_from_slice(&self.q);

@@ -194,7 +194,7 @@ fn regress_ok_nan_from_every_evaluation() {
     let el = EulerLagrange::new(RootPotential);
     let (q, v) = ([-1.0], [1.0]);
     let non_finite = |r: Result<(), Error>, name: &str| match r {
-        Err(Error::NonFiniteResult { what, t }) => assert!(what == name && t == 0.5, "{what} at {t}"),
+        Err(Error::NonFiniteResult { what, t, .. }) => assert!(what == name && t == 0.5, "{what} at {t}"),
         other => panic!("{name}: {other:?}"),
     };
     non_finite(el.energy(0.5, &q, &v).map(drop), "energy");

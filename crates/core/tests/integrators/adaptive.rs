@@ -250,7 +250,7 @@ fn closed_form_event_quarter_period_by_the_driver() {
         "{} vs {expected}",
         sol.last().t
     );
-    assert!(sol.last().q[0].abs() < 1e-12 && sol.event_times("θ = 0") == vec![sol.last().t]);
+    assert!(sol.last().q[0].abs() < 1e-12 && sol.event_times("θ = 0").unwrap() == vec![sol.last().t]);
 }
 
 #[test]

@@ -307,6 +307,26 @@ fn bad_input_adaptive_parameters() {
         assert!(matches!(err, Error::InvalidParameter { .. }), "{err}");
     }
     assert!(Dopri5::new(sys()).h_min(f64::NAN).is_err());
+    // Issue 30 item 12: a relative tolerance below what f64 can deliver (10 ε ≈ 2.2e-15) is refused
+    // with the floor in its reason, for every embedded pair; the floor itself and 1e-14 are accepted.
+    for rtol in [1e-20, 1e-16, 0.99 * RTOL_FLOOR] {
+        let err = Dop853::new(sys())
+            .tolerances(1e-20, rtol)
+            .map(|_| ())
+            .unwrap_err();
+        match err {
+            Error::InvalidParameter { name, value, reason } => {
+                assert_eq!((name, value), ("rtol", rtol));
+                assert!(reason.contains("2.2e-15"), "{reason}");
+            }
+            other => panic!("expected InvalidParameter, got {other:?}"),
+        }
+        assert!(Dopri5::new(sys()).tolerances(1e-9, rtol).is_err());
+        assert!(Dprkn8::new(sys()).unwrap().tolerances(1e-9, rtol).is_err());
+    }
+    assert_eq!(RTOL_FLOOR, 10.0 * f64::EPSILON);
+    assert!(Dop853::new(sys()).tolerances(1e-20, RTOL_FLOOR).is_ok());
+    assert!(Dop853::new(sys()).tolerances(1e-14, 1e-14).is_ok());
     // The driver checks its output times and end time before any step.
     let state = State::new(0.0, [1.0], [0.0]);
     let driver = || Driver::new(Dopri5::new(sys()), state.clone()).unwrap();
@@ -490,4 +510,153 @@ fn regress_check_time_resolution_boundaries() {
         Err(Error::NonFinite { what: "t", .. })
     ));
     assert!(matches!(check(f64::INFINITY, 1.0), Err(Error::NonFinite { .. })));
+}
+
+/// A negative mass: L = −½ q̇² − ½ q², M = ∂²L/∂q̇² = −1 (Lagrange's equations q̈ = q are regular, but
+/// the kinetic energy is negative).
+struct NegativeMass;
+impl Lagrangian for NegativeMass {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        -(v[0] * v[0] + q[0] * q[0]) * 0.5
+    }
+}
+
+/// Two coordinates, one of them with a negative mass: M = diag(2, −1), indefinite; the taped path of
+/// a large system is the same code below `JET_MAX`, so the dense solve is checked by `mass_factor`.
+struct MixedMass;
+impl Lagrangian for MixedMass {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        v[0] * v[0] - v[1] * v[1] * 0.5 - q[0] * q[0] * 0.5
+    }
+}
+
+#[test]
+fn bad_input_negative_mass_is_an_indefinite_mass_matrix_at_t0() {
+    // Issue 30 item 10: a negative mass was solved by LU and met later as `step size underflow`.
+    // DOP853 on L = −½ q̇² − ½ q² now fails at its first evaluation, t = 0, with
+    // IndefiniteMassMatrix (M = −1: smallest eigenvalue relative to the largest in magnitude −1),
+    // and the driver keeps the start state.
+    let el = EulerLagrange::new(NegativeMass);
+    let start = State::new(0.0, [1.0], [0.0]);
+    let mut run = Driver::new(Dop853::new(&el), start.clone()).unwrap();
+    let err = run.run_until(1.0).unwrap_err();
+    match &err {
+        Error::IndefiniteMassMatrix { t, eigenvalue } => {
+            assert_eq!((*t, *eigenvalue), (0.0, -1.0), "{err}");
+        }
+        other => panic!("expected IndefiniteMassMatrix, got {other:?}"),
+    }
+    let msg = err.to_string();
+    assert!(
+        msg.contains("∂²L/∂q̇² is not positive definite at t = 0") && msg.contains("masses"),
+        "{msg}"
+    );
+    assert_eq!(run.state(), &start);
+    // The same from the accelerations, and for an indefinite M = diag(2, −1) from the factor.
+    let mut a = [0.0];
+    let acc = el.accelerations(0.5, &[1.0], &[0.0], &mut a).unwrap_err();
+    assert!(
+        matches!(acc, Error::IndefiniteMassMatrix { t, .. } if t == 0.5),
+        "{acc}"
+    );
+    let mixed = EulerLagrange::new(MixedMass);
+    let f = mixed
+        .mass_factor(0.0, &[0.0, 0.0], &[0.0, 0.0])
+        .map(|_| ())
+        .unwrap_err();
+    // Eigenvalues 2 and −1: the smallest relative to the largest in magnitude is −1/2.
+    assert!(
+        matches!(f, Error::IndefiniteMassMatrix { eigenvalue, .. } if eigenvalue == -0.5),
+        "{f}"
+    );
+}
+
+/// Two oscillators, the first with a stiffness k that is NaN (a parameter the user forgot to set):
+/// L = ½ (q̇₀² + q̇₁²) − ½ k q₀² − ½ q₁².
+struct NanStiffness {
+    k: f64,
+}
+impl Lagrangian for NanStiffness {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        (v[0] * v[0] + v[1] * v[1] - q[0] * q[0] * self.k - q[1] * q[1]) * 0.5
+    }
+}
+
+/// The same as rates written by hand, with the NaN in the second acceleration only:
+/// q̇ = v, v̇ = (−q₀, −k q₁).
+struct NanRates {
+    k: f64,
+}
+impl Dynamics for NanRates {
+    type Partner = Velocities;
+    fn dof(&self) -> usize {
+        2
+    }
+    fn rates(&self, _t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
+        dq.copy_from_slice(v);
+        dv[0] = -q[0];
+        dv[1] = -self.k * q[1];
+        Ok(())
+    }
+    fn energy(&self, _t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
+        Ok(0.5 * (v[0] * v[0] + v[1] * v[1] + q[0] * q[0] + self.k * q[1] * q[1]))
+    }
+}
+
+#[test]
+fn bad_input_nan_parameter_names_quantity_component_and_hint() {
+    // Issue 30 item 11: "the model produced a non-finite rates at t = 0". A NaN parameter gives NaN
+    // rates at the start of the first step, which no smaller step can cure: DOP853 reports the
+    // model's own error at once, naming the quantity, its first non-finite component and the time,
+    // with a hint.
+    let el = EulerLagrange::new(NanStiffness { k: f64::NAN });
+    let start = State::new(0.0, [1.0, 1.0], [0.0, 0.0]);
+    let mut state = start.clone();
+    let err = Dop853::new(&el).step(&mut state, 0.1).unwrap_err();
+    assert_eq!(
+        err,
+        Error::NonFiniteResult {
+            what: "accelerations",
+            t: 0.0,
+            component: Some(0),
+        }
+    );
+    assert_eq!(
+        err.to_string(),
+        "the model gave NaN or ±∞ for its accelerations (component 0) at t = 0: check the model's \
+         parameters, and that the state is inside the model's domain"
+    );
+    assert_eq!(state, start);
+    // Under a driver the failure comes from the first step-size estimate, before any step: the same
+    // error, and the start state kept.
+    let mut run = Driver::new(Dop853::new(&el), start.clone()).unwrap();
+    assert_eq!(run.run_until(1.0).unwrap_err(), err);
+    assert_eq!(run.state(), &start);
+    // Rates that come back Ok but NaN: the stepper finds the component itself (q̈₁), for DOPRI5 too.
+    for mut s in [
+        Box::new(Dop853::new(NanRates { k: f64::NAN })) as Box<dyn Stepper<Partner = Velocities>>,
+        Box::new(Dopri5::new(NanRates { k: f64::NAN })),
+    ] {
+        let mut state = start.clone();
+        let err = s.step(&mut state, 0.1).unwrap_err();
+        assert_eq!(
+            err,
+            Error::NonFiniteResult {
+                what: "accelerations",
+                t: 0.0,
+                component: Some(1),
+            },
+            "{}",
+            s.name()
+        );
+    }
 }

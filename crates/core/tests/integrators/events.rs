@@ -47,7 +47,7 @@ fn bounce_to_3<S: Stepper<Partner = Velocities>>(name: &str, driver: Driver<'_, 
     );
     let sol = driver.run_until(3.0).unwrap();
     let expected = impacts(1.0, 3.0);
-    let found = sol.event_times("floor");
+    let found = sol.event_times("floor").unwrap();
     assert_eq!(
         found.len(),
         expected.len(),
@@ -359,4 +359,62 @@ fn regress_failed_run_keeps_its_partial_solution() {
     assert_eq!(partial.stats().steps, 5);
     assert!(driver.take_partial_solution().is_none());
     assert!(partial.get(5).is_none() && partial.get(4).is_some());
+}
+
+#[test]
+fn bad_input_unknown_observer_or_event_name_lists_the_recorded_ones() {
+    // Issue 30 item 7: a typo in an observer or event name was silent (`observed` gave None,
+    // `event_times` an empty list). It is UnknownName with the names the run recorded; a known event
+    // that never fired is still an empty list, not an error.
+    let sol = Driver::with_step(
+        Rk4::new(Natural::unit(HarmonicV)),
+        State::new(0.0, [1.0], [0.0]),
+        0.1,
+    )
+    .unwrap()
+    .observe("energy", |s: &State| 0.5 * (s.q[0] * s.q[0] + s.v[0] * s.v[0]))
+    .observe("momentum", |s: &State| s.v[0])
+    .event(Event::new("q = 0", |s: &State| s.q[0]))
+    .event(Event::new("q = 2", |s: &State| s.q[0] - 2.0))
+    .run_until(3.0)
+    .unwrap();
+    assert_eq!(sol.observed("energy").unwrap().len(), sol.len());
+    let err = sol.observed("Energy").unwrap_err();
+    assert_eq!(
+        err,
+        Error::UnknownName {
+            kind: "observer",
+            name: "Energy".into(),
+            known: vec!["energy".into(), "momentum".into()],
+        }
+    );
+    assert_eq!(
+        err.to_string(),
+        r#"no observer named "Energy"; the run recorded: "energy", "momentum""#
+    );
+    // q = cos t crosses 0 once before t = 3 (at π/2); q = 2 never.
+    assert_eq!(sol.event_times("q = 0").unwrap().len(), 1);
+    assert_eq!(sol.event_times("q = 2").unwrap(), Vec::<f64>::new());
+    let err = sol.event_times("θ2=0").unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        r#"no event named "θ2=0"; the run recorded: "q = 0", "q = 2""#
+    );
+    assert!(matches!(
+        sol.events_named("q=0").map(|e| e.count()),
+        Err(Error::UnknownName { kind: "event", .. })
+    ));
+    // A run without observers says so.
+    let bare = Driver::with_step(
+        Rk4::new(Natural::unit(HarmonicV)),
+        State::new(0.0, [1.0], [0.0]),
+        0.1,
+    )
+    .unwrap()
+    .run_until(0.2)
+    .unwrap();
+    assert_eq!(
+        bare.observed("energy").unwrap_err().to_string(),
+        r#"no observer named "energy"; the run recorded: (none)"#
+    );
 }

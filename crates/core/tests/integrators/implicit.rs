@@ -113,16 +113,27 @@ fn bad_input_newton_not_converging() {
     // and Newton (cap 20 iterations) gives up with its iteration count and last residual; the state
     // is unchanged.
     let mut s = Gauss::gauss4(HamiltonEquations::new(StiffQuartic));
-    let mut state = State::new(0.0, [1.0], [0.0]);
+    // Issue 30 item 12: the error names the time of the step and suggests a smaller one.
+    let mut state = State::new(0.25, [1.0], [0.0]);
     let before = state.clone();
     match s.step(&mut state, 10.0) {
-        Err(Error::NewtonDiverged {
-            iterations,
-            residual,
-            tolerance,
-        }) => {
+        Err(
+            e @ Error::NewtonDiverged {
+                iterations,
+                residual,
+                tolerance,
+                t,
+            },
+        ) => {
             eprintln!("Newton: {iterations} iterations, residual {residual:e}, tolerance {tolerance:e}");
             assert!(iterations == 20 && (residual > tolerance || residual.is_nan()));
+            assert_eq!(t, 0.25);
+            let msg = e.to_string();
+            assert!(
+                msg.starts_with("Newton did not converge after 20 iterations at t = 0.25:")
+                    && msg.ends_with("try a smaller step"),
+                "{msg}"
+            );
         }
         other => panic!("expected NewtonDiverged, got {other:?}"),
     }

@@ -57,6 +57,7 @@ fn bad_input_newton_not_converging_keeps_state() {
             iterations,
             residual,
             tolerance,
+            ..
         }) => {
             assert_eq!(iterations, 5);
             assert!(
@@ -91,6 +92,7 @@ fn bad_input_galerkin() {
             iterations,
             residual,
             tolerance,
+            ..
         }) => {
             assert_eq!(iterations, 1);
             assert!(residual > tolerance);
