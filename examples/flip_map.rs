@@ -178,7 +178,7 @@ pub fn run_grid(n: usize, t_end: f64, opts: &Options) -> Result<Report, BoxError
         .log_scale();
         if let Some(dir) = &opts.out_dir {
             std::fs::create_dir_all(dir)?;
-            report.figures.push(map.save(&dir.join("flip_map.svg"))?);
+            report.figures.push(map.save(dir.join("flip_map.svg"))?);
         }
     }
     Ok(report)

@@ -51,7 +51,7 @@ impl Report {
     pub fn save(&mut self, opts: &Options, figure: &Figure, file: &str) -> Result<(), BoxError> {
         if let Some(dir) = &opts.out_dir {
             std::fs::create_dir_all(dir)?;
-            self.figures.push(figure.save(&dir.join(file))?);
+            self.figures.push(figure.save(dir.join(file))?);
         }
         Ok(())
     }

@@ -512,7 +512,9 @@ mod tests {
         assert!(matches!(map.save(as_str), Err(Error::Write { .. })));
         let ok = std::env::temp_dir().join(format!("noether-plot-test-{}.svg", std::process::id()));
         assert_eq!(fig.save(ok.clone()).unwrap(), ok);
-        assert_eq!(map.save(ok.to_str().unwrap().to_string()).unwrap(), ok);
+        // An owned String is a path too (`impl AsRef<Path>`).
+        let owned: String = ok.to_str().unwrap().into();
+        assert_eq!(map.save(owned).unwrap(), ok);
         std::fs::remove_file(&ok).unwrap();
     }
 }
