@@ -225,14 +225,7 @@ impl<K: Partner> Solution<K> {
 
     /// The column of the observer `name`, or [`Error::UnknownName`].
     fn observer_index(&self, name: &str) -> Result<usize> {
-        self.observer_names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "observer",
-                name: name.into(),
-                known: self.observer_names.clone(),
-            })
+        name_index("observer", &self.observer_names, name)
     }
 
     /// The observed values at row `i`, in column order. Indexing: panics if `i >= len()`.
@@ -251,15 +244,7 @@ impl<K: Partner> Solution<K> {
     ///
     /// A name that no event has (a typo) is [`Error::UnknownName`] listing the events of the run.
     pub fn events_named(&self, name: &str) -> Result<impl Iterator<Item = &EventRecord<K>> + '_> {
-        let idx = self
-            .event_names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| Error::UnknownName {
-                kind: "event",
-                name: name.into(),
-                known: self.event_names.clone(),
-            })?;
+        let idx = name_index("event", &self.event_names, name)?;
         Ok(self.events.iter().filter(move |e| e.event == idx))
     }
 
@@ -422,4 +407,17 @@ impl<K: Partner> TryFrom<Unchecked<K>> for Solution<K> {
             last: u.last,
         })
     }
+}
+
+/// The position of `name` among the `names` of one `kind` ("observer", "event"), or
+/// [`Error::UnknownName`] listing them.
+fn name_index(kind: &'static str, names: &[String], name: &str) -> Result<usize> {
+    names
+        .iter()
+        .position(|n| n == name)
+        .ok_or_else(|| Error::UnknownName {
+            kind,
+            name: name.into(),
+            known: names.to_vec(),
+        })
 }
