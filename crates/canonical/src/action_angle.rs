@@ -737,6 +737,7 @@ pub(crate) fn libration_with<C: Curve>(
         let (j1, t1) = (pass.action, pass.period);
         let change = (j1 - last.action).abs();
         if pass.settled(&last, s.tolerance) {
+            check_orbit(e, t1, j1)?;
             let lib = Libration {
                 energy: e,
                 q_min: qa,
@@ -883,6 +884,7 @@ pub(crate) fn rotation_with<C: Curve>(
         let (j1, t1) = (pass.action, pass.period);
         let change = (j1 - last.action).abs();
         if pass.settled(&last, s.tolerance) {
+            check_orbit(e, t1.abs(), j1)?;
             let (a, b) = fourier(&pass.upper);
             let rot = Rotation {
                 energy: e,
@@ -898,6 +900,21 @@ pub(crate) fn rotation_with<C: Curve>(
             return Ok((rot, pass.extras.iter().map(|x| x.0).collect()));
         }
         last = pass;
+    }
+}
+
+/// The last check of an orbit: T finite and > 0 (so ω = 2π/T finite and > 0), J finite; else
+/// [`Error::DegenerateOrbit`] with the values.
+fn check_orbit(energy: f64, period: f64, action: f64) -> Result<()> {
+    let frequency = 2.0 * PI / period;
+    if period.is_finite() && period > 0.0 && frequency.is_finite() && action.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::DegenerateOrbit {
+            energy,
+            period,
+            action,
+        })
     }
 }
 

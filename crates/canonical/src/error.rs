@@ -95,6 +95,18 @@ pub enum Error {
         /// ∂L/∂q_c there.
         derivative: f64,
     },
+    /// The quadrature of an orbit gave a period that is not finite and positive, or an action that is
+    /// not finite: the orbit is beyond what f64 resolves (turning points or momenta that underflow or
+    /// overflow). Never returned as an `Ok` with ω = ∞ or T = 0.
+    #[error("degenerate orbit at energy {energy}: period {period}, action {action}")]
+    DegenerateOrbit {
+        /// The energy E.
+        energy: f64,
+        /// The period T computed (|T| for a rotation).
+        period: f64,
+        /// The action J computed.
+        action: f64,
+    },
     /// A quadrature did not settle to its tolerance within the largest number of nodes.
     #[error(
         "quadrature of {what} not converged with {nodes} nodes: last two estimates {previous} and {estimate}"

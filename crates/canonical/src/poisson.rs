@@ -131,7 +131,7 @@ fn jacobian_w<F: PhaseFunction, const W: usize>(
 ) {
     type D<const W: usize> = DualVec<f64, f64, Const<W>>;
     let (m, n) = out.shape();
-    let mut g = Buf::<D<W>, STACK>::new(m, |_| D::<W>::from_re(0.0));
+    let mut g = Buf::<D<W>, STACK>::filled(m, D::<W>::from_re(0.0));
     for c0 in (0..n).step_by(W) {
         let (xs, ys) = noether_core::ad::seed_chunk::<W, STACK>(q, p, block, c0);
         f.values(D::<W>::from_re(t), &xs, &ys, &mut g);
@@ -152,9 +152,9 @@ pub(crate) fn along<F: PhaseFunction>(
     (dt, dq, dp): (f64, &[f64], &[f64]),
     out: &mut [f64],
 ) {
-    let qs = Buf::<Dual64, STACK>::new(q.len(), |i| Dual64::new(q[i], dq[i]));
-    let ps = Buf::<Dual64, STACK>::new(p.len(), |i| Dual64::new(p[i], dp[i]));
-    let mut g = Buf::<Dual64, STACK>::new(out.len(), |_| Dual64::from_re(0.0));
+    let qs = Buf::<Dual64, STACK>::along(q, dq, Dual64::new);
+    let ps = Buf::<Dual64, STACK>::along(p, dp, Dual64::new);
+    let mut g = Buf::<Dual64, STACK>::filled(out.len(), Dual64::from_re(0.0));
     f.values(Dual64::new(t, dt), &qs, &ps, &mut g);
     for (o, gk) in out.iter_mut().zip(g.iter()) {
         *o = gk.eps;

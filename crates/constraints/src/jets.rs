@@ -59,7 +59,7 @@ fn jacobian_w<F: VectorField, const W: usize>(
 ) {
     type D<const W: usize> = DualVec<f64, f64, Const<W>>;
     let (m, n) = out.shape();
-    let mut g = Buf::<D<W>>::new(m, |_| D::<W>::from_re(0.0));
+    let mut g = Buf::<D<W>>::filled(m, D::<W>::from_re(0.0));
     for c0 in (0..n).step_by(W) {
         let (xs, ys) = noether_core::ad::seed_chunk::<W, STACK>(x, y, block, c0);
         f.eval(D::<W>::from_re(t), &xs, &ys, &mut g);
@@ -84,10 +84,8 @@ pub fn along<F: VectorField>(
     out: &mut [f64],
 ) {
     let (dt, dx, dy) = dir;
-    let lift = |v: f64, d: Option<&f64>| Dual64::new(v, d.copied().unwrap_or(0.0));
-    let xs = Buf::<Dual64>::new(x.len(), |i| lift(x[i], dx.get(i)));
-    let ys = Buf::<Dual64>::new(y.len(), |i| lift(y[i], dy.get(i)));
-    let mut g = Buf::<Dual64>::new(out.len(), |_| Dual64::from_re(0.0));
+    let (xs, ys) = (Buf::along(x, dx, Dual64::new), Buf::along(y, dy, Dual64::new));
+    let mut g = Buf::<Dual64>::filled(out.len(), Dual64::from_re(0.0));
     f.eval(Dual64::new(t, dt), &xs, &ys, &mut g);
     for (o, gk) in out.iter_mut().zip(g.iter()) {
         *o = gk.eps;
@@ -105,10 +103,9 @@ pub fn along2<F: VectorField>(
     second: &mut [f64],
 ) {
     let (dt, dx, dy) = dir;
-    let lift = |v: f64, d: Option<&f64>| Dual2_64::new(v, d.copied().unwrap_or(0.0), 0.0);
-    let xs = Buf::<Dual2_64>::new(x.len(), |i| lift(x[i], dx.get(i)));
-    let ys = Buf::<Dual2_64>::new(y.len(), |i| lift(y[i], dy.get(i)));
-    let mut g = Buf::<Dual2_64>::new(first.len(), |_| Dual2_64::from_re(0.0));
+    let lift = |v, d| Dual2_64::new(v, d, 0.0);
+    let (xs, ys) = (Buf::along(x, dx, lift), Buf::along(y, dy, lift));
+    let mut g = Buf::<Dual2_64>::filled(first.len(), Dual2_64::from_re(0.0));
     f.eval(Dual2_64::new(t, dt, 0.0), &xs, &ys, &mut g);
     for ((a, b), gk) in first.iter_mut().zip(second.iter_mut()).zip(g.iter()) {
         *a = gk.v1;

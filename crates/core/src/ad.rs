@@ -130,6 +130,12 @@ impl<D: Scalar, const S: usize> Buf<D, S> {
     /// gallery's LLVM IR (`cargo llvm-lines`, docs/benchmarks.md). On the heap `collect`: a `push`
     /// loop or index writes into `vec![zero; n]` made the RATTLE step of the 10-link chain 15–25 %
     /// slower.
+    ///
+    /// Write `f` in a function that is not generic over the model (or call [`filled`](Self::filled),
+    /// [`constants`](Self::constants), [`seed_chunk`]): a closure's type carries every generic
+    /// parameter of the function it is written in, so a closure written in a model-generic function
+    /// makes a copy of this, and of `collect`'s machinery, for every model and chunk width. Those
+    /// copies were 29 % of the gallery's LLVM IR (`cargo llvm-lines`, docs/benchmarks.md).
     #[inline]
     pub fn new(n: usize, mut f: impl FnMut(usize) -> D) -> Self {
         if n <= S {
@@ -142,6 +148,26 @@ impl<D: Scalar, const S: usize> Buf<D, S> {
         } else {
             Buf::Heap((0..n).map(f).collect())
         }
+    }
+
+    /// `n` copies of `d`.
+    #[inline]
+    pub fn filled(n: usize, d: D) -> Self {
+        Self::new(n, |_| d)
+    }
+
+    /// The reals `x` as constants of D (every derivative part zero).
+    #[inline]
+    pub fn constants(x: &[f64]) -> Self {
+        Self::new(x.len(), |i| D::from(x[i]))
+    }
+
+    /// The points x + s δx of a line as `lift(x_i, δx_i)` (δx_i = 0 beyond the length of `dx`, so an
+    /// empty `dx` means no motion), for a derivative along the line: `lift` is a function such as
+    /// `Dual64::new`, so one copy serves every model.
+    #[inline]
+    pub fn along(x: &[f64], dx: &[f64], lift: fn(f64, f64) -> D) -> Self {
+        Self::new(x.len(), |i| lift(x[i], dx.get(i).copied().unwrap_or(0.0)))
     }
 }
 
@@ -205,8 +231,7 @@ pub fn partial_t<F: Field>(f: &F, t: f64, x: &[f64], y: &[f64]) -> f64 {
 }
 
 fn partial_t_w<F: Field, const W: usize>(f: &F, t: f64, x: &[f64], y: &[f64]) -> f64 {
-    let xs = Buf::<Dual64, W>::new(x.len(), |i| Dual64::from(x[i]));
-    let ys = Buf::<Dual64, W>::new(y.len(), |i| Dual64::from(y[i]));
+    let (xs, ys) = (Buf::<Dual64, W>::constants(x), Buf::<Dual64, W>::constants(y));
     f.eval(Dual64::new(t, 1.0), &xs, &ys).eps
 }
 
@@ -265,25 +290,29 @@ fn gradient_once<F: Field, const W: usize>(
     // Each argument is written whole (value and gradient in one store each): the model reads the
     // gradient as one vector, and a vector load of entries stored one by one stalls store forwarding.
     let n = out.len();
-    let lift = |v: &[f64], seeded: bool| {
-        let mut a = [D::<W>::from_re(0.0); W];
-        for (i, (d, v)) in a.iter_mut().zip(v).enumerate() {
-            *d = if seeded && i < n {
-                D::<W>::new(*v, SVector::from_fn(|k, _| if k == i { 1.0 } else { 0.0 }))
-            } else {
-                D::<W>::from_re(*v)
-            };
-        }
-        a
-    };
-    let xs = lift(x, block == Block::X);
-    let ys = lift(y, block == Block::Y);
+    let xs = lift_gradient::<W>(x, block == Block::X, n);
+    let ys = lift_gradient::<W>(y, block == Block::Y, n);
     let r = f.eval(D::<W>::from_re(t), &xs[..x.len()], &ys[..y.len()]);
     // An element loop, not `copy_from_slice`: a few entries, no call to memcpy.
     for (o, g) in out.iter_mut().zip(r.eps.iter()) {
         *o = *g;
     }
     r.re
+}
+
+/// The entries of `v` as [`GradJet64<W>`] in an array, entry i < n seeded with the unit direction i
+/// when `seeded`. Generic in W only, not in the model ([`Buf::new`] says why).
+#[inline]
+fn lift_gradient<const W: usize>(v: &[f64], seeded: bool, n: usize) -> [GradJet64<W>; W] {
+    let mut a = [GradJet64::<W>::from_re(0.0); W];
+    for (i, (d, v)) in a.iter_mut().zip(v).enumerate() {
+        *d = if seeded && i < n {
+            GradJet64::<W>::new(*v, SVector::from_fn(|k, _| if k == i { 1.0 } else { 0.0 }))
+        } else {
+            GradJet64::<W>::from_re(*v)
+        };
+    }
+    a
 }
 
 /// ∇ₓf(t, x) for a field of x alone (y = ∅) with exactly W variables, written into `out`; returns the
@@ -298,6 +327,18 @@ pub fn gradient_exact<F: Field, const W: usize>(f: &F, t: f64, x: &[f64; W], out
     gradient_alone(f, t, x, Block::X, out)
 }
 
+/// Entry i of `v` as the variable i of a [`GradJet64<W>`]. An index loop in a function generic in W
+/// only: `array::from_fn` in the model-generic caller was a copy of its machinery per model
+/// ([`Buf::new`] says why).
+#[inline(always)]
+fn variables<const W: usize>(v: &[f64; W]) -> [GradJet64<W>; W] {
+    let mut vs = [GradJet64::<W>::from_re(0.0); W];
+    for i in 0..W {
+        vs[i] = GradJet64::<W>::variable(v[i], i);
+    }
+    vs
+}
+
 /// [`gradient_exact`] for a field of either block alone (the other one empty).
 #[inline(always)]
 fn gradient_alone<F: Field, const W: usize>(
@@ -307,7 +348,7 @@ fn gradient_alone<F: Field, const W: usize>(
     block: Block,
     out: &mut [f64; W],
 ) -> f64 {
-    let vs: [GradJet64<W>; W] = std::array::from_fn(|i| GradJet64::<W>::variable(v[i], i));
+    let vs = variables::<W>(v);
     let t = GradJet64::<W>::from_re(t);
     let r = match block {
         Block::X => f.eval(t, &vs, &[]),
@@ -393,16 +434,7 @@ fn hessian_diag_w<F: Field, const W: usize>(
     out: &mut DMatrix<f64>,
 ) {
     type D<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
-    let seed = |b: Block, vals: &[f64], i: usize| {
-        let d = D::<W>::from_re(vals[i]);
-        if b == a {
-            d.derivative(i)
-        } else {
-            d
-        }
-    };
-    let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
-    let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+    let (xs, ys) = seed_second::<W>(x, y, a);
     let r = f.eval(D::<W>::from_re(t), &xs, &ys);
     let h = r.v2.unwrap_generic(Const::<W>, Const::<W>);
     let n = out.nrows();
@@ -411,6 +443,62 @@ fn hessian_diag_w<F: Field, const W: usize>(
             out[(i, j)] = h[(i, j)];
         }
     }
+}
+
+/// (x, y) lifted to `Dual2Vec<W>` with the variables of `block` seeded as the directions 0..: generic
+/// in W only, not in the model ([`Buf::new`] says why).
+#[allow(clippy::type_complexity)]
+fn seed_second<const W: usize>(
+    x: &[f64],
+    y: &[f64],
+    block: Block,
+) -> (
+    Buf<Dual2Vec<f64, f64, Const<W>>, W>,
+    Buf<Dual2Vec<f64, f64, Const<W>>, W>,
+) {
+    type D<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
+    let seed = |b: Block, vals: &[f64], i: usize| {
+        let d = D::<W>::from_re(vals[i]);
+        if b == block {
+            d.derivative(i)
+        } else {
+            d
+        }
+    };
+    (
+        Buf::new(x.len(), |i| seed(Block::X, x, i)),
+        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
+    )
+}
+
+/// (x, y) lifted to `HyperDualVec<W, W>` for the chunk (ca.., cb..) of the mixed Hessian: variable
+/// ca + k of block `a` carries ε₁ direction k, variable cb + k of block `b` ε₂ direction k. Generic
+/// in W only, not in the model ([`Buf::new`] says why).
+#[allow(clippy::type_complexity)]
+fn seed_pair<const W: usize>(
+    x: &[f64],
+    y: &[f64],
+    (a, ca): (Block, usize),
+    (b, cb): (Block, usize),
+) -> (
+    Buf<HyperDualVec<f64, f64, Const<W>, Const<W>>, W>,
+    Buf<HyperDualVec<f64, f64, Const<W>, Const<W>>, W>,
+) {
+    type D<const W: usize> = HyperDualVec<f64, f64, Const<W>, Const<W>>;
+    let seed = |blk: Block, vals: &[f64], i: usize| {
+        let mut d = D::<W>::from_re(vals[i]);
+        if blk == a && i >= ca && i < ca + W {
+            d = d.derivative1(i - ca);
+        }
+        if blk == b && i >= cb && i < cb + W {
+            d = d.derivative2(i - cb);
+        }
+        d
+    };
+    (
+        Buf::new(x.len(), |i| seed(Block::X, x, i)),
+        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
+    )
 }
 
 fn hessian_blocks<F: Field, const W: usize>(
@@ -429,18 +517,7 @@ fn hessian_blocks<F: Field, const W: usize>(
             if a == b && cb < ca {
                 continue; // symmetric: mirrored below
             }
-            let seed = |blk: Block, vals: &[f64], i: usize| {
-                let mut d = D::<W>::from_re(vals[i]);
-                if blk == a && i >= ca && i < ca + W {
-                    d = d.derivative1(i - ca);
-                }
-                if blk == b && i >= cb && i < cb + W {
-                    d = d.derivative2(i - cb);
-                }
-                d
-            };
-            let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, i));
-            let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, i));
+            let (xs, ys) = seed_pair::<W>(x, y, (a, ca), (b, cb));
             let r = f.eval(D::<W>::from_re(t), &xs, &ys);
             let h = r.eps1eps2.unwrap_generic(Const::<W>, Const::<W>);
             for i in 0..W.min(na - ca) {
@@ -505,34 +582,11 @@ fn directional_gradient_w<F: Field, const W: usize>(
     out: &mut [f64],
     mut grad_b: Option<&mut [f64]>,
 ) {
-    type D<const W: usize> = HyperDualVec<f64, f64, Const<1>, Const<W>>;
-    let lift = |v: f64, d: f64| {
-        if d == 0.0 {
-            D::<W>::from_re(v)
-        } else {
-            D::<W>::new(
-                v,
-                Derivative::some(SVector::from([d])),
-                Derivative::none(),
-                Derivative::none(),
-            )
-        }
-    };
     let n = out.len();
-    let (t, x, y) = at;
-    let (dt, dx, dy) = dir;
+    let t = at.0;
     for c0 in (0..n).step_by(W) {
-        let seed = |blk: Block, vals: &[f64], dirs: &[f64], i: usize| {
-            let d = lift(vals[i], dirs.get(i).copied().unwrap_or(0.0));
-            if blk == b && i >= c0 && i < c0 + W {
-                d.derivative2(i - c0)
-            } else {
-                d
-            }
-        };
-        let xs = Buf::<D<W>, W>::new(x.len(), |i| seed(Block::X, x, dx, i));
-        let ys = Buf::<D<W>, W>::new(y.len(), |i| seed(Block::Y, y, dy, i));
-        let r = f.eval(lift(t, dt), &xs, &ys);
+        let (xs, ys) = seed_directional::<W>(at, dir, b, c0);
+        let r = f.eval(lift_directional::<W>(t, dir.0), &xs, &ys);
         let m = W.min(n - c0);
         let h = r.eps1eps2.unwrap_generic(Const::<1>, Const::<W>);
         for j in 0..m {
@@ -545,6 +599,47 @@ fn directional_gradient_w<F: Field, const W: usize>(
             }
         }
     }
+}
+
+/// v + d ε₁ as a `HyperDualVec<1, W>`.
+#[inline]
+fn lift_directional<const W: usize>(v: f64, d: f64) -> HyperDualVec<f64, f64, Const<1>, Const<W>> {
+    if d == 0.0 {
+        HyperDualVec::from_re(v)
+    } else {
+        HyperDualVec::new(
+            v,
+            Derivative::some(SVector::from([d])),
+            Derivative::none(),
+            Derivative::none(),
+        )
+    }
+}
+
+/// (x, y) lifted to `HyperDualVec<1, W>` with the direction (δx, δy) on ε₁ and the variables
+/// c0..c0+W of `block` on ε₂: generic in W only, not in the model ([`Buf::new`] says why).
+#[allow(clippy::type_complexity)]
+fn seed_directional<const W: usize>(
+    (_, x, y): (f64, &[f64], &[f64]),
+    (_, dx, dy): (f64, &[f64], &[f64]),
+    block: Block,
+    c0: usize,
+) -> (
+    Buf<HyperDualVec<f64, f64, Const<1>, Const<W>>, W>,
+    Buf<HyperDualVec<f64, f64, Const<1>, Const<W>>, W>,
+) {
+    let seed = |blk: Block, vals: &[f64], dirs: &[f64], i: usize| {
+        let d = lift_directional::<W>(vals[i], dirs.get(i).copied().unwrap_or(0.0));
+        if blk == block && i >= c0 && i < c0 + W {
+            d.derivative2(i - c0)
+        } else {
+            d
+        }
+    };
+    (
+        Buf::new(x.len(), |i| seed(Block::X, x, dx, i)),
+        Buf::new(y.len(), |i| seed(Block::Y, y, dy, i)),
+    )
 }
 
 /// Everything Lagrange's equations need from f(t, x, y) at one point, from one evaluation with a

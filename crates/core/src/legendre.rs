@@ -321,8 +321,7 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 ) -> (Vec<f64>, DMatrix<f64>) {
     type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
     let n = v.len();
-    let qs = Buf::<D2<W>, W>::new(q.len(), |i| D2::<W>::from_re(q[i]));
-    let vs = Buf::<D2<W>, W>::new(n, |i| D2::<W>::from_re(v[i]).derivative(i));
+    let (qs, vs) = (Buf::<D2<W>, W>::constants(q), velocities::<W>(n, Some(v)));
     let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
     let g = r.v1.unwrap_generic(U1, Const::<W>);
     let h = r.v2.unwrap_generic(Const::<W>, Const::<W>);
@@ -338,8 +337,7 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -> Option<Vec<f64>> {
     type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
     let n = p.len();
-    let qs = Buf::<D2<W>, W>::new(q.len(), |i| D2::<W>::from_re(q[i]));
-    let vs = Buf::<D2<W>, W>::new(n, |i| D2::<W>::from_re(0.0).derivative(i));
+    let (qs, vs) = (Buf::<D2<W>, W>::constants(q), velocities::<W>(n, None));
     let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
     let g = r.v1.unwrap_generic(U1, Const::<W>);
     let mut m = r.v2.unwrap_generic(Const::<W>, Const::<W>);
@@ -356,6 +354,24 @@ fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -
     Some(b.as_slice()[..n].to_vec())
 }
 
+/// The n velocities `v` (zero when `None`) as `Dual2Vec<W>`, v_i carrying the direction i. Generic
+/// in W only, not in the model (`noether_core::ad::Buf::new` says why).
+fn velocities<const W: usize>(n: usize, v: Option<&[f64]>) -> Buf<Dual2Vec<f64, f64, Const<W>>, W> {
+    Buf::new(n, |i| {
+        Dual2Vec::<f64, f64, Const<W>>::from_re(v.map_or(0.0, |v| v[i])).derivative(i)
+    })
+}
+
+/// The entries of `x` lifted to nested duals `Dual<D>` (constants); generic in D only.
+fn nested<D: Scalar>(x: &[D]) -> Buf<Dual<D, f64>, 12> {
+    Buf::new(x.len(), |i| Dual::from_re(x[i]))
+}
+
+/// The real parts of `x`; generic in D only.
+fn real_parts<D: Scalar>(x: &[D]) -> Buf<f64, 12> {
+    Buf::new(x.len(), |i| x[i].re())
+}
+
 /// g ← g − p; returns ‖g − p‖∞.
 fn residual(g: &mut [f64], p: &[f64]) -> f64 {
     g.iter_mut().zip(p).for_each(|(gi, pi)| *gi -= pi);
@@ -367,8 +383,7 @@ fn residual(g: &mut [f64], p: &[f64]) -> f64 {
 /// every scalar the integrators use by the number of widths, for about the same arithmetic).
 fn momenta_in<L: Lagrangian, D: Scalar>(l: &L, t: D, q: &[D], v: &[D], out: &mut [D]) {
     // Nested duals are twice the size of D: on the stack for up to 12 degrees of freedom.
-    let lift = |x: &[D]| Buf::<Dual<D, f64>, 12>::new(x.len(), |i| Dual::from_re(x[i]));
-    let (ts, qs, mut vs) = (Dual::from_re(t), lift(q), lift(v));
+    let (ts, qs, mut vs) = (Dual::from_re(t), nested(q), nested(v));
     for (k, o) in out.iter_mut().enumerate() {
         vs[k] = Dual::from_re(v[k]).derivative();
         *o = l.lagrangian(ts, &qs, &vs).eps;
@@ -386,10 +401,7 @@ impl<L: Lagrangian> Hamiltonian for LegendreTransform<L> {
     /// ([`failure`](Hamiltonian::failure) says why).
     fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
         let n = self.dof();
-        let (q0, p0) = (
-            Buf::<f64, 12>::new(q.len(), |i| q[i].re()),
-            Buf::<f64, 12>::new(p.len(), |i| p[i].re()),
-        );
+        let (q0, p0) = (real_parts(q), real_parts(p));
         let steps = if self.lagrangian().constant_mass_matrix() {
             // One step is exact Newton on an equation linear in q̇.
             usize::from(D::NDERIV >= 2)
@@ -400,9 +412,9 @@ impl<L: Lagrangian> Hamiltonian for LegendreTransform<L> {
             // NaN in the value and in every derivative part that the caller seeded.
             return q.iter().chain(p).fold(t, |s, x| s + *x) * f64::NAN;
         };
-        let mut v = Buf::<D, 12>::new(n, |i| D::from(solved.v[i]));
+        let mut v = Buf::<D, 12>::constants(&solved.v[..n]);
         if let Some(minv) = &solved.inverse {
-            let mut r = Buf::<D, 12>::new(n, |_| D::zero());
+            let mut r = Buf::<D, 12>::filled(n, D::zero());
             for _ in 0..steps {
                 momenta_in(self.lagrangian(), t, q, &v, &mut r);
                 r.iter_mut().zip(p).for_each(|(ri, pi)| *ri -= *pi);

@@ -6,9 +6,10 @@
 //! c = b − g(b)(b − a)/(g(b) − g(a)), keeps the sub-bracket with the sign change, and halves the
 //! function value kept at the end that did not move, which restores superlinear convergence (order
 //! ≈ 1.44) where plain regula falsi stalls. A bisection step is taken whenever the secant point would
-//! not shrink the bracket by half in two steps, so the bracket always closes: the iteration ends when
-//! g(c) = 0 or the bracket is a few ulps wide, at most a few hundred evaluations for any bracket of
-//! finite numbers.
+//! not halve the bracket in two steps, so the bracket always closes: the iteration ends when g(c) = 0
+//! or the bracket is a few ulps wide. Its size is counted in floats rather than in length, so a
+//! bracket spanning many orders of magnitude (a root at 1e-150 in [0, 0.05]) closes as fast as any
+//! other: at most about 130 evaluations for any bracket of finite numbers.
 //!
 //! # References
 //! - M. Dowell, P. Jarratt, A modified regula falsi method for computing the root of an equation,
@@ -47,16 +48,20 @@ pub fn bracketed_root(
     // Bracket [lo, hi] with g(lo) of the sign of ga; `side` remembers which end moved last.
     let (mut lo, mut glo, mut hi, mut ghi) = (a, ga, b, gb);
     let mut side = 0i8;
-    // Bracket widths one and two iterations ago.
-    let (mut width1, mut width2) = ((hi - lo).abs(), (hi - lo).abs());
-    for _ in 0..400 {
+    // The bracket's size is counted in floats (`floats_between`), not in length: a bracket such as
+    // [0, 0.05] around a root at 1e-150 closes in at most 64 halvings of its count, where halving its
+    // length needs ~500. Sizes one and two iterations ago.
+    let (mut size1, mut size2) = (floats_between(lo, hi), floats_between(lo, hi));
+    // Ends: every point tried lies strictly inside the bracket, so its size falls at each iteration,
+    // and the safeguard below halves it at least every two iterations: at most ~130 iterations.
+    loop {
         let tol = 4.0 * f64::EPSILON * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
-        if (hi - lo).abs() <= tol {
+        if (hi - lo).abs() <= tol || floats_between(lo, hi) <= 1 {
             break;
         }
         let secant = hi - ghi * (hi - lo) / (ghi - glo);
         let inside = secant.is_finite() && (secant - lo) * (secant - hi) < 0.0;
-        let c = if inside { secant } else { 0.5 * (lo + hi) };
+        let c = if inside { secant } else { float_midpoint(lo, hi) };
         let gc = g(c)?;
         if gc == 0.0 {
             return Ok(c);
@@ -76,24 +81,46 @@ pub fn bracketed_root(
             }
             side = 1;
         }
-        // Safeguard: force a bisection when two steps did not halve the bracket.
-        if (hi - lo).abs() > 0.5 * width2 {
-            let m = 0.5 * (lo + hi);
-            let gm = g(m)?;
-            if gm == 0.0 {
-                return Ok(m);
+        // Safeguard: force a bisection (of the count of floats) when two steps did not halve it.
+        if floats_between(lo, hi) > size2 / 2 {
+            let m = float_midpoint(lo, hi);
+            if m != lo && m != hi {
+                let gm = g(m)?;
+                if gm == 0.0 {
+                    return Ok(m);
+                }
+                if gm.signum() == glo.signum() {
+                    (lo, glo) = (m, gm);
+                } else {
+                    (hi, ghi) = (m, gm);
+                }
+                side = 0;
             }
-            if gm.signum() == glo.signum() {
-                (lo, glo) = (m, gm);
-            } else {
-                (hi, ghi) = (m, gm);
-            }
-            side = 0;
         }
-        (width2, width1) = (width1, (hi - lo).abs());
+        (size2, size1) = (size1, floats_between(lo, hi));
     }
     // The end nearer to zero in |g|.
     Ok(if glo.abs() < ghi.abs() { lo } else { hi })
+}
+
+/// The position of x among all f64 in increasing order (−0 just below +0): adjacent floats have
+/// adjacent keys. The map is its own inverse on the bits.
+fn order_key(x: f64) -> i64 {
+    let i = x.to_bits() as i64;
+    i ^ ((((i >> 63) as u64) >> 1) as i64)
+}
+
+/// How many steps from one float to the next separate x and y.
+fn floats_between(x: f64, y: f64) -> u64 {
+    order_key(x).abs_diff(order_key(y))
+}
+
+/// The float halfway between x and y in the order of floats: the arithmetic midpoint within a binade,
+/// nearly the geometric mean across many, and 0 for ends of opposite signs of similar size.
+fn float_midpoint(x: f64, y: f64) -> f64 {
+    let (kx, ky) = (order_key(x) as i128, order_key(y) as i128);
+    let k = (kx + (ky - kx) / 2) as i64;
+    f64::from_bits((k ^ ((((k >> 63) as u64) >> 1) as i64)) as u64)
 }
 
 /// `g` when finite, else the error naming where it was not.
@@ -171,5 +198,46 @@ mod tests {
         );
         // A NaN at an end as well.
         assert!(bracketed_root(g, (0.0, f64::NAN), (1.0, g(1.0))).is_err());
+    }
+
+    #[test]
+    fn regress_root_many_orders_of_magnitude_below_the_bracket() {
+        // Issue 29 item 12: a turning point at 1.4e-150 in the bracket [0, 0.05]. Halving the length
+        // needs ~500 steps, and the old cap of 400 returned the end nearer in |g| (not a root). The
+        // count of floats halves instead: g = t − r has its root at r exactly, so the answer is r to
+        // 4 ulps (the contract), in well under the 130 evaluations the safeguard allows.
+        for r in [1.4e-150, 1e-300, 3e-10, 0.049] {
+            let g = |t: f64| t - r;
+            let mut calls = 0;
+            let root = bracketed_root(
+                |t| {
+                    calls += 1;
+                    g(t)
+                },
+                (0.0, g(0.0)),
+                (0.05, g(0.05)),
+            )
+            .unwrap();
+            assert!((root - r).abs() <= 4.0 * f64::EPSILON * r, "{root} vs {r}");
+            assert!(calls <= 130, "{calls} evaluations for the root {r}");
+        }
+        // Opposite signs of very different sizes: [−1e300, 1e-300] around −1e-200.
+        let g = |t: f64| t + 1e-200;
+        let root = bracketed_root(g, (-1e300, g(-1e300)), (1e-300, g(1e-300))).unwrap();
+        assert!((root + 1e-200).abs() <= 4.0 * f64::EPSILON * 1e-200, "{root}");
+    }
+
+    #[test]
+    fn float_order_keys_are_monotone_and_midpoints_inside() {
+        let xs = [
+            -1e300, -2.0, -1.0, -1e-300, -0.0, 0.0, 5e-324, 1e-300, 1.0, 1.5, 2.0, 1e300,
+        ];
+        for w in xs.windows(2) {
+            assert!(order_key(w[0]) < order_key(w[1]), "{} {}", w[0], w[1]);
+            let m = float_midpoint(w[0], w[1]);
+            assert!(w[0] <= m && m <= w[1], "{m} outside [{}, {}]", w[0], w[1]);
+        }
+        assert_eq!(float_midpoint(1.0, 2.0), 1.5);
+        assert_eq!(floats_between(1.0, 1.0 + f64::EPSILON), 1);
     }
 }

@@ -1091,7 +1091,7 @@ struct Component<'a, C> {
 
 impl<C: PathConstraint> Field for Component<'_, C> {
     fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        let mut out = Scratch::new(self.c.count(), |_| D::zero());
+        let mut out = Scratch::filled(self.c.count(), D::zero());
         self.c.constraints(x, &mut out);
         out[self.i]
     }
@@ -1105,7 +1105,7 @@ struct Weighted<'a, C> {
 
 impl<C: PathConstraint> Field for Weighted<'_, C> {
     fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        let mut out = Scratch::new(self.c.count(), |_| D::zero());
+        let mut out = Scratch::filled(self.c.count(), D::zero());
         self.c.constraints(x, &mut out);
         out.iter()
             .zip(self.lambda)

@@ -79,21 +79,26 @@ struct Action<'a, L> {
 impl<L: Lagrangian> Field for Action<'_, L> {
     fn eval<D: Scalar>(&self, h: D, x: &[D], y: &[D]) -> D {
         let g = self.g;
-        let n = x.len();
-        let point = |nu: usize, j: usize| if nu == 0 { x[j] } else { y[(nu - 1) * n + j] };
         let mut s = D::zero();
         for (i, w) in g.weights.iter().enumerate() {
-            let q = Scratch::new(n, |j| {
-                (0..=g.s).fold(D::zero(), |a, nu| a + point(nu, j) * g.basis[(i, nu)])
-            });
-            let v = Scratch::new(n, |j| {
-                (0..=g.s).fold(D::zero(), |a, nu| a + point(nu, j) * g.dbasis[(i, nu)]) / h
-            });
+            let q = on_path(x, y, &g.basis, i, D::one());
+            let v = on_path(x, y, &g.dbasis, i, h);
             let t = h * g.nodes[i] + self.t0;
             s += g.el.lagrangian().lagrangian(t, &q, &v) * *w;
         }
         s * h
     }
+}
+
+/// Σ_ν basis(i, ν) q^ν / divisor with q^0 = x and q^ν = y[(ν−1)n..νn] (n = x.len()): the path (or its
+/// derivative, for ℓ') at node i. Generic in D only, not in the model (`noether_core::ad::Buf::new`
+/// says why).
+fn on_path<D: Scalar>(x: &[D], y: &[D], basis: &DMatrix<f64>, i: usize, divisor: D) -> Scratch<D> {
+    let n = x.len();
+    let point = |nu: usize, j: usize| if nu == 0 { x[j] } else { y[(nu - 1) * n + j] };
+    Scratch::new(n, |j| {
+        (0..basis.ncols()).fold(D::zero(), |a, nu| a + point(nu, j) * basis[(i, nu)]) / divisor
+    })
 }
 
 impl<L: Lagrangian> Galerkin<L> {

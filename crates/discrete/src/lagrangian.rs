@@ -167,7 +167,7 @@ pub trait DiscreteDerivatives: DiscreteLagrangian {
     /// force impulse) it carries no cancellation error: it is the momentum change of a step,
     /// p_{k+1} − p_k, to relative rounding.
     fn d1_plus_d2(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], out: &mut [f64]) {
-        let zero = Scratch::<f64>::new(q0.len(), |_| 0.0);
+        let zero = Scratch::<f64>::filled(q0.len(), 0.0);
         let f = ShiftField { ld: self, t0, q0, q1 };
         ad::gradient(&f, h, &zero, &[], Block::X, out);
     }
@@ -210,8 +210,7 @@ struct ShiftField<'a, Ld: ?Sized> {
 impl<Ld: DiscreteLagrangian + ?Sized> Field for ShiftField<'_, Ld> {
     #[inline]
     fn eval<D: Scalar>(&self, h: D, s: &[D], _y: &[D]) -> D {
-        let a = Scratch::new(s.len(), |i| s[i] + self.q0[i]);
-        let b = Scratch::new(s.len(), |i| s[i] + self.q1[i]);
+        let (a, b) = (shifted(s, self.q0), shifted(s, self.q1));
         self.ld.discrete_lagrangian(self.t0, h, &a, &b)
     }
 }
@@ -219,3 +218,19 @@ impl<Ld: DiscreteLagrangian + ?Sized> Field for ShiftField<'_, Ld> {
 /// A short vector of scalars on the stack (up to 16), on the heap beyond: scratch space for generic
 /// model code that must not allocate per evaluation for small systems.
 pub(crate) type Scratch<D> = noether_core::ad::Buf<D, 16>;
+
+/// s + q. Like the other small builders of scratch vectors here, generic in D only, not in the model
+/// (`noether_core::ad::Buf::new` says why).
+fn shifted<D: Scalar>(s: &[D], q: &[f64]) -> Scratch<D> {
+    Scratch::new(s.len(), |i| s[i] + q[i])
+}
+
+/// (q0 + q1)/2.
+pub(crate) fn midpoint<D: Scalar>(q0: &[D], q1: &[D]) -> Scratch<D> {
+    Scratch::new(q0.len(), |i| (q0[i] + q1[i]) * 0.5)
+}
+
+/// (q1 − q0)/h.
+pub(crate) fn difference_quotient<D: Scalar>(q0: &[D], q1: &[D], h: D) -> Scratch<D> {
+    Scratch::new(q0.len(), |i| (q1[i] - q0[i]) / h)
+}

@@ -13,7 +13,7 @@
 //! J. E. Marsden and M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001),
 //! §2.2 and §3.2.
 
-use crate::lagrangian::{DiscreteLagrangian, Scratch};
+use crate::lagrangian::{difference_quotient, midpoint, DiscreteLagrangian};
 use nalgebra::DVector;
 use noether_core::{EulerLagrange, Lagrangian, Momenta, Result, Scalar, State};
 
@@ -94,10 +94,8 @@ impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
     }
 
     fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
-        let n = q0.len();
         let half = D::from(0.5);
-        let mid = Scratch::new(n, |i| (q0[i] + q1[i]) * half);
-        let v = Scratch::new(n, |i| (q1[i] - q0[i]) / h);
+        let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, h));
         self.el.lagrangian().lagrangian(h * half + t0, &mid, &v) * h
     }
 
@@ -159,8 +157,7 @@ impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
     }
 
     fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
-        let n = q0.len();
-        let v = Scratch::new(n, |i| (q1[i] - q0[i]) / h);
+        let v = difference_quotient(q0, q1, h);
         let l = self.el.lagrangian();
         let t = D::from(t0);
         (l.lagrangian(t, q0, &v) + l.lagrangian(t + h, q1, &v)) * h * 0.5

@@ -83,7 +83,7 @@ mod reduce;
 mod wire;
 
 pub use error::{Error, MemberError, Result};
-pub use members::{member_rng, Axis, Grid, MemberRng, Members, Sampler};
+pub use members::{member_rng, Axis, Grid, MemberIter, MemberRng, Members, Sampler};
 #[cfg(feature = "mpi")]
 pub use mpi;
 /// The random-number traits a [`Sampler`]'s closure uses (`rng.random()`, `rng.random_range(a..b)`).

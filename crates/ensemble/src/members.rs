@@ -21,6 +21,68 @@ pub trait Members: Sync {
     /// The parameters of member `index`, or [`Error::NoSuchMember`] when `index` ≥
     /// [`len`](Self::len) (never a panic, nor another member's parameters).
     fn member(&self, index: usize) -> Result<Self::Param>;
+
+    /// The members in order, 0 to len − 1: what an ensemble runs, listed back (a sample to plot or
+    /// to save next to its outputs). `for p in &sampler` does the same for a [`Sampler`] or a
+    /// [`Grid`]. (Not named `iter`: for a `Vec` of members that would hide the slice's own.)
+    ///
+    /// ```
+    /// use noether_ensemble::{rand::Rng, Members, Sampler};
+    /// let s = Sampler::new(5, 42, |rng| rng.random_range(0.0..1.0));
+    /// let drawn: Vec<f64> = s.members().collect();
+    /// assert_eq!(drawn.len(), 5);
+    /// assert_eq!(drawn[3], s.member(3)?);
+    /// # Ok::<(), noether_ensemble::Error>(())
+    /// ```
+    fn members(&self) -> MemberIter<'_, Self>
+    where
+        Self: Sized,
+    {
+        MemberIter {
+            members: self,
+            next: 0,
+            end: self.len(),
+        }
+    }
+}
+
+/// The members of an ensemble in order ([`Members::members`]).
+#[derive(Debug, Clone)]
+pub struct MemberIter<'a, M> {
+    members: &'a M,
+    next: usize,
+    end: usize,
+}
+
+impl<M: Members> Iterator for MemberIter<'_, M> {
+    type Item = M::Param;
+    fn next(&mut self) -> Option<M::Param> {
+        if self.next >= self.end {
+            return None;
+        }
+        // Every index below len() is a member (the trait's contract); should one fail regardless,
+        // the iteration ends there rather than skip it.
+        let p = self.members.member(self.next).ok();
+        self.next = if p.is_some() { self.next + 1 } else { self.end };
+        p
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.end - self.next;
+        (left, Some(left))
+    }
+}
+
+impl<M: Members> ExactSizeIterator for MemberIter<'_, M> {}
+
+impl<M: Members> DoubleEndedIterator for MemberIter<'_, M> {
+    fn next_back(&mut self) -> Option<M::Param> {
+        if self.next >= self.end {
+            return None;
+        }
+        let p = self.members.member(self.end - 1).ok();
+        self.end = if p.is_some() { self.end - 1 } else { self.next };
+        p
+    }
 }
 
 /// A list of members, given one by one.
@@ -304,5 +366,21 @@ impl<P: Send, F: Fn(&mut MemberRng) -> P + Sync> Members for Sampler<F> {
     fn member(&self, index: usize) -> Result<P> {
         check_member(index, self.n)?;
         Ok((self.draw)(&mut member_rng(self.seed, index)))
+    }
+}
+
+impl<'a, P: Send, F: Fn(&mut MemberRng) -> P + Sync> IntoIterator for &'a Sampler<F> {
+    type Item = P;
+    type IntoIter = MemberIter<'a, Sampler<F>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.members()
+    }
+}
+
+impl<'a> IntoIterator for &'a Grid {
+    type Item = Vec<f64>;
+    type IntoIter = MemberIter<'a, Grid>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.members()
     }
 }

@@ -266,6 +266,17 @@ fn grids_and_samplers_are_reproducible() {
         assert_ne!(small.member(i), other.member(i));
     }
     assert_ne!(small.member(0), small.member(1));
+    // Issue 30 item 9: the members list themselves back, in order, exactly as `member(i)` gives them,
+    // from either end; an empty sampler lists nothing.
+    let listed: Vec<[f64; 2]> = (&small).into_iter().collect();
+    assert_eq!(listed.len(), 10);
+    assert!(listed.iter().enumerate().all(|(i, p)| Ok(*p) == small.member(i)));
+    assert_eq!(small.members().len(), 10);
+    assert_eq!(small.members().next_back(), Some(listed[9]));
+    assert_eq!(Sampler::new(0, 1, draw).members().next(), None);
+    let cells: Vec<Vec<f64>> = (&grid).into_iter().collect();
+    assert_eq!(cells.len(), 40);
+    assert_eq!(cells[39], vec![1.0, 0.875, 8.0]);
     let sum = |threads| {
         on_threads(threads, || {
             Ensemble::new(Sampler::new(5000, 3, draw), |_, p: &[f64; 2]| {

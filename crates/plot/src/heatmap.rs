@@ -167,6 +167,7 @@ impl Heatmap {
             .build_cartesian_2d(0.0..1.0, lo..hi)
             .map_err(draw_error)?;
         let log = self.log;
+        let ticks = super::Ticks::new(lo, hi, false);
         scale
             .configure_mesh()
             .disable_mesh()
@@ -174,9 +175,9 @@ impl Heatmap {
             .y_desc(self.bar_label.as_str())
             .y_label_formatter(&|v| {
                 if log {
-                    format!("{:.2e}", 10f64.powf(*v))
+                    super::significant(10f64.powf(*v), 2)
                 } else {
-                    format!("{v:.3}")
+                    ticks.label(*v)
                 }
             })
             .label_style(("sans-serif", 12))

@@ -348,9 +348,15 @@ impl Figure {
                     .map_err(draw_error)?
             };
             if !s.name.is_empty() {
-                drawn
-                    .label(s.name.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)));
+                // The swatch looks like the series: a dot for dots, a line for a line.
+                let dots = s.dots;
+                drawn.label(s.name.as_str()).legend(move |(x, y)| {
+                    if dots {
+                        Circle::new((x + 10, y), 4, color.filled()).into_dyn()
+                    } else {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(3)).into_dyn()
+                    }
+                });
             }
         }
         if self.series.iter().any(|s| !s.name.is_empty()) {
@@ -423,6 +429,21 @@ impl Ticks {
     }
 }
 
+/// `x` to `digits` significant digits, plain for magnitudes in [10⁻³, 10⁴) and scientific otherwise,
+/// without trailing zeros: the label of a colour-bar tick on a log scale (0.0032, 0.01, 1.5e-6).
+fn significant(x: f64, digits: usize) -> String {
+    let digits = digits.max(1);
+    let label = if x == 0.0 || !x.is_finite() {
+        format!("{x}")
+    } else if (1e-3..1e4).contains(&x.abs()) {
+        let decimals = (digits as i32 - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.prec$e}", prec = digits - 1)
+    };
+    trim_zeros(&label)
+}
+
 /// Drops trailing zeros of the fractional part ("0.02500" → "0.025", "1.50e-3" → "1.5e-3").
 fn trim_zeros(s: &str) -> String {
     let (mantissa, exponent) = match s.find('e') {
@@ -462,6 +483,18 @@ mod tests {
         assert!(t.len() <= 1001);
         assert_eq!(t[0].0, 0.0);
         assert_eq!(t.last().unwrap().0, 10_000.0);
+    }
+
+    #[test]
+    fn colour_bar_labels_are_short_and_plain_where_they_can_be() {
+        // Issue 30 item 15: the log colour bar read 1.00e-3, 3.16e-3, … on every tick.
+        assert_eq!(significant(1e-3, 2), "0.001");
+        assert_eq!(significant(10f64.powf(-2.5), 2), "0.0032");
+        assert_eq!(significant(0.1, 2), "0.1");
+        assert_eq!(significant(31.6227766, 2), "32");
+        assert_eq!(significant(1.5e-6, 2), "1.5e-6");
+        assert_eq!(significant(2.0e7, 2), "2e7");
+        assert_eq!(significant(0.0, 2), "0");
     }
 
     #[test]

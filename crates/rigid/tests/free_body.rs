@@ -2,7 +2,7 @@
 //! Jacobi's elliptic functions and its period from K(k), the symmetric body's precession of ω, the
 //! Casimir |L|, the energy and the orthogonality of R over long runs, and the observed order.
 
-mod common;
+use crate::common;
 
 use common::FreeTop;
 use nalgebra::{UnitQuaternion, Vector3};

@@ -2,7 +2,7 @@
 //! asymmetric top and against the LGVI: ω(t) by Jacobi's elliptic functions, |Π| and the spatial L,
 //! RᵀR = I, and the observed order 2.
 
-mod common;
+use crate::common;
 
 use common::FreeTop;
 use nalgebra::{UnitQuaternion, Vector3};

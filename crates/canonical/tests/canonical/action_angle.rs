@@ -455,6 +455,47 @@ fn regress_libration_huge_energy_finds_the_turning_points() {
     assert!(rel(lib.frequency, 1.0) < 1e-13, "{lib:?}");
 }
 
+/// Issue 29 item 12: the oscillator H = ½(p² + q²) at E = 1e-300 returned Ok with T = 0, ω = ∞.
+/// Its turning points ±√(2E) = ±1.4e-150 lie inside the first search step [0, 0.05]; the root
+/// finder, bisecting that bracket by length (its secant lands on q = 0), reached [0, 2e-122] in its
+/// 400 iterations and returned q = 0 for both. It now bisects the count of floats in the bracket
+/// (noether_core::roots), which closes any bracket in at most ~130 evaluations, so the search works
+/// at any scale. Closed form for the
+/// oscillator (H is scale-invariant, q, p ∝ √E): q± = ±√(2E), T = 2π/ω = 2π, J = E/ω = E. The
+/// tolerances are those of the E = 1e300 test above: the quadrature's relative accuracy does not
+/// depend on the scale (measured ≤ 2 ulps at every E here).
+#[test]
+fn regress_libration_tiny_energy_has_period_two_pi() {
+    let aa = ActionAngle::new(Oscillator { m: 1.0, w: 1.0 }).unwrap();
+    for e in [1e-300, 1e-200, 1e-100, 1e-20] {
+        let lib = aa.libration(e, 0.0).unwrap();
+        let q_turn = (2.0 * e).sqrt();
+        assert!(rel(lib.q_max, q_turn) < 1e-14, "{lib:?}");
+        assert!(rel(lib.q_min, -q_turn) < 1e-14, "{lib:?}");
+        assert!(rel(lib.action, e) < 1e-13, "{lib:?}");
+        assert!(rel(lib.period, 2.0 * PI) < 1e-13, "{lib:?}");
+        assert!(rel(lib.frequency, 1.0) < 1e-13, "{lib:?}");
+    }
+    // Below the normal range the turning points (√(2E) ≈ 1e-161 for E = 1e-322, a subnormal E) are
+    // still found but E − H is resolved to a few bits: any answer is finite and positive or a typed
+    // error, never Ok with T = 0 or ω = ∞.
+    for e in [1e-310, 1e-322, 5e-324] {
+        match aa.libration(e, 0.0) {
+            Ok(lib) => {
+                eprintln!("E = {e:e}: T = {}, J = {:e}", lib.period, lib.action);
+                assert!(lib.period.is_finite() && lib.period > 0.0, "{}", lib.period);
+                assert!(
+                    lib.frequency.is_finite() && lib.frequency > 0.0,
+                    "{}",
+                    lib.frequency
+                );
+                assert!(lib.action.is_finite(), "{}", lib.action);
+            }
+            Err(err) => eprintln!("E = {e:e}: {err}"),
+        }
+    }
+}
+
 /// Issue 29 item 13a/c: `Libration::angle` returned NaN silently for a NaN q, and
 /// `ActionAngle::angle` at a NaN point reported `NewtonDiverged { iterations: 0, residual: NaN }`;
 /// both are `NonFinite` now.

@@ -683,15 +683,13 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
     #[inline(always)]
     fn eval_fixed<const N: usize, const W: usize>(&mut self, j: usize, t: f64, y: [f64; W]) -> Result<bool> {
         self.evaluations += 1;
-        let q = std::array::from_fn(|x| y[x]);
-        let v = std::array::from_fn(|x| y[N + x]);
+        let (q, v) = split_halves::<N, W>(&y);
         let (dq, dv) = match self.system.rates_fixed::<N>(t, q, v) {
             Ok(r) => r,
             Err(Error::NonFiniteResult { .. } | Error::NonFinite { .. }) => return Ok(false),
             Err(e) => return Err(e),
         };
-        let kj: [f64; W] = std::array::from_fn(|x| if x < N { dq[x] } else { dv[x - N] });
-        self.k[j * W..(j + 1) * W].copy_from_slice(&kj);
+        self.k[j * W..(j + 1) * W].copy_from_slice(&join_halves::<N, W>(&dq, &dv));
         Ok(true)
     }
 
@@ -927,4 +925,23 @@ impl<S: crate::integrators::LinearizedDynamics, M: EmbeddedPair> crate::TangentS
             )
         })
     }
+}
+
+/// (y[..N], y[N..2N]) as arrays, in a function generic in the lengths only, not in the
+/// model (`array::from_fn` in a model-generic method is a copy of its machinery per model).
+#[inline(always)]
+fn split_halves<const N: usize, const W: usize>(y: &[f64; W]) -> ([f64; N], [f64; N]) {
+    let (mut a, mut b) = ([0.0; N], [0.0; N]);
+    a.copy_from_slice(&y[..N]);
+    b.copy_from_slice(&y[N..2 * N]);
+    (a, b)
+}
+
+/// [a, b] in one array of W = 2N entries (the inverse of [`split_halves`]).
+#[inline(always)]
+fn join_halves<const N: usize, const W: usize>(a: &[f64; N], b: &[f64; N]) -> [f64; W] {
+    let mut y = [0.0; W];
+    y[..N].copy_from_slice(a);
+    y[N..2 * N].copy_from_slice(b);
+    y
 }

@@ -1,8 +1,8 @@
 //! q̈ by AD (one Lagrange-jet evaluation up to 10 dof, one taped evaluation beyond) against the
 //! hand-derived equations of motion stated next to each model in `systems.rs`.
 
-use crate::systems::*;
-use crate::{assert_rel, charge_state, draw, for_states, rng, Sample};
+use super::systems::*;
+use super::{assert_rel, charge_state, draw, for_states, rng, Sample};
 use noether_core::{EulerLagrange, Lagrangian};
 use rand::rngs::StdRng;
 use rand::Rng;

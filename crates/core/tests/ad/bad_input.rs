@@ -1,7 +1,7 @@
 //! Degenerate Lagrangians, wrong dimensions and non-finite input give their errors, never a panic or
 //! a NaN state.
 
-use crate::systems::{Chain, DoublePendulum};
+use super::systems::{Chain, DoublePendulum};
 use noether_core::{Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Scalar};
 
 /// L = q̇₁ q₂ − ½ (q₁² + q₂²): linear in q̇, M = 0 (a first-order, degenerate Lagrangian).
@@ -163,7 +163,7 @@ fn bad_input_non_finite_state() {
 fn bad_input_model_returns_nan() {
     // The relativistic L at |v| > c takes the square root of a negative number: the model itself
     // produces NaN, which must come back as an error, not as NaN accelerations.
-    let el = EulerLagrange::new(crate::legendre::Relativistic {
+    let el = EulerLagrange::new(super::legendre::Relativistic {
         m: 1.0,
         c: 1.0,
         k: 1.0,

@@ -1,6 +1,6 @@
 //! Hamilton's equations q̇ = ∂H/∂p, ṗ = −∂H/∂q by AD against hand-derived right-hand sides.
 
-use crate::{assert_rel, charge_state, draw, for_states, Sample};
+use super::{assert_rel, charge_state, draw, for_states, Sample};
 use noether_core::{HamiltonEquations, Hamiltonian, Scalar};
 use rand::rngs::StdRng;
 use rand::Rng;
@@ -44,7 +44,7 @@ impl Hamiltonian for RelativisticH {
 /// Charge in the field of `systems::ChargeInField`: H = |p − eA|²/(2m) + e φ, A = ½ B(t)(−y, x, 0),
 /// φ = ½ κ (x² + y²) + E0 z cos ωt, B(t) = B0 (1 + ε sin ωt) (explicit time dependence).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ChargeH(pub(crate) crate::systems::ChargeInField);
+pub(crate) struct ChargeH(pub(crate) super::systems::ChargeInField);
 
 impl Hamiltonian for ChargeH {
     fn dof(&self) -> usize {
@@ -125,7 +125,7 @@ fn ad_vs_hand_hamilton_relativistic() {
 fn ad_vs_hand_hamilton_charge_explicit_time() {
     // π = p − eA; q̇ = π/m; ṗ = (e/m) Σ_j π_j ∂A_j/∂q − e ∇φ with ∂A_x/∂y = −B/2, ∂A_y/∂x = B/2:
     // ṗ_x = (e/m) π_y B/2 − e κ x, ṗ_y = −(e/m) π_x B/2 − e κ y, ṗ_z = −e E0 cos ωt.
-    let s = crate::systems::ChargeInField::default();
+    let s = super::systems::ChargeInField::default();
     let h = HamiltonEquations::new(ChargeH(s));
     for_states(34, 100, charge_state::<3>, |t, q, p| {
         let (dq, dp) = rates(&h, t, q, p);

@@ -1,6 +1,6 @@
 //! The inverse Legendre map q̇(p) by Newton on a Lagrangian that is not quadratic in q̇.
 
-use crate::{assert_rel, draw, for_states, Sample};
+use super::{assert_rel, draw, for_states, Sample};
 use noether_core::{EulerLagrange, Lagrangian, Scalar};
 use rand::rngs::StdRng;
 use rand::Rng;

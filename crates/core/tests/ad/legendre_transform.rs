@@ -9,9 +9,9 @@
 //! errors in each test). A wrong derivative order (say a Hessian without the Newton step in the dual
 //! scalar) is off by O(1).
 
-use crate::hamilton::ChargeH;
-use crate::systems::{ChargeInField, DoublePendulum, HeavyTop};
-use crate::{charge_state, draw, for_states, Sample, TOL};
+use super::hamilton::ChargeH;
+use super::systems::{ChargeInField, DoublePendulum, HeavyTop};
+use super::{charge_state, draw, for_states, Sample, TOL};
 use noether_core::integrators::{Dop853, Gauss};
 use noether_core::{
     Driver, Error, EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, LegendreTransform, Momenta,

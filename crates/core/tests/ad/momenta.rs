@@ -1,8 +1,8 @@
 //! Momenta p = ∂L/∂q̇, the energy function h = q̇·p − L and the mass matrix M = ∂²L/∂q̇² by AD against
 //! the hand formulas stated in `systems.rs`.
 
-use crate::systems::*;
-use crate::{assert_rel, charge_state, draw, for_states, rng, Sample};
+use super::systems::*;
+use super::{assert_rel, charge_state, draw, for_states, rng, Sample};
 use noether_core::{EulerLagrange, Lagrangian};
 use rand::rngs::StdRng;
 use rand::Rng;

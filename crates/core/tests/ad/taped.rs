@@ -2,9 +2,9 @@
 //! q̇-gradients) against the Lagrange jet and the hand-derived mass matrices: every term of
 //! Lagrange's equations, for every test system and for a model that uses each elementary function.
 
-use crate::legendre::Relativistic;
-use crate::systems::*;
-use crate::{assert_rel, draw, rng};
+use super::legendre::Relativistic;
+use super::systems::*;
+use super::{assert_rel, draw, rng};
 use noether_core::ad::{self, Field};
 use noether_core::{Lagrangian, Scalar};
 use rand::Rng;

@@ -1,7 +1,7 @@
 //! The driver's promises about events, resets, output times and failed runs (issue 29): each test is
 //! named for the defect it guards against.
 
-use crate::problems::*;
+use super::problems::*;
 use noether_core::prelude::*;
 
 const G: f64 = 9.81;

@@ -97,7 +97,7 @@ macro_rules! order_tests {
         $(#[$note])*
         #[test]
         fn $test() {
-            $crate::order::check_both($what, $p, || $new($pend), &$np, || $new($kep), &$nk);
+            $crate::integrators::order::check_both($what, $p, || $new($pend), &$np, || $new($kep), &$nk);
         }
     )*};
 }

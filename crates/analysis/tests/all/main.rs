@@ -1,0 +1,11 @@
+//! noether-analysis's integration tests in one test binary (one link; what the files share is compiled
+//! once): one module per file of tests/.
+
+#[path = "../lyapunov.rs"]
+mod lyapunov;
+#[path = "../periodic.rs"]
+mod periodic;
+#[path = "../sensitivity.rs"]
+mod sensitivity;
+#[path = "../small_oscillations.rs"]
+mod small_oscillations;
