@@ -59,7 +59,7 @@ fn ramp_run(eps: f64) -> Result<Run, BoxError> {
     let t_end = 1.0 / eps;
     let times: Vec<f64> = (0..=200).map(|i| i as f64 * t_end / 200.0).collect();
     let dop = Dop853::new(HamiltonEquations::new(ramp)).tolerances(1e-13, 1e-13)?;
-    let sol = Driver::new(dop, State::<Momenta>::new(0.0, [1.0], [0.0]))?
+    let sol = Driver::new(dop, State::with_momenta(0.0, [1.0], [0.0]))?
         .save(Save::Times(times))?
         .run_until(t_end)?;
     let j0 = 0.5; // E(0)/ω(0)

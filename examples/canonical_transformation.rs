@@ -197,7 +197,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let t_end = (PI - 0.3 - nq[0]) / w;
     let sol = Driver::new(
         Dop853::new(&system).tolerances(1e-14, 1e-14)?,
-        State::new(0.0, nq.clone(), np.clone()),
+        State::with_momenta(0.0, nq.clone(), np.clone()),
     )?
     .run_until(t_end)?;
     report.checks.push(Check::abs(
@@ -280,7 +280,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let times: Vec<f64> = (0..=400).map(|i| t_end * i as f64 / 400.0).collect();
     let inertial = Driver::new(
         Dop853::new(HamiltonEquations::new(h)).tolerances(1e-14, 1e-14)?,
-        State::new(0.0, q1, p1),
+        State::with_momenta(0.0, q1, p1),
     )?
     .save(Save::Times(times.clone()))?
     .run_until(t_end)?;
@@ -288,13 +288,13 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let through_f2 = Transformed::new(h, Generated::new(RotatingFrame { w: wf }), (&q1, &p1))?;
     let in_k = Driver::new(
         Dop853::new(&through_f2).tolerances(1e-14, 1e-14)?,
-        State::new(0.0, nq1, np1),
+        State::with_momenta(0.0, nq1, np1),
     )?
     .save(Save::Times(times.clone()))?
     .run_until(t_end)?;
     let as_model = Driver::new(
         Dop853::new(HamiltonEquations::new(k_model)).tolerances(1e-14, 1e-14)?,
-        State::new(0.0, nq1, np1),
+        State::with_momenta(0.0, nq1, np1),
     )?
     .save(Save::Times(times))?
     .run_until(t_end)?;

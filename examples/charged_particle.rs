@@ -115,7 +115,7 @@ pub struct Run {
 /// Gauss-Legendre 6 on Hamilton's equations of the Legendre transform of L from r = 0 with velocity v0 (p = m v0 + eA(0) = m v0),
 /// for `t_end / h` steps, every step saved with its velocity.
 pub fn simulate(p: ChargedParticle, v0: [f64; 3], t_end: f64, h: f64) -> Result<Run, BoxError> {
-    let start = State::<Momenta>::new(0.0, [0.0; 3], v0.map(|v| p.m * v));
+    let start = State::with_momenta(0.0, [0.0; 3], v0.map(|v| p.m * v));
     let n = (t_end / h).round() as usize;
     let sol = Driver::with_step(
         Gauss::gauss6(HamiltonEquations::new(LegendreTransform::new(p))),

@@ -62,10 +62,12 @@ pub fn paper_run(k2: f64, q0: &[f64], q1: &[f64], steps: usize) -> Result<Soluti
         .for_each(|(p, (a, b))| *p = (b - a) / h + 0.5 * h * *p);
     let newton = Newton::default().tol_residual(h * PAPER_NEWTON_TOL)?;
     let vi = MechanicalMidpoint::new(sys).with_newton(newton);
-    Ok(Driver::with_step(vi, State::new(0.0, q0.to_vec(), p0), h)?
-        .save(Save::Steps)?
-        .observe("Σp", |s: &State<Momenta>| s.p().sum())
-        .run_steps(steps)?)
+    Ok(
+        Driver::with_step(vi, State::with_momenta(0.0, q0.to_vec(), p0), h)?
+            .save(Save::Steps)?
+            .observe("Σp", |s: &State<Momenta>| s.p().sum())
+            .run_steps(steps)?,
+    )
 }
 
 /// The paper's collision run `model11(v0)`: `steps` steps from the start described in the module docs.

@@ -41,9 +41,13 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let damped = system(K2)?.with_damping(vec![0.5; 40])?;
     let mut q = ch.collision_start();
     q.iter_mut().take(20).for_each(|x| *x += 3.0 + 0.025); // top chain between the bottom masses
-    let settled = Driver::with_step(Verlet::new(damped), State::new(0.0, q, vec![0.0; 40]), 0.1)?
-        .save(Save::End)?
-        .run_steps(3000)?;
+    let settled = Driver::with_step(
+        Verlet::new(damped),
+        State::with_momenta(0.0, q, vec![0.0; 40]),
+        0.1,
+    )?
+    .save(Save::End)?
+    .run_steps(3000)?;
     let q0 = settled.last().q.as_slice().to_vec();
     let sys = system(K2)?;
     let mut g = vec![0.0; 40];

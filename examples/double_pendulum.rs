@@ -98,7 +98,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     el.momenta(0.0, &q0, &v0, &mut p0)?;
     let steps = (T_END / h).round() as usize;
     let sample = (0.01 / h).round().max(1.0) as usize;
-    let sol = Driver::with_step(Gauss::gauss6(&ham), State::<Momenta>::new(0.0, q0, p0), h)?
+    let sol = Driver::with_step(Gauss::gauss6(&ham), State::with_momenta(0.0, q0, p0), h)?
         .save(Save::Every(sample))?
         .observe("energy error", |s: &State<Momenta>| {
             ham.energy(s.t, s.q.as_slice(), s.p().as_slice())

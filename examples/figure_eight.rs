@@ -63,7 +63,7 @@ impl Field for Momentum {
 /// The symmetric configuration x₁ = −x₂, x₃ = 0, v₃ = −2v₁ = −2v₂.
 fn euler_point(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
     let v1 = [-0.5 * v3[0], -0.5 * v3[1]];
-    State::new(
+    State::with_momenta(
         0.0,
         [x1[0], x1[1], -x1[0], -x1[1], 0.0, 0.0],
         [v1[0], v1[1], v1[0], v1[1], v3[0], v3[1]],

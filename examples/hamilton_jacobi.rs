@@ -161,7 +161,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let times: Vec<f64> = (0..=60).map(|i| 2.4 * i as f64 / 60.0).collect();
     let sol = Driver::new(
         Dop853::new(HamiltonEquations::new(h)).tolerances(1e-14, 1e-14)?,
-        State::new(0.0, [r0, th0], [pr0, l]),
+        State::with_momenta(0.0, [r0, th0], [pr0, l]),
     )?
     .save(Save::Times(times))?
     .run_until(2.4)?;

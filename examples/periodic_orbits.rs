@@ -77,7 +77,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         let rk4 = Rk4::new(HamiltonEquations::new(Pendulum { g }));
         let mut shooting = Shooting::new(rk4, 2000)?.level(Energy(Pendulum { g }), -g * theta0.cos());
         let guess_t = 2.0 * PI / g.sqrt() * (1.0 + theta0 * theta0 / 16.0);
-        let orbit = shooting.solve(&State::new(0.0, [0.95 * theta0], [0.0]), guess_t)?;
+        let orbit = shooting.solve(&State::with_momenta(0.0, [0.95 * theta0], [0.0]), guess_t)?;
         report.checks.push(Check::rel(
             NAME,
             format!("pendulum period (θ0={theta0})"),
@@ -103,12 +103,15 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     while amplitude < 0.006 {
         let x0 = xl - amplitude;
         let (guess, t_guess) = match (&last, &before) {
-            (None, _) => (State::new(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]), t0),
+            (None, _) => (
+                State::with_momenta(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]),
+                t0,
+            ),
             (Some((a, o, t)), None) => {
                 let r = amplitude / a;
                 let q = [xl + r * (o.q[0] - xl), r * o.q[1]];
                 let p = [r * o.v[0], xl + r * (o.v[1] - xl)];
-                (State::new(0.0, q, p), t0 + (t - t0) * r * r)
+                (State::with_momenta(0.0, q, p), t0 + (t - t0) * r * r)
             }
             (Some((a1, o1, t1)), Some((a0, o0, t_0))) => {
                 let s = (amplitude - a1) / (a1 - a0);
@@ -120,7 +123,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
                     o1.v[0] + s * (o1.v[0] - o0.v[0]),
                     o1.v[1] + s * (o1.v[1] - o0.v[1]),
                 ];
-                (State::new(0.0, q, p), t1 + s * (t1 - t_0))
+                (State::with_momenta(0.0, q, p), t1 + s * (t1 - t_0))
             }
         };
         let e = energy.value(guess.q.as_slice(), guess.v.as_slice())?;

@@ -51,7 +51,7 @@ impl Hamiltonian for Uncoupled {
 /// A start on H = E at x = 0 with (y, p_y) given and p_x > 0.
 fn start(e: f64, y: f64, py: f64) -> Option<State<Momenta>> {
     let px2 = 2.0 * e - py * py - y * y + 2.0 * y * y * y / 3.0;
-    (px2 > 0.0).then(|| State::new(0.0, [0.0, y], [px2.sqrt(), py]))
+    (px2 > 0.0).then(|| State::with_momenta(0.0, [0.0, y], [px2.sqrt(), py]))
 }
 
 /// The (y, p_y) points of one orbit's section, the largest |H − E| and the largest |x| there.
@@ -134,7 +134,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let ey = (py0 * py0 + 2.0 * y0 * y0) * 0.5;
     let dop = Dop853::new(HamiltonEquations::new(Uncoupled)).tolerances(1e-14, 1e-14)?;
     let points = section(
-        Driver::new(dop, State::<Momenta>::new(0.0, [0.0, y0], [0.8, py0]))?,
+        Driver::new(dop, State::with_momenta(0.0, [0.0, y0], [0.8, py0]))?,
         Plane::coordinate(0, 0.0),
         1000.0,
     )?;

@@ -50,7 +50,7 @@ impl ParametricHamiltonian for Pendulum {
 /// θ(T) of a plain RK4 run of the pendulum with gravity g from rest at θ₀.
 fn final_angle(model: Pendulum, theta0: f64, g: f64, h: f64, steps: usize) -> Result<f64, BoxError> {
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(model)));
-    let mut s = Parametric::new(model).augment(&State::<Momenta>::new(0.0, [theta0], [0.0]), &[g])?;
+    let mut s = Parametric::new(model).augment(&State::with_momenta(0.0, [theta0], [0.0]), &[g])?;
     for _ in 0..steps {
         rk4.step(&mut s, h)?;
     }
@@ -96,7 +96,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // 9.8e-11 on the full Jacobian in the tests; checked to 3e-10.
     let (h, steps) = (0.01, 1000);
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(model)));
-    let s = parameter_sensitivity(&mut rk4, &State::new(0.0, [1.0], [0.0]), &[g], h, steps)?;
+    let s = parameter_sensitivity(&mut rk4, &State::with_momenta(0.0, [1.0], [0.0]), &[g], h, steps)?;
     let fd_g = difference(model, 1.0, g, h, steps, true)?;
     let fd_0 = difference(model, 1.0, g, h, steps, false)?;
     report.checks.push(Check::abs(
@@ -127,7 +127,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         )
     };
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(model)));
-    let mut state = Parametric::new(model).augment(&State::<Momenta>::new(0.0, [theta0], [0.0]), &[g])?;
+    let mut state = Parametric::new(model).augment(&State::with_momenta(0.0, [theta0], [0.0]), &[g])?;
     let mut jac = noether::nalgebra::DMatrix::identity(4, 4);
     let (mut d0_series, mut dg_series, mut d0_closed, mut dg_closed) = (vec![], vec![], vec![], vec![]);
     let (mut err0, mut errg): (f64, f64) = (0.0, 0.0);

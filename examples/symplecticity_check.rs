@@ -70,10 +70,10 @@ impl Lagrangian for HenonHeilesL {
 /// Four Hénon-Heiles states (q, p) of energies 0.02 to 0.16, below the escape energy 1/6.
 fn henon_heiles_states() -> Vec<State<Momenta>> {
     vec![
-        State::new(0.0, [0.1, -0.2], [0.45, 0.1]),
-        State::new(0.0, [0.0, 0.0], [0.2, 0.0]),
-        State::new(0.0, [-0.3, 0.1], [0.1, -0.35]),
-        State::new(0.0, [0.2, 0.4], [-0.2, 0.1]),
+        State::with_momenta(0.0, [0.1, -0.2], [0.45, 0.1]),
+        State::with_momenta(0.0, [0.0, 0.0], [0.2, 0.0]),
+        State::with_momenta(0.0, [-0.3, 0.1], [0.1, -0.35]),
+        State::with_momenta(0.0, [0.2, 0.4], [-0.2, 0.1]),
     ]
 }
 
@@ -87,7 +87,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // (measured: see the check). Tolerance 1e-9 relative.
     let osc = HamiltonEquations::new(Oscillator);
     let h: f64 = 0.2;
-    let start = State::new(0.0, [1.0], [0.0]);
+    let start = State::with_momenta(0.0, [1.0], [0.0]);
     let d = symplecticity(&mut Rk4::new(&osc), std::slice::from_ref(&start), h)?;
     report.checks.push(Check::rel(
         ex,
@@ -147,7 +147,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // of the nominal order (the fits' next-order terms: measured RK4 4.0085, Euler-Cromer 1.0017 with
     // r = 1 − 1.4e-7 and 1 − 1.3e-7 in core's tangent tests), r within 1e-5 of 1.
     let t_end: f64 = 5.0;
-    let exact = State::new(t_end, [t_end.cos()], [-t_end.sin()]);
+    let exact = State::with_momenta(t_end, [t_end.cos()], [-t_end.sin()]);
     let fits = [
         (
             "RK4",

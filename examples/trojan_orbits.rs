@@ -35,7 +35,7 @@ fn l4_orbit(
 ) -> Result<Vec<(f64, f64)>, BoxError> {
     // At rest in the rotating frame: p = (ẋ − y, ẏ + x) = (−y, x).
     let (x0, y0) = (l4[0] + 0.01, l4[1]);
-    let start = State::<Momenta>::new(0.0, [x0, y0], [-y0, x0]);
+    let start = State::with_momenta(0.0, [x0, y0], [-y0, x0]);
     let c0 = jacobi(&sys, &start);
     let h = 1e-2;
     let distance = |s: &State<Momenta>| ((s.q[0] - l4[0]).powi(2) + (s.q[1] - l4[1]).powi(2)).sqrt();

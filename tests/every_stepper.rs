@@ -113,7 +113,7 @@ fn rest() -> State {
 }
 
 fn rest_p() -> State<Momenta> {
-    State::new(0.0, [1.0], [0.0])
+    State::with_momenta(0.0, [1.0], [0.0])
 }
 
 #[test]

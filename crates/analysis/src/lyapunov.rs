@@ -46,7 +46,7 @@
 //!     }
 //! }
 //! let rk4 = Rk4::new(HamiltonEquations::new(Oscillator));
-//! let mut lyap = Lyapunov::new(rk4, State::new(0.0, [1.0], [0.0]), 2, 0.05, 10).unwrap();
+//! let mut lyap = Lyapunov::new(rk4, State::with_momenta(0.0, [1.0], [0.0]), 2, 0.05, 10).unwrap();
 //! lyap.advance_to(200.0).unwrap();
 //! let spectrum = lyap.spectrum(4).unwrap();
 //! assert!(spectrum.exponents.iter().all(|l| l.abs() < 1e-2));

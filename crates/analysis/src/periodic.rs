@@ -70,7 +70,7 @@
 //! // The libration of energy E = −cos 1 (amplitude 1 rad), from a guess at 0.9 rad and period 6.
 //! let rk4 = Rk4::new(HamiltonEquations::new(Pendulum));
 //! let mut shooting = Shooting::new(rk4, 1000).unwrap().level(Energy(Pendulum), -1f64.cos());
-//! let orbit = shooting.solve(&State::new(0.0, [0.9], [0.0]), 6.0).unwrap();
+//! let orbit = shooting.solve(&State::with_momenta(0.0, [0.9], [0.0]), 6.0).unwrap();
 //! assert!((orbit.initial.q[0] - 1.0).abs() < 1e-12);  // the turning point
 //! assert!((orbit.period - 6.6999757).abs() < 1e-6);   // 4 K(sin ½), g = l = 1
 //! assert_eq!(orbit.floquet.stability, Stability::Marginal);
@@ -485,10 +485,10 @@ impl<S: TangentStepper> Shooting<S> {
             other => other,
         })?;
         let period = if self.fixed_period { period } else { x[2 * n] };
-        let initial = State::new(
+        let initial = State::from_vectors(
             guess.t,
-            x.as_slice()[..n].to_vec(),
-            x.as_slice()[n..2 * n].to_vec(),
+            DVector::from_column_slice(&x.as_slice()[..n]),
+            DVector::from_column_slice(&x.as_slice()[n..2 * n]),
         );
         // A rest point solves the equations too (with any period): rejected when the flow there is
         // below 1e-8 of the flow at the guess.
@@ -592,7 +592,11 @@ impl<S: TangentStepper> Problem<'_, S> {
             None => (x[2 * n], &x[2 * n + 1..]),
         };
         check_period(period)?;
-        let y0 = State::new(self.t0, x[..n].to_vec(), x[n..2 * n].to_vec());
+        let y0 = State::from_vectors(
+            self.t0,
+            DVector::from_column_slice(&x[..n]),
+            DVector::from_column_slice(&x[n..2 * n]),
+        );
         Ok((y0, period, lambda))
     }
 

@@ -34,13 +34,13 @@
 //! }
 //! let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(Oscillator)));
 //! let (t_end, h): (f64, f64) = (2.0, 1e-3);
-//! let s = parameter_sensitivity(&mut rk4, &State::new(0.0, [1.0], [0.0]), &[1.5], h, 2000).unwrap();
+//! let s = parameter_sensitivity(&mut rk4, &State::with_momenta(0.0, [1.0], [0.0]), &[1.5], h, 2000).unwrap();
 //! // q(T) = q₀ cos ωT: ∂q(T)/∂ω = −q₀ T sin ωT.
 //! assert!((s.wrt_parameters[(0, 0)] + t_end * (1.5 * t_end).sin()).abs() < 1e-10);
 //! ```
 
 use crate::Result;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use noether_core::tangent::run_jacobian;
 use noether_core::{Hamiltonian, Scalar, State, TangentStepper};
 
@@ -124,7 +124,11 @@ pub fn parameter_sensitivity<S: TangentStepper>(
     let idx: Vec<usize> = (0..n).chain(big..big + n).collect();
     let wrt_initial = DMatrix::from_fn(2 * n, 2 * n, |i, j| jac[(idx[i], idx[j])]);
     let wrt_parameters = DMatrix::from_fn(2 * n, k, |i, j| jac[(idx[i], n + j)]);
-    let end = State::new(s.t, s.q.as_slice()[..n].to_vec(), s.v.as_slice()[..n].to_vec());
+    let end = State::from_vectors(
+        s.t,
+        DVector::from_column_slice(&s.q.as_slice()[..n]),
+        DVector::from_column_slice(&s.v.as_slice()[..n]),
+    );
     Ok(Sensitivity {
         state: end,
         wrt_initial,
@@ -143,5 +147,9 @@ fn augment<K: noether_core::Partner>(state: &State<K>, theta: &[f64], n: usize) 
         .copied()
         .chain(std::iter::repeat_n(0.0, theta.len()))
         .collect();
-    Ok(State::new(state.t, q, v))
+    Ok(State::from_vectors(
+        state.t,
+        DVector::from_vec(q),
+        DVector::from_vec(v),
+    ))
 }

@@ -40,7 +40,7 @@ impl Hamiltonian for HenonHeiles {
 fn hh_state(e: f64, q2: f64, p2: f64) -> State<Momenta> {
     let v = 0.5 * q2 * q2 - q2.powi(3) / 3.0;
     let p1 = (2.0 * (e - v) - p2 * p2).sqrt();
-    State::new(0.0, [0.0, q2], [p1, p2])
+    State::with_momenta(0.0, [0.0, q2], [p1, p2])
 }
 
 /// Double pendulum with unit masses and rods, angles from the downward vertical, in closed form
@@ -100,7 +100,7 @@ fn print(name: &str, s: &Spectrum) {
 fn oscillator_spectrum_vanishes() {
     let (omega, h) = (2.0, 0.05);
     let rk4 = Rk4::new(HamiltonEquations::new(Oscillator { omega }));
-    let mut lyap = Lyapunov::new(rk4, State::new(0.0, [1.0], [0.0]), 2, h, 10).unwrap();
+    let mut lyap = Lyapunov::new(rk4, State::with_momenta(0.0, [1.0], [0.0]), 2, h, 10).unwrap();
     lyap.advance_to(1e4).unwrap();
     for t in [1e3, 1e4] {
         let lambda = at(&lyap, t);
@@ -221,7 +221,7 @@ fn double_pendulum_from_horizontal() {
     let h = 2e-3;
     let half = std::f64::consts::FRAC_PI_2;
     let rk4 = || Rk4::new(HamiltonEquations::new(DoublePendulum { g: 9.81 }));
-    let start = State::new(0.0, [half, half], [0.0, 0.0]);
+    let start = State::with_momenta(0.0, [half, half], [0.0, 0.0]);
     let mut lyap = Lyapunov::new(rk4(), start.clone(), 4, h, 5).unwrap();
     lyap.advance_to(400.0).unwrap();
     // The same run with the first 20 time units discarded.
@@ -307,7 +307,7 @@ fn bad_settings() {
 #[test]
 fn regress_lyapunov_step_below_time_resolution() {
     let rk4 = Rk4::new(HamiltonEquations::new(Oscillator { omega: 2.0 }));
-    let mut lyap = Lyapunov::new(rk4, State::new(1e20, [1.0], [0.0]), 2, 0.05, 10).unwrap();
+    let mut lyap = Lyapunov::new(rk4, State::with_momenta(1e20, [1.0], [0.0]), 2, 0.05, 10).unwrap();
     let err = lyap.advance(20).unwrap_err();
     assert_eq!(
         err,

@@ -48,7 +48,7 @@ fn closed_form_pendulum_libration_period() {
             .level(Energy(Pendulum { g }), -g * theta0.cos());
         let guess_t = 2.0 * PI / g.sqrt() * (1.0 + theta0 * theta0 / 16.0);
         let orbit = shooting
-            .solve(&State::new(0.0, [0.95 * theta0], [0.0]), guess_t)
+            .solve(&State::with_momenta(0.0, [0.95 * theta0], [0.0]), guess_t)
             .unwrap();
         let err = (orbit.period - exact).abs();
         println!(
@@ -108,7 +108,7 @@ impl Field for Momentum {
 /// Simó's / Moore's figure-eight: x₁ = −x₂, x₃ = 0, v₃ = −2v₁ = −2v₂.
 fn figure_eight(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
     let v1 = [-0.5 * v3[0], -0.5 * v3[1]];
-    State::new(
+    State::with_momenta(
         0.0,
         [x1[0], x1[1], -x1[0], -x1[1], 0.0, 0.0],
         [v1[0], v1[1], v1[0], v1[1], v3[0], v3[1]],
@@ -274,7 +274,7 @@ fn lyapunov_orbits_about_l1() {
     while amplitude < 0.006 {
         // x = x_L − A, y = 0, ẋ = 0, ẏ = k A ω; p_x = ẋ − y, p_y = ẏ + x.
         let x0 = xl - amplitude;
-        let linear = State::new(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]);
+        let linear = State::with_momenta(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]);
         let (guess, t_guess) = match (&last, &before) {
             (None, _) => (linear, t0),
             (Some((a, orbit, t)), None) => {
@@ -282,7 +282,7 @@ fn lyapunov_orbits_about_l1() {
                 let r = amplitude / a;
                 let q = [xl + r * (orbit.q[0] - xl), r * orbit.q[1]];
                 let p = [r * orbit.v[0], xl + r * (orbit.v[1] - xl)];
-                (State::new(0.0, q, p), t0 + (t - t0) * r * r)
+                (State::with_momenta(0.0, q, p), t0 + (t - t0) * r * r)
             }
             (Some((a1, o1, t1)), Some((a0, o0, t0_))) => {
                 // Secant through the last two orbits.
@@ -295,7 +295,7 @@ fn lyapunov_orbits_about_l1() {
                     o1.v[0] + s * (o1.v[0] - o0.v[0]),
                     o1.v[1] + s * (o1.v[1] - o0.v[1]),
                 ];
-                (State::new(0.0, q, p), t1 + s * (t1 - t0_))
+                (State::with_momenta(0.0, q, p), t1 + s * (t1 - t0_))
             }
         };
         let e = energy.value(guess.q.as_slice(), guess.v.as_slice()).unwrap();
@@ -370,7 +370,7 @@ fn errors_are_typed() {
     let mut shooting = Shooting::new(rk4(), 100)
         .unwrap()
         .level(Energy(Pendulum { g }), -g * 0.5f64.cos());
-    let guess = State::new(0.0, [0.5], [0.0]);
+    let guess = State::with_momenta(0.0, [0.5], [0.0]);
     assert!(matches!(
         shooting.solve(&guess, -1.0),
         Err(Error::InvalidPeriod { .. })
@@ -379,7 +379,7 @@ fn errors_are_typed() {
         shooting.solve(&guess, f64::NAN),
         Err(Error::InvalidPeriod { .. })
     ));
-    let rest = State::new(0.0, [0.0], [0.0]);
+    let rest = State::with_momenta(0.0, [0.0], [0.0]);
     assert!(matches!(
         shooting.solve(&rest, 2.0),
         Err(Error::Equilibrium { .. })

@@ -47,7 +47,7 @@ fn end_point<P: ParametricHamiltonian + Copy>(
 ) -> [f64; 2] {
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(model)));
     let mut s = Parametric::new(model)
-        .augment(&State::<Momenta>::new(0.0, [y0[0]], [y0[1]]), theta)
+        .augment(&State::with_momenta(0.0, [y0[0]], [y0[1]]), theta)
         .unwrap();
     for _ in 0..steps {
         rk4.step(&mut s, h).unwrap();
@@ -111,7 +111,7 @@ fn pendulum_against_differences() {
     let theta = [9.81, 1.0];
     let y0 = [1.0, 0.0];
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(Pendulum)));
-    let start = State::new(0.0, [y0[0]], [y0[1]]);
+    let start = State::with_momenta(0.0, [y0[0]], [y0[1]]);
     let s = parameter_sensitivity(&mut rk4, &start, &theta, h, steps).unwrap();
     let exact = combined(&s);
     let rel = 1e-4;
@@ -145,7 +145,14 @@ fn oscillator_closed_form() {
     let error = |h: f64| {
         let steps = (t_end / h).round() as usize;
         let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(Oscillator)));
-        let s = parameter_sensitivity(&mut rk4, &State::new(0.0, [1.0], [0.0]), &[omega], h, steps).unwrap();
+        let s = parameter_sensitivity(
+            &mut rk4,
+            &State::with_momenta(0.0, [1.0], [0.0]),
+            &[omega],
+            h,
+            steps,
+        )
+        .unwrap();
         let (sn, cs) = (omega * t_end).sin_cos();
         let closed = DMatrix::from_row_slice(
             2,
@@ -178,7 +185,7 @@ fn oscillator_closed_form() {
 #[test]
 fn bad_input() {
     let mut rk4 = Rk4::new(HamiltonEquations::new(Parametric::new(Pendulum)));
-    let start = State::<Momenta>::new(0.0, [1.0], [0.0]);
+    let start = State::with_momenta(0.0, [1.0], [0.0]);
     let e = parameter_sensitivity(&mut rk4, &start, &[9.81], 0.01, 10).unwrap_err();
     assert!(matches!(
         e,

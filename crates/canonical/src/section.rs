@@ -20,7 +20,7 @@
 //!     }
 //! }
 //! let dop = Dop853::new(HamiltonEquations::new(Two)).tolerances(1e-12, 1e-12)?;
-//! let driver = Driver::new(dop, State::<Momenta>::new(0.0, [0.0, 0.3], [1.0, 0.2]))?;
+//! let driver = Driver::new(dop, State::with_momenta(0.0, [0.0, 0.3], [1.0, 0.2]))?;
 //! let points = section(driver, Plane::coordinate(0, 0.0), 100.0)?;
 //! // Each point has q₀ = 0 and lies on the y-oscillator's energy curve (p₁² + 2 q₁²)/2 = 0.11.
 //! for s in &points.states {

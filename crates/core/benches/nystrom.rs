@@ -17,7 +17,7 @@ use kepler::{start, Kepler, E};
 fn measure<S: Stepper>(make: impl Fn() -> S) -> Result<(f64, Duration, noether_core::Stats)> {
     let t_end = 200.0 * std::f64::consts::PI;
     let (q, v) = start();
-    let y0 = State::<S::Partner>::new(0.0, q, v);
+    let y0 = State::<S::Partner>::from_parts(0.0, q, v);
     let mut best = Duration::MAX;
     let mut out = None;
     let clock = Instant::now();

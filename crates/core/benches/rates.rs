@@ -219,7 +219,7 @@ fn composition_stage() {
     // The same on (q, p) with H = ½|p|² + V: the drift is ∇T(p) by a gradient of its own.
     let mut kl8_sep = Composition::kahan_li8(SeparableHamiltonian(HenonHeiles));
     let mut separable = || {
-        let mut s = State::<Momenta>::new(0.0, black_box([0.1, 0.0]), [0.0, 0.5]);
+        let mut s = State::with_momenta(0.0, black_box([0.1, 0.0]), [0.0, 0.5]);
         for _ in 0..STEPS {
             kl8_sep.step(&mut s, 0.01).unwrap();
         }

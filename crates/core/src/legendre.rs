@@ -79,7 +79,7 @@
 //! assert!((dq[0] - 1.7 / 2.0).abs() < 1e-15 && (dp[0] + 2.0 * 9.81 * 0.3f64.sin()).abs() < 1e-14);
 //!
 //! // Gauss-Legendre on the Hamiltonian of a Lagrangian: one period of small oscillations.
-//! let small = State::new(0.0, [1e-3], [0.0]);
+//! let small = State::with_momenta(0.0, [1e-3], [0.0]);
 //! let period = 2.0 * std::f64::consts::PI / 9.81f64.sqrt();
 //! let mut run = Driver::new(Gauss::gauss4(h), small).unwrap().step(period / 200.0).unwrap();
 //! assert!((run.run_until(period).unwrap().last().q[0] - 1e-3).abs() < 1e-9);

@@ -29,7 +29,7 @@
 //!     }
 //! }
 //!
-//! let states = [State::new(0.0, [0.5], [0.3]), State::new(0.0, [2.0], [-0.4])];
+//! let states = [State::with_momenta(0.0, [0.5], [0.3]), State::with_momenta(0.0, [2.0], [-0.4])];
 //! let sys = HamiltonEquations::new(Pendulum);
 //! // RK4 is not symplectic: a defect of order h⁵; Euler-Cromer (symplectic Euler here) is.
 //! let rk4 = selfcheck::symplecticity(&mut Rk4::new(&sys), &states, 0.2).unwrap();

@@ -11,11 +11,11 @@
 //! [`EulerLagrange::to_velocities`](crate::EulerLagrange::to_velocities)).
 //!
 //! ```
-//! use noether_core::{Momenta, State, Velocities};
+//! use noether_core::State;
 //!
 //! let s: State = State::new(0.0, [1.0, 0.0], [0.0, 2.0]); // q̇, by default
 //! assert_eq!(s.v[1], 2.0);
-//! let p: State<Momenta> = State::new(0.0, [1.0, 0.0], [0.0, 4.0]);
+//! let p = State::with_momenta(0.0, [1.0, 0.0], [0.0, 4.0]); // a State<Momenta>
 //! assert_eq!(p.p()[1], 4.0);
 //! ```
 
@@ -67,13 +67,33 @@ pub struct State<K = Velocities> {
     partner: PhantomData<K>,
 }
 
-impl<K: Partner> State<K> {
-    /// A state from time, coordinates and velocities (or momenta, for a `State<Momenta>`).
+impl State<Velocities> {
+    /// A state from time, coordinates and velocities q̇. A state of momenta is
+    /// [`State::with_momenta`]: the two constructors have different names so that the kind is never
+    /// inferred from where a state goes (a (q, q̇) handed to a Hamiltonian stepper does not compile
+    /// rather than silently being read as (q, p)), and `State::new` needs no annotation anywhere.
     pub fn new(t: f64, q: impl Into<Vec<f64>>, v: impl Into<Vec<f64>>) -> Self {
         Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(v.into()))
     }
+}
 
-    /// A state from time and the two vectors.
+impl State<Momenta> {
+    /// A state from time, coordinates and momenta p: the state of a Hamiltonian stepper
+    /// ([`HamiltonEquations`](crate::HamiltonEquations), separable Hamiltonians, …).
+    pub fn with_momenta(t: f64, q: impl Into<Vec<f64>>, p: impl Into<Vec<f64>>) -> Self {
+        Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(p.into()))
+    }
+}
+
+impl<K: Partner> State<K> {
+    /// A state of the kind `K` from time, coordinates and partner, for code generic in the kind
+    /// (`State::<S::Partner>::from_parts(t, q, v)` for a stepper `S`); elsewhere [`State::new`] or
+    /// [`State::with_momenta`] say which kind they make.
+    pub fn from_parts(t: f64, q: impl Into<Vec<f64>>, v: impl Into<Vec<f64>>) -> Self {
+        Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(v.into()))
+    }
+
+    /// A state from time and the two vectors (either kind, as the type says).
     pub fn from_vectors(t: f64, q: DVector<f64>, v: DVector<f64>) -> Self {
         State {
             t,

@@ -34,7 +34,7 @@
 //! }
 //!
 //! let mut rk4 = Rk4::new(HamiltonEquations::new(Oscillator));
-//! let mut s = State::new(0.0, [1.0], [0.0]);
+//! let mut s = State::with_momenta(0.0, [1.0], [0.0]);
 //! let mut psi = DMatrix::zeros(2, 2);
 //! rk4.step_tangent(&mut s, 0.1, &mut psi).unwrap();
 //! // For a linear system Ψ is RK4's stability polynomial of hA: det Ψ = 1 − h⁶/72 + h⁸/576.
@@ -379,7 +379,7 @@ fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
 /// // a rotation by θ = 2 atan(h/2). After N steps a tangent vector δy₀ = (1, 0) has turned by Nθ.
 /// let (h, n) = (0.1, 50);
 /// let mut midpoint = Gauss::implicit_midpoint(HamiltonEquations::new(Oscillator));
-/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let mut s = State::with_momenta(0.0, [1.0], [0.0]);
 /// let mut w = DMatrix::from_column_slice(2, 1, &[1.0, 0.0]);
 /// propagate(&mut midpoint, &mut s, h, n, &mut w)?;
 /// let angle = n as f64 * 2.0 * (h / 2.0).atan();
@@ -441,7 +441,7 @@ pub fn propagate<S: TangentStepper>(
 ///
 /// // Gauss 4 is symplectic: det Φ = 1 over the whole run (Liouville).
 /// let mut g4 = Gauss::gauss4(HamiltonEquations::new(Oscillator));
-/// let mut s = State::new(0.0, [1.0], [0.0]);
+/// let mut s = State::with_momenta(0.0, [1.0], [0.0]);
 /// let phi = run_jacobian(&mut g4, &mut s, 0.1, 100)?;
 /// assert!((phi.determinant() - 1.0).abs() < 1e-13);
 /// // For a linear system Φ maps y₀ to y_N: here (1, 0) to the state itself.

@@ -11,7 +11,7 @@
 //! let q0 = chains.collision_start();
 //! let sys = Mechanical::new(Mass::Diagonal(vec![1.0; 40]), chains).unwrap();
 //! let mut vi = MechanicalMidpoint::new(sys);
-//! let mut s = noether_core::State::new(0.0, q0, [vec![0.1; 20], vec![0.0; 20]].concat());
+//! let mut s = noether_core::State::with_momenta(0.0, q0, [vec![0.1; 20], vec![0.0; 20]].concat());
 //! vi.step(&mut s, 0.1).unwrap();
 //! assert!((s.v.iter().sum::<f64>() - 2.0).abs() < 1e-14); // total momentum 20·0.1
 //! ```

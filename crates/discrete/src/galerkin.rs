@@ -37,7 +37,7 @@
 //! }
 //!
 //! let mut g = Galerkin::order4(Oscillator).unwrap();
-//! let mut s = State::new(0.0, [1.0], [0.0]); // (q, p)
+//! let mut s = State::with_momenta(0.0, [1.0], [0.0]); // (q, p)
 //! for _ in 0..10 {
 //!     g.step(&mut s, 0.1).unwrap();
 //! }

@@ -236,7 +236,7 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
             p1.iter_mut().zip(&fp).for_each(|(p, f)| *p += f);
         }
         check_finite("p₁ = D₂L_d(q₀, q₁)", &p1)?;
-        Ok(State::new(t0 + h, q1.to_vec(), p1))
+        Ok(State::with_momenta(t0 + h, q1.to_vec(), p1))
     }
 
     /// The discrete momentum of a step, p_k = −D₁L_d(q_k, q_{k+1}) − f⁻: the left end of the discrete

@@ -31,7 +31,7 @@ pub trait FromLagrangian {
     fn state_from_velocities(&self, t: f64, q: &[f64], v: &[f64]) -> Result<State<Momenta>> {
         let mut p = vec![0.0; q.len()];
         self.continuous().momenta(t, q, v, &mut p)?;
-        Ok(State::new(t, q.to_vec(), p))
+        Ok(State::with_momenta(t, q.to_vec(), p))
     }
 
     /// The velocities q̇ of a state (t, q, p) through the inverse continuous Legendre map.

@@ -300,7 +300,7 @@ impl<V: OrientationPotential> RigidBody<V> {
 
     /// The state at time `t` in orientation `q` with body angular momentum `pi`.
     pub fn state_from_momentum(&self, t: f64, q: &UnitQuaternion<f64>, pi: &Vector3<f64>) -> State<Momenta> {
-        State::new(
+        State::with_momenta(
             t,
             rotation::wxyz(q.quaternion()).to_vec(),
             vec![0.0, pi[0], pi[1], pi[2]],

@@ -8,7 +8,7 @@ use noether_rigid::{Error, Inertia, Lgvi, RigidBody, UniformGravity};
 fn non_unit_quaternion_is_an_error_and_the_state_is_kept() {
     let body = RigidBody::free(1.0, 2.0, 3.0).unwrap();
     let mut lgvi = Lgvi::new(body).unwrap();
-    let mut s: State<Momenta> = State::new(0.0, [1.0, 0.1, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
+    let mut s: State<Momenta> = State::with_momenta(0.0, [1.0, 0.1, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
     let before = s.clone();
     let e = lgvi.step(&mut s, 1e-2).unwrap_err();
     match Error::from(e) {
@@ -17,7 +17,7 @@ fn non_unit_quaternion_is_an_error_and_the_state_is_kept() {
     }
     assert_eq!(s, before);
     // Within the tolerance: accepted.
-    let mut ok: State<Momenta> = State::new(0.0, [1.0 + 1e-12, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
+    let mut ok: State<Momenta> = State::with_momenta(0.0, [1.0 + 1e-12, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
     lgvi.step(&mut ok, 1e-2).unwrap();
 }
 
@@ -56,7 +56,8 @@ fn non_finite_input_is_an_error_and_the_state_is_kept() {
         Inertia::principal(1.0, f64::NAN, 1.0),
         Err(Error::Core(noether_core::Error::NonFinite { .. }))
     ));
-    let mut s: State<Momenta> = State::new(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0, 0.0]);
+    let mut s: State<Momenta> =
+        State::with_momenta(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0, 0.0]);
     let before = s.clone();
     assert!(matches!(
         lgvi.step(&mut s, 1e-2),
@@ -231,7 +232,7 @@ fn regress_lgvi_non_finite_parameters_refused() {
 #[test]
 fn regress_rattle_readers_wrong_size() {
     use noether_rigid::rattle::{body_momentum, rotation};
-    let short: State<Momenta> = State::new(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
+    let short: State<Momenta> = State::with_momenta(0.0, [1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]);
     let dim = |e: Error| {
         assert!(
             matches!(e, Error::Core(noether_core::Error::Dimension { .. })),
@@ -241,11 +242,11 @@ fn regress_rattle_readers_wrong_size() {
     dim(body_momentum(&short).unwrap_err());
     dim(rotation(&short).unwrap_err());
     let eye = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
-    let mixed: State<Momenta> = State::new(0.0, eye, [0.0; 4]);
+    let mixed: State<Momenta> = State::with_momenta(0.0, eye, [0.0; 4]);
     dim(body_momentum(&mixed).unwrap_err());
     let mut p = [0.0; 9];
     p[1] = f64::NAN;
-    let nan: State<Momenta> = State::new(0.0, eye, p);
+    let nan: State<Momenta> = State::with_momenta(0.0, eye, p);
     assert!(matches!(
         body_momentum(&nan),
         Err(Error::Core(noether_core::Error::NonFinite { .. }))
@@ -254,7 +255,7 @@ fn regress_rattle_readers_wrong_size() {
     let mut p = [0.0; 9];
     p[1] = -0.5; // (R Ω̂ J_d)_01 = −Ω₃/2
     p[3] = 0.5;
-    let ok: State<Momenta> = State::new(0.0, eye, p);
+    let ok: State<Momenta> = State::with_momenta(0.0, eye, p);
     assert_eq!(body_momentum(&ok).unwrap(), Vector3::new(0.0, 0.0, 1.0));
     assert_eq!(rotation(&ok).unwrap(), Matrix3::identity());
 }

@@ -47,9 +47,9 @@ fn state() -> impl Strategy<Value = State<Momenta>> {
             let q = UnitQuaternion::from_euler_angles(a.clamp(-4.0, 4.0), b.clamp(-4.0, 4.0), c.clamp(-4.0, 4.0));
             let q = if q.coords.iter().all(|x| x.is_finite()) { q } else { UnitQuaternion::identity() };
             let q = q.quaternion();
-            State::new(t, [q.w, q.i, q.j, q.k], [0.0, pi[0], pi[1], pi[2]])
+            State::with_momenta(t, [q.w, q.i, q.j, q.k], [0.0, pi[0], pi[1], pi[2]])
         }),
-        1 => (vec_of(0..7), vec_of(0..7), number()).prop_map(|(q, v, t)| State::new(t, q, v)),
+        1 => (vec_of(0..7), vec_of(0..7), number()).prop_map(|(q, v, t)| State::with_momenta(t, q, v)),
     ]
 }
 
@@ -178,7 +178,7 @@ proptest! {
         w in prop::array::uniform3(number()),
         h in step(),
     ) {
-        let s = State::<Momenta>::new(0.0, q, p);
+        let s = State::with_momenta(0.0, q, p);
         prop_assert!(finite_or_err(&body_momentum(&s), |x| x.as_slice().to_vec()));
         prop_assert!(finite_or_err(&rotation(&s), |x| x.as_slice().to_vec()));
         let body = RigidBody::free(1.0, 2.0, 2.5).unwrap();

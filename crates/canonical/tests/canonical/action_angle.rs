@@ -217,7 +217,7 @@ fn conserves_angle_along_an_orbit_of_a_general_hamiltonian() {
     let dop = Dop853::new(HamiltonEquations::new(Quartic))
         .tolerances(1e-14, 1e-14)
         .unwrap();
-    let sol = Driver::new(dop, State::<Momenta>::new(0.0, [lib.q_min], [p0]))
+    let sol = Driver::new(dop, State::with_momenta(0.0, [lib.q_min], [p0]))
         .unwrap()
         .save(Save::Times(times))
         .unwrap()
@@ -398,7 +398,7 @@ fn closed_form_adiabatic_invariant_of_a_ramped_oscillator() {
         let dop = Dop853::new(HamiltonEquations::new(Ramp { eps }))
             .tolerances(1e-13, 1e-13)
             .unwrap();
-        let sol = Driver::new(dop, State::<Momenta>::new(0.0, [1.0], [0.0]))
+        let sol = Driver::new(dop, State::with_momenta(0.0, [1.0], [0.0]))
             .unwrap()
             .save(Save::Times(times))
             .unwrap()

@@ -149,7 +149,7 @@ fn closed_form_action_angle_motion_by_dop853() {
     let t_end = (PI - 0.3 - nq[0]) / w;
     assert!(t_end > 0.3);
     let dop = Dop853::new(&system).tolerances(1e-14, 1e-14).unwrap();
-    let sol = Driver::new(dop, State::new(0.0, nq.clone(), np.clone()))
+    let sol = Driver::new(dop, State::with_momenta(0.0, nq.clone(), np.clone()))
         .unwrap()
         .run_until(t_end)
         .unwrap();
@@ -250,7 +250,7 @@ fn closed_form_rotating_frame_from_f2() {
         Dop853::new(HamiltonEquations::new(h))
             .tolerances(tol, tol)
             .unwrap(),
-        State::new(0.0, q0, p0),
+        State::with_momenta(0.0, q0, p0),
     )
     .unwrap()
     .run_until(t_end)
@@ -259,7 +259,7 @@ fn closed_form_rotating_frame_from_f2() {
     let system = Transformed::new(h, gen_, (&q0, &p0)).unwrap();
     let in_k = Driver::new(
         Dop853::new(&system).tolerances(tol, tol).unwrap(),
-        State::new(0.0, nq0.clone(), np0.clone()),
+        State::with_momenta(0.0, nq0.clone(), np0.clone()),
     )
     .unwrap()
     .run_until(t_end)
@@ -268,7 +268,7 @@ fn closed_form_rotating_frame_from_f2() {
         Dop853::new(HamiltonEquations::new(k_model))
             .tolerances(tol, tol)
             .unwrap(),
-        State::new(0.0, nq0, np0),
+        State::with_momenta(0.0, nq0, np0),
     )
     .unwrap()
     .run_until(t_end)

@@ -168,7 +168,7 @@ fn integrate<H: Hamiltonian>(h: H, q0: &[f64], p0: &[f64], times: Vec<f64>) -> S
         Dop853::new(HamiltonEquations::new(h))
             .tolerances(1e-14, 1e-14)
             .unwrap(),
-        State::new(0.0, q0.to_vec(), p0.to_vec()),
+        State::with_momenta(0.0, q0.to_vec(), p0.to_vec()),
     )
     .unwrap()
     .save(Save::Times(times))

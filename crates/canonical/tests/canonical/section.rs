@@ -19,7 +19,7 @@ impl Hamiltonian for HenonHeiles {
 /// A start on the energy surface at x = 0 with (y, p_y) given and p_x > 0 from the energy.
 fn start(e: f64, y: f64, py: f64) -> State<Momenta> {
     let px = (2.0 * e - py * py - y * y + 2.0 * y * y * y / 3.0).sqrt();
-    State::new(0.0, [0.0, y], [px, py])
+    State::with_momenta(0.0, [0.0, y], [px, py])
 }
 
 #[test]
@@ -74,7 +74,7 @@ fn closed_form_separable_section_on_second_integral() {
     let dop = Dop853::new(HamiltonEquations::new(Uncoupled))
         .tolerances(1e-14, 1e-14)
         .unwrap();
-    let driver = Driver::new(dop, State::<Momenta>::new(0.0, [0.0, y0], [0.8, py0])).unwrap();
+    let driver = Driver::new(dop, State::with_momenta(0.0, [0.0, y0], [0.8, py0])).unwrap();
     let points = section(driver, Plane::coordinate(0, 0.0), 2000.0).unwrap();
     let mut worst: f64 = 0.0;
     let mut quadrants = [0usize; 4];

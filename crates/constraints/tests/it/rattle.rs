@@ -181,7 +181,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     )
     .unwrap();
     // Off the circle: error names the residual φ = (1.21 − 1)/2.
-    let mut s = State::new(0.0, [0.0, -1.1], [0.0, 0.0]);
+    let mut s = State::with_momenta(0.0, [0.0, -1.1], [0.0, 0.0]);
     let before = s.clone();
     // A step is core's interface: the error travels as core's `Model` and `Error::from` gives it back.
     match Error::from(r.step(&mut s, 0.01).unwrap_err()) {
@@ -193,7 +193,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
     }
     assert_eq!(s, before);
     // Radial momentum: a velocity violation.
-    let mut s = State::new(0.0, [0.0, -1.0], [0.0, 0.5]);
+    let mut s = State::with_momenta(0.0, [0.0, -1.0], [0.0, 0.5]);
     assert!(matches!(
         r.step(&mut s, 0.01).map_err(Error::from),
         Err(Error::ConstraintViolated { what: "velocity", .. })

@@ -388,7 +388,7 @@ fn bad_input_legendre_transform_typed_errors() {
         .hamiltonian()
         .hamiltonian(0.5, &[0.1, 0.2], &[1.0, 1.0])
         .is_nan());
-    let mut run = Driver::new(Gauss::gauss6(h), State::new(0.0, [0.1, 0.2], [1.0, 1.0]))
+    let mut run = Driver::new(Gauss::gauss6(h), State::with_momenta(0.0, [0.1, 0.2], [1.0, 1.0]))
         .unwrap()
         .step(0.01)
         .unwrap();

@@ -14,7 +14,7 @@ use noether_core::prelude::*;
 fn harmonic_errors<S: Stepper>(make: impl FnMut() -> S, ns: &[usize]) -> Vec<(f64, f64)> {
     let t_end = 10.0_f64;
     let exact = (vec![t_end.cos()], vec![-t_end.sin()]);
-    errors_vs(make, &State::new(0.0, [1.0], [0.0]), t_end, &exact, ns)
+    errors_vs(make, &State::from_parts(0.0, [1.0], [0.0]), t_end, &exact, ns)
 }
 
 #[test]

@@ -68,7 +68,7 @@ macro_rules! for_all_steppers {
 fn bad_input_step_zero_negative_nan() {
     for_all_steppers!(|s| {
         for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
-            let mut state = State::<K>::new(0.0, [1.0], [0.0]);
+            let mut state = State::<K>::from_parts(0.0, [1.0], [0.0]);
             let before = state.clone();
             let err = s.step(&mut state, h).unwrap_err();
             assert!(
@@ -91,7 +91,7 @@ fn bad_input_step_zero_negative_nan() {
 #[test]
 fn bad_input_wrong_dimensions() {
     for_all_steppers!(|s| {
-        let mut state = State::<K>::new(0.0, [1.0, 2.0], [0.0]);
+        let mut state = State::<K>::from_parts(0.0, [1.0, 2.0], [0.0]);
         let before = state.clone();
         let err = s.step(&mut state, 0.1).unwrap_err();
         assert!(
@@ -113,7 +113,7 @@ fn bad_input_wrong_dimensions() {
 #[test]
 fn bad_input_nan_initial_state() {
     for_all_steppers!(|s| {
-        let mut state = State::<K>::new(0.0, [f64::NAN], [0.0]);
+        let mut state = State::<K>::from_parts(0.0, [f64::NAN], [0.0]);
         let err = s.step(&mut state, 0.1).unwrap_err();
         assert!(
             matches!(err, Error::NonFinite { what: "q", .. }),
@@ -137,7 +137,7 @@ fn bad_input_nan_mid_run_names_step_and_time() {
     fn check<S: Stepper>(s: S) {
         let name = s.name();
         let h = 0.01;
-        let start = State::<S::Partner>::new(0.0, [1.4], [0.5]);
+        let start = State::<S::Partner>::from_parts(0.0, [1.4], [0.5]);
         let mut traj = Driver::new(s, start).unwrap().step(h).unwrap();
         let mut good = 0;
         let err = loop {
@@ -458,7 +458,7 @@ fn bad_input_newton_nan_tolerance() {
 fn regress_step_below_time_resolution_bare_steppers() {
     fn check<K: Partner>(s: &mut dyn Stepper<Partner = K>) {
         for (t, h) in [(1e20, 1e-3), (1e15, 1e-3), (-1e15, 1e-3)] {
-            let mut state = State::<K>::new(t, [1.0], [0.0]);
+            let mut state = State::<K>::from_parts(t, [1.0], [0.0]);
             let before = state.clone();
             let err = s.step(&mut state, h).unwrap_err();
             assert_eq!(
@@ -471,7 +471,7 @@ fn regress_step_below_time_resolution_bare_steppers() {
         }
         // A step the axis resolves is taken, at the same large t (above the adaptive methods' floor
         // of 10 ulps of t, 2.2 here), from the equilibrium so that no error estimate shrinks it.
-        let mut state = State::<K>::new(1e15, [0.0], [0.0]);
+        let mut state = State::<K>::from_parts(1e15, [0.0], [0.0]);
         s.step(&mut state, 100.0).unwrap();
         assert_eq!(state.t, 1e15 + 100.0, "{}", s.name());
     }

@@ -45,7 +45,7 @@ pub fn energy_errors<S: Stepper, D: Dynamics<Partner = S::Partner>>(
 }
 
 fn start<K: Partner>() -> State<K> {
-    State::new(0.0, [THETA0], [0.0])
+    State::from_parts(0.0, [THETA0], [0.0])
 }
 
 /// Asserts a bounded energy error: last-tenth maximum within 10% of the first-tenth maximum (plus a
@@ -117,7 +117,7 @@ fn conserves_natural_same_flow_in_velocities_and_momenta() {
     let v0 = [0.3, -0.7];
     let p0 = m * nalgebra::DVector::from_column_slice(&v0);
     let mut a = State::new(0.0, [1.0, 0.2], v0);
-    let mut b = State::new(0.0, [1.0, 0.2], [p0[0], p0[1]]);
+    let mut b = State::with_momenta(0.0, [1.0, 0.2], [p0[0], p0[1]]);
     let (mut sa, mut sb) = (Composition::yoshida4(&nat), Composition::yoshida4(&ham));
     for _ in 0..1000 {
         sa.step(&mut a, 0.01).unwrap();

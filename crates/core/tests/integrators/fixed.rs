@@ -62,7 +62,7 @@ fn check_composition<S: SplitDynamics>(name: &str, sys: &S) {
     let (q0, v0, h, steps) = ([0.1, 0.0], [0.0, 0.5], 0.01, 200);
     let mut kl8 = Composition::kahan_li8(sys);
     let gammas = kl8.coefficients().to_vec();
-    let mut s = State::<S::Partner>::new(0.0, q0, v0);
+    let mut s = State::<S::Partner>::from_parts(0.0, q0, v0);
     for _ in 0..steps {
         kl8.step(&mut s, h).unwrap();
     }
@@ -221,7 +221,7 @@ fn check_accepted<S: Stepper>(
 fn check_adaptive<S: Dynamics>(name: &str, sys: &S, q: &[f64], v: &[f64]) {
     use noether_core::integrators::{Dp5, Dp853};
     let (h, tol) = (0.2, 1e-6);
-    let start = State::<S::Partner>::new(0.3, q.to_vec(), v.to_vec());
+    let start = State::<S::Partner>::from_parts(0.3, q.to_vec(), v.to_vec());
     let reference = reference_trial::<Dp853, _>(sys, 0.3, q, v, h, tol);
     let m = Dop853::new(sys)
         .tolerances(tol, tol)

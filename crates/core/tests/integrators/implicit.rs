@@ -68,7 +68,7 @@ fn conserves_energy_gauss_pendulum() {
     // pendulum from θ₀ = 2, 10⁶ steps of h = 0.1 (implicit midpoint) / 0.2 (Gauss 4) / 0.4 (Gauss 6),
     // so that the truncation error stays far above the Newton tolerance and rounding.
     let sys = HamiltonEquations::new(PendulumH);
-    let start = || State::new(0.0, [2.0], [0.0]);
+    let start = || State::with_momenta(0.0, [2.0], [0.0]);
     for (name, h, mut s, bound) in [
         ("implicit midpoint", 0.1, Gauss::implicit_midpoint(&sys), 1e-2),
         ("Gauss 4", 0.2, Gauss::gauss4(&sys), 1e-4),
@@ -87,7 +87,7 @@ fn conserves_energy_gauss_non_separable() {
     // over 10⁵ steps of h = 0.3, against RK4's drift (at h = 0.1, where its error starts 10³× smaller
     // than Gauss 4's and still grows ~10× from the first to the last tenth).
     let sys = HamiltonEquations::new(NonSeparable);
-    let start = || State::new(0.0, [1.5], [0.0]);
+    let start = || State::with_momenta(0.0, [1.5], [0.0]);
     let (first, last) = energy_errors(&mut Gauss::gauss4(&sys), &sys, start(), 100_000, 0.3);
     eprintln!("Gauss 4 non-separable: {first:.3e} -> {last:.3e}");
     assert!(last <= 1.1 * first + 1e-12 && last < 1e-3);
@@ -114,7 +114,7 @@ fn bad_input_newton_not_converging() {
     // is unchanged.
     let mut s = Gauss::gauss4(HamiltonEquations::new(StiffQuartic));
     // Issue 30 item 12: the error names the time of the step and suggests a smaller one.
-    let mut state = State::new(0.25, [1.0], [0.0]);
+    let mut state = State::with_momenta(0.25, [1.0], [0.0]);
     let before = state.clone();
     match s.step(&mut state, 10.0) {
         Err(

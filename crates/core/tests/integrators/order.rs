@@ -71,7 +71,7 @@ pub fn assert_order(what: &str, nominal: u32, e: &[(f64, f64)]) {
 }
 
 pub fn pendulum_start<K: Partner>() -> State<K> {
-    State::new(0.0, [THETA0], [0.0])
+    State::from_parts(0.0, [THETA0], [0.0])
 }
 
 /// Asserts the observed order on the pendulum (steps `np`) and on Kepler (steps `nk`).

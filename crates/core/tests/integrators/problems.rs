@@ -147,7 +147,7 @@ pub fn kepler_exact(e: f64, t: f64) -> ([f64; 2], [f64; 2]) {
 /// Initial state of [`kepler_exact`].
 pub fn kepler_start<K: Partner>(e: f64) -> State<K> {
     let (q, p) = kepler_exact(e, 0.0);
-    State::new(0.0, q, p)
+    State::from_parts(0.0, q, p)
 }
 
 /// Max-norm distance between a state and (q, v).

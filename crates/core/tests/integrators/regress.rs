@@ -76,7 +76,7 @@ fn regress_gauss_charge_speed_small_steps() {
         for (div, turns) in RUNS {
             let mut g = Gauss::new(&sys, stages).unwrap();
             let steps = (div as f64 * turns) as usize;
-            let start = State::new(0.0, [0.0, 0.0], [1.0, 0.0]);
+            let start = State::with_momenta(0.0, [0.0, 0.0], [1.0, 0.0]);
             let d = max_drift(&mut g, start, period / div as f64, steps, energy);
             eprintln!("{}: T/{div}, {turns} turns: max |ΔH/H| = {d:.2e}", g.name());
             assert!(d <= 1e-13, "{}: T/{div}: {d:e}", g.name());
@@ -133,7 +133,7 @@ fn regress_gauss6_pendulum_large_steps_converge() {
     let mut worst = 0.0_f64;
     for i in 0..40 {
         let th0 = 3.0 * (i as f64 + 0.5) / 40.0;
-        let start = State::<Momenta>::new(0.0, [th0], [0.0]);
+        let start = State::with_momenta(0.0, [th0], [0.0]);
         let a = run(&mut Gauss::gauss6(&sys), start.clone(), 0.8, 100);
         let b = run(&mut Gauss::gauss6(&sys).newton(tight), start, 0.8, 100);
         worst = worst.max(distance(&a, b.q.as_slice(), b.v.as_slice()));
@@ -245,7 +245,7 @@ fn regress_gauss_warm_start_retries_from_the_cold_guess() {
             let (mut retried, mut steps) = (0, 0);
             for k in 1..=40 {
                 let mut warm = pendulum_gauss(stages, true);
-                let mut s = State::new(0.0, [0.075 * k as f64], [0.5]);
+                let mut s = State::with_momenta(0.0, [0.075 * k as f64], [0.5]);
                 for _ in 0..200 {
                     let mut fresh_state = s.clone();
                     let fresh = pendulum_gauss(stages, false).step(&mut fresh_state, h);
@@ -292,7 +292,7 @@ fn regress_gauss_continued_and_fresh_steppers_agree_bitwise() {
         );
         check(
             || pendulum_gauss(stages, false),
-            State::new(0.0, [2.0], [0.0]),
+            State::with_momenta(0.0, [2.0], [0.0]),
             0.5,
         );
     }
@@ -321,7 +321,7 @@ fn regress_gauss_iterations_cold_against_warm() {
             );
             assert!(cold <= 2.0 * warm + 2.0);
         }
-        let start = State::new(0.0, [2.0], [0.0]);
+        let start = State::with_momenta(0.0, [2.0], [0.0]);
         let cold = iterations(pendulum_gauss(stages, false), start.clone(), 0.1, 1000);
         let warm = iterations(pendulum_gauss(stages, true), start, 0.1, 1000);
         eprintln!("Gauss {stages} stages, pendulum h = 0.1: {cold:.2} cold, {warm:.2} warm");

@@ -46,7 +46,7 @@ fn gauss_tangents_on_a_linear_system_are_the_pade_stability_functions() {
     ];
     for (stages, r) in (1..=2).zip(expected) {
         let mut g = Gauss::new(HamiltonEquations::new(Oscillator), stages).unwrap();
-        let (mut s, mut psi) = (State::new(0.0, [0.7], [-0.2]), DMatrix::zeros(2, 2));
+        let (mut s, mut psi) = (State::with_momenta(0.0, [0.7], [-0.2]), DMatrix::zeros(2, 2));
         g.step_tangent(&mut s, h, &mut psi).unwrap();
         let e = (psi - r).abs().max();
         println!("Gauss {stages} on the oscillator: |Ψ − R(hA)| = {e:e}");

@@ -47,7 +47,7 @@ impl Separable for HhSeparable {
 
 /// A state on a chaotic Hénon-Heiles orbit (E ≈ 0.13).
 pub fn henon_heiles_state() -> State<Momenta> {
-    State::new(0.0, [0.1, -0.2], [0.45, 0.1])
+    State::with_momenta(0.0, [0.1, -0.2], [0.45, 0.1])
 }
 
 /// Relative difference step of the reference and the agreement it allows: with δ = 1e-5 the central

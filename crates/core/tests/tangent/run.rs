@@ -172,7 +172,7 @@ fn run_errors_are_typed_and_leave_state_and_tangents_unchanged() {
 
     // A failure after some good steps: nothing is committed.
     let mut sink = Rk4::new(HamiltonEquations::new(Sink));
-    let start = State::new(0.0, [1.0], [0.0]);
+    let start = State::with_momenta(0.0, [1.0], [0.0]);
     let (mut s, mut w) = (start.clone(), DMatrix::from_element(2, 1, 1.0));
     let err = propagate(&mut sink, &mut s, 0.1, 100, &mut w).unwrap_err();
     println!("mid-run failure: {err}");
@@ -190,7 +190,7 @@ fn run_errors_are_typed_and_leave_state_and_tangents_unchanged() {
 #[test]
 fn regress_run_jacobian_step_below_time_resolution() {
     let mut rk4 = Rk4::new(HamiltonEquations::new(HenonHeiles));
-    let mut s = State::new(1e20, [0.0, 0.1], [0.3, 0.0]);
+    let mut s = State::with_momenta(1e20, [0.0, 0.1], [0.3, 0.0]);
     let before = s.clone();
     let err = run_jacobian(&mut rk4, &mut s, 1e-3, 10).unwrap_err();
     assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });

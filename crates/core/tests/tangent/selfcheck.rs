@@ -9,9 +9,9 @@ use noether_core::selfcheck::{self, observed_order, reversibility, symplecticity
 fn henon_heiles_states() -> Vec<State<Momenta>> {
     vec![
         henon_heiles_state(),
-        State::new(0.0, [0.0, 0.0], [0.2, 0.0]),
-        State::new(0.0, [-0.3, 0.1], [0.1, -0.35]),
-        State::new(0.0, [0.2, 0.4], [-0.2, 0.1]),
+        State::with_momenta(0.0, [0.0, 0.0], [0.2, 0.0]),
+        State::with_momenta(0.0, [-0.3, 0.1], [0.1, -0.35]),
+        State::with_momenta(0.0, [0.2, 0.4], [-0.2, 0.1]),
     ]
 }
 
@@ -93,9 +93,9 @@ fn velocity_form_for_natural_systems() {
 fn observed_order_of_rk4_and_euler_cromer_on_the_oscillator() {
     // Closed form: q = cos t, p = −sin t from (1, 0); t_end = 5 (almost a period).
     let sys = HamiltonEquations::new(Oscillator);
-    let start = State::new(0.0, [1.0], [0.0]);
+    let start = State::with_momenta(0.0, [1.0], [0.0]);
     let t_end: f64 = 5.0;
-    let exact = State::new(t_end, [t_end.cos()], [-t_end.sin()]);
+    let exact = State::with_momenta(t_end, [t_end.cos()], [-t_end.sin()]);
     let rk4 = observed_order(&mut Rk4::new(&sys), &start, t_end, &[50, 100, 200, 400], &exact).unwrap();
     let ec = observed_order(
         &mut EulerCromer::new(&sys),

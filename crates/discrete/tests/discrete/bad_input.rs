@@ -10,7 +10,7 @@ use noether_discrete::{DiscreteFlow, Galerkin, Midpoint, VariationalIntegrator};
 #[test]
 fn bad_input_step_size() {
     let mut vi = VariationalIntegrator::new(Midpoint::new(Pendulum));
-    let mut s = State::new(0.0, [1.0], [0.0]);
+    let mut s = State::with_momenta(0.0, [1.0], [0.0]);
     for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
         assert!(
             matches!(vi.step(&mut s, h), Err(Error::InvalidStep { .. })),
@@ -23,15 +23,15 @@ fn bad_input_step_size() {
         vi.flow(0.0, 0.0, &mut q, &mut p),
         Err(Error::InvalidStep { .. })
     ));
-    assert_eq!(s, State::new(0.0, [1.0], [0.0]));
+    assert_eq!(s, State::with_momenta(0.0, [1.0], [0.0]));
 }
 
 #[test]
 fn bad_input_dimensions_and_nan() {
     let mut vi = VariationalIntegrator::new(Midpoint::new(Kepler));
-    let mut s = State::new(0.0, [1.0], [0.0, 1.0]);
+    let mut s = State::with_momenta(0.0, [1.0], [0.0, 1.0]);
     assert!(matches!(vi.step(&mut s, 0.1), Err(Error::Dimension { .. })));
-    let mut s = State::new(0.0, [1.0, f64::NAN], [0.0, 1.0]);
+    let mut s = State::with_momenta(0.0, [1.0, f64::NAN], [0.0, 1.0]);
     assert!(matches!(vi.step(&mut s, 0.1), Err(Error::NonFinite { .. })));
     assert!(matches!(
         vi.state_from_positions(0.0, 0.1, &[1.0, 0.0], &[1.0]),
@@ -80,12 +80,12 @@ fn bad_input_galerkin() {
     let mut g = Galerkin::order6(Kepler)
         .unwrap()
         .with_newton(Newton::default().max_iterations(1).unwrap());
-    let mut s = State::new(0.0, [0.1, 0.0], [0.0, 4.2]);
+    let mut s = State::with_momenta(0.0, [0.1, 0.0], [0.0, 4.2]);
     let before = s.clone();
     for h in [0.0, -0.1, f64::NAN] {
         assert!(matches!(g.step(&mut s, h), Err(Error::InvalidStep { .. })));
     }
-    let mut short = State::new(0.0, [1.0], [0.0, 1.0]);
+    let mut short = State::with_momenta(0.0, [1.0], [0.0, 1.0]);
     assert!(matches!(g.step(&mut short, 0.1), Err(Error::Dimension { .. })));
     match g.step(&mut s, 50.0) {
         Err(Error::NewtonDiverged {
@@ -130,15 +130,15 @@ impl noether_core::Lagrangian for Damped {
 fn regress_variational_step_below_time_resolution() {
     use noether_core::TangentStepper;
     let mut vi = VariationalIntegrator::new(Midpoint::new(Pendulum));
-    let mut s = State::new(1e20, [1.0], [0.0]);
+    let mut s = State::with_momenta(1e20, [1.0], [0.0]);
     let err = vi.step(&mut s, 1e-3).unwrap_err();
     assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
     let mut psi = nalgebra::DMatrix::zeros(2, 2);
     let err = vi.step_tangent(&mut s, 1e-3, &mut psi).unwrap_err();
     assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
-    assert_eq!(s, State::new(1e20, [1.0], [0.0]));
+    assert_eq!(s, State::with_momenta(1e20, [1.0], [0.0]));
     let mut g = Galerkin::order6(Pendulum).unwrap();
     let err = g.step(&mut s, 1e-3).unwrap_err();
     assert_eq!(err, Error::StepBelowTimeResolution { t: 1e20, h: 1e-3 });
-    assert_eq!(s, State::new(1e20, [1.0], [0.0]));
+    assert_eq!(s, State::with_momenta(1e20, [1.0], [0.0]));
 }

@@ -38,7 +38,7 @@ impl Lagrangian for HalfDegenerate {
 
 /// The vortex at q = (1, 0) with momenta a(q) = (0, ½) moved by δ along y.
 fn vortex_start(delta: f64) -> State {
-    State::new(0.0, [1.0, 0.0], [0.0, 0.5 + delta])
+    State::with_momenta(0.0, [1.0, 0.0], [0.0, 0.5 + delta])
 }
 
 fn off(e: &Error) -> &OffPrimaryConstraint {
@@ -164,10 +164,10 @@ fn conserves_vortex_consistent_start() {
 #[test]
 fn bad_input_partly_degenerate() {
     let mut vi = VariationalIntegrator::new(Midpoint::new(HalfDegenerate));
-    let mut s = State::new(0.0, [1.0, 0.0], [0.7, 1.0]);
+    let mut s = State::with_momenta(0.0, [1.0, 0.0], [0.7, 1.0]);
     vi.step(&mut s, 0.01).unwrap();
     let mut vi = VariationalIntegrator::new(Midpoint::new(HalfDegenerate));
-    let before = State::new(0.0, [1.0, 0.0], [0.7, 1.001]);
+    let before = State::with_momenta(0.0, [1.0, 0.0], [0.7, 1.001]);
     let mut s = before.clone();
     let e = vi.step(&mut s, 0.01).unwrap_err();
     let o = off(&e);

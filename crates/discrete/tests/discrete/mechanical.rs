@@ -16,7 +16,7 @@ use noether_discrete::{
 fn paper_state(chains: &CoupledChains, v0: f64) -> State {
     let n = chains.n;
     let p: Vec<f64> = (0..2 * n).map(|k| if k < n { v0 } else { 0.0 }).collect();
-    State::new(0.0, chains.collision_start(), p)
+    State::with_momenta(0.0, chains.collision_start(), p)
 }
 
 fn unit_mass<P: LocalPotential>(p: P) -> Mechanical<P> {
@@ -54,7 +54,7 @@ fn regress_banded_vs_dense_chain() {
         b: 2.0,
     };
     let q: Vec<f64> = (0..60).map(|i| 0.3 * (0.2 * i as f64).sin()).collect();
-    let start = State::new(0.0, q, vec![0.0; 60]);
+    let start = State::with_momenta(0.0, q, vec![0.0; 60]);
     let mut banded = MechanicalMidpoint::new(unit_mass(chain.clone()));
     let mut dense = MechanicalMidpoint::new(unit_mass(chain)).dense();
     assert!(banded.is_banded() && !dense.is_banded());
@@ -78,7 +78,7 @@ fn regress_verlet_vs_general_trapezoidal() {
         b: 2.0,
     };
     let q: Vec<f64> = (0..8).map(|i| 0.5 * (0.7 * i as f64).cos()).collect();
-    let start = State::new(0.0, q, vec![0.1; 8]);
+    let start = State::with_momenta(0.0, q, vec![0.1; 8]);
     let mut verlet = Verlet::new(unit_mass(chain.clone()));
     let mut general = VariationalIntegrator::new(Trapezoidal::new(unit_mass(chain)));
     let (mut a, mut b) = (start.clone(), start);
@@ -180,7 +180,7 @@ fn order_damped_oscillator_lagrange_dalembert() {
     let wd = (1.0 - g * g).sqrt();
     let exact = (-g * t_end).exp() * ((wd * t_end).cos() + g / wd * (wd * t_end).sin());
     fn error<S: Stepper<Partner = noether_core::Momenta>>(mut s: S, n: usize, exact: f64) -> f64 {
-        let mut st = State::new(0.0, [1.0], [0.0]);
+        let mut st = State::with_momenta(0.0, [1.0], [0.0]);
         for _ in 0..n {
             s.step(&mut st, 10.0 / n as f64).unwrap();
         }
@@ -216,7 +216,7 @@ fn order_composition4_verlet_chain() {
         a: 1.0,
         b: 1.0,
     };
-    let start = State::new(0.0, [0.5, -0.2, 0.1, 0.3, -0.4], [0.0; 5]);
+    let start = State::with_momenta(0.0, [0.5, -0.2, 0.1, 0.3, -0.4], [0.0; 5]);
     let run = |mut s: Box<dyn Stepper<Partner = noether_core::Momenta>>, n: usize| {
         let mut st = start.clone();
         for _ in 0..n {
@@ -300,7 +300,7 @@ fn bad_input_mechanical_newton_failure_keeps_state() {
     };
     let mut vi = MechanicalMidpoint::new(unit_mass(chain))
         .with_newton(noether_core::Newton::default().max_iterations(3).unwrap());
-    let mut s = State::new(0.0, vec![1.0; 10], vec![5.0; 10]);
+    let mut s = State::with_momenta(0.0, vec![1.0; 10], vec![5.0; 10]);
     let before = s.clone();
     match vi.step(&mut s, 20.0) {
         Err(Error::NewtonDiverged {

@@ -170,7 +170,7 @@ fn closed_form_pendulum_energy_from_legendre() {
     // E = ½ p² − cos θ at (θ, p) = (1, 0.3): the energy reported along a discrete trajectory is the
     // continuous energy through the inverse Legendre map (exact here: p = θ̇).
     let vi = VariationalIntegrator::new(Midpoint::new(Pendulum));
-    let e = vi.energy(&State::new(0.0, [1.0], [0.3])).unwrap();
+    let e = vi.energy(&State::with_momenta(0.0, [1.0], [0.3])).unwrap();
     assert!((e - (0.045 - 1f64.cos())).abs() < 1e-15);
     let _ = vi.discrete_lagrangian().continuous();
 }

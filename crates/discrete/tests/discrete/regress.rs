@@ -70,7 +70,7 @@ fn ad_vs_hand_exact_oscillator_discrete_lagrangian() {
     // The exact discrete Lagrangian gives the exact flow: one step from (q, p) = (a, 0) lands on
     // q = a cos ωh, p = −a ω sin ωh.
     let mut vi = VariationalIntegrator::new(ExactOscillator { w });
-    let mut st = noether_core::State::<noether_core::Momenta>::new(0.0, [a], [0.0]);
+    let mut st = noether_core::State::with_momenta(0.0, [a], [0.0]);
     vi.step(&mut st, h).unwrap();
     assert!((st.q[0] - a * c).abs() < 1e-15);
     assert!((st.v[0] + a * w * s).abs() < 1e-15);

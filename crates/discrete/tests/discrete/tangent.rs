@@ -50,9 +50,9 @@ fn kepler_states() -> Vec<State> {
     let mut v = Vec::new();
     for e in [0.3, 0.5, 0.6] {
         let (q, p) = kepler_start(e);
-        v.push(State::new(0.0, q, p));
+        v.push(State::with_momenta(0.0, q, p));
     }
-    v.push(State::new(0.0, [0.3, -0.8], [0.9, 0.4]));
+    v.push(State::with_momenta(0.0, [0.3, -0.8], [0.9, 0.4]));
     v
 }
 
@@ -87,9 +87,9 @@ fn anharmonic() -> Mechanical<Anharmonic> {
 
 fn anharmonic_states() -> Vec<State> {
     vec![
-        State::new(0.0, [0.0, 1.3, 2.1], [0.2, -0.1, 0.3]),
-        State::new(0.0, [0.1, 0.9, 2.4], [-0.5, 0.4, 0.0]),
-        State::new(0.0, [-0.2, 1.0, 1.7], [0.0, 0.0, 0.6]),
+        State::with_momenta(0.0, [0.0, 1.3, 2.1], [0.2, -0.1, 0.3]),
+        State::with_momenta(0.0, [0.1, 0.9, 2.4], [-0.5, 0.4, 0.0]),
+        State::with_momenta(0.0, [-0.2, 1.0, 1.7], [0.0, 0.0, 0.6]),
     ]
 }
 
@@ -175,14 +175,14 @@ fn observed_order_and_reversibility_of_the_midpoint_integrator() {
     // Pendulum released from rest at θ₀ = 1: after one period T = 4K(sin(θ₀/2)) it is back at
     // (θ₀, 0) (models::pendulum_period, K by the AGM to rounding).
     let (theta0, t_end) = (1.0, pendulum_period(1.0));
-    let start = State::new(0.0, [theta0], [0.0]);
+    let start = State::with_momenta(0.0, [theta0], [0.0]);
     let mut vi = VariationalIntegrator::new(Midpoint::new(Pendulum));
     let fit = observed_order(
         &mut vi,
         &start,
         t_end,
         &[50, 100, 200, 400],
-        &State::new(t_end, [theta0], [0.0]),
+        &State::with_momenta(t_end, [theta0], [0.0]),
     )
     .unwrap();
     eprintln!(
@@ -194,7 +194,7 @@ fn observed_order_and_reversibility_of_the_midpoint_integrator() {
 
     let mut vi = VariationalIntegrator::new(Midpoint::new(Kepler));
     let (q, p) = kepler_start(0.5);
-    let rev = reversibility(&mut vi, &State::new(0.0, q, p), 0.1).unwrap();
+    let rev = reversibility(&mut vi, &State::with_momenta(0.0, q, p), 0.1).unwrap();
     eprintln!("midpoint VI round trip: {:e} ({} ulps)", rev.distance, rev.ulps);
     // The midpoint rule is symmetric and Kepler reversible: back to the start to rounding and the
     // Newton tolerance (solved to rounding); measured 0 ulps.
@@ -222,7 +222,7 @@ impl Lagrangian for Damped {
 #[test]
 fn a_forced_general_integrator_refuses_the_tangent_and_wrong_shapes_are_refused() {
     let mut vi = VariationalIntegrator::new(Midpoint::new(Damped));
-    let mut s = State::new(0.0, [1.0], [0.0]);
+    let mut s = State::with_momenta(0.0, [1.0], [0.0]);
     let before = s.clone();
     let mut psi = DMatrix::zeros(2, 2);
     let err = vi.step_tangent(&mut s, 0.1, &mut psi).unwrap_err();
