@@ -16,6 +16,12 @@
 //!   ode_solvers' DOP853 at tol 1e-14 with the hand-derived equations of motion.
 //!
 //! The Python peers (REBOUND's IAS15 and WHFast, scipy) on the same problems: `benches/peers.py`.
+//!
+//! `long` (not run by default: about a minute) is the reliability table of long runs (issue 29): the
+//! relative energy error of IAS15 on Kepler e = 0.9 over 10⁴ orbits, of the Lie-group variational
+//! integrator on a free asymmetric body over 10⁶ steps and of DPRKN12 on the outer solar system over
+//! 10⁵ years, sampled along the run, and how it grows (t¹: a drift, t^½: a random walk of rounding
+//! errors, t⁰: bounded).
 
 #![allow(missing_docs)]
 
@@ -593,6 +599,9 @@ fn main() {
             curves,
         );
     }
+    if which.as_deref() == Some("long") {
+        long_runs();
+    }
     if run("solar") {
         let curves = solar_table();
         picture(
@@ -600,6 +609,116 @@ fn main() {
             "error max |q − q_ref| [AU]",
             "work_precision_solar",
             curves,
+        );
+    }
+}
+
+// ---- Long runs: the reliability table (issue 29) ----
+
+/// One row of the table from the largest relative energy error |E − E₀|/|E₀| up to each of ten
+/// equally spaced checkpoints (errors[k] up to t = (k + 1) T/10) and the wall time of the run.
+fn long_row(name: &str, span: &str, errors: &[f64], seconds: f64) {
+    let (tenth, half, end) = (errors[0], errors[4], errors[9]);
+    // Growth exponent between T/10 and T of the running maximum: 1 for a linear drift, ½ for a
+    // random walk, 0 for a bounded error.
+    let exponent = (end / tenth).log10();
+    println!("| {name} | {span} | {tenth:.1e} | {half:.1e} | {end:.1e} | {exponent:.2} | {seconds:.1} s |");
+}
+
+/// The running maximum of |E − E₀|/|E₀| at ten equally spaced checkpoints, from `per_checkpoint`
+/// samples between consecutive ones: `energy_at(j)` advances the run to sample j (1, 2, …) and
+/// returns the energy there.
+fn energy_errors(e0: f64, per_checkpoint: usize, mut energy_at: impl FnMut(usize) -> f64) -> Vec<f64> {
+    let mut worst: f64 = 0.0;
+    (1..=10)
+        .map(|k| {
+            for j in (k - 1) * per_checkpoint + 1..=k * per_checkpoint {
+                worst = worst.max(((energy_at(j) - e0) / e0).abs());
+            }
+            worst
+        })
+        .collect()
+}
+
+fn long_runs() {
+    println!("| run | span | max rel. energy error to T/10 | to T/2 | to T | growth exponent | time |");
+    println!("|---|---|---|---|---|---|---|");
+    // IAS15, Kepler e = 0.9 from pericentre, 10⁴ orbits (μ = a = 1, period 2π), ε = 1e-9 (REBOUND's
+    // default); the energy is sampled every 10 orbits.
+    {
+        let e: f64 = 0.9;
+        let sys = Natural::unit(Kepler);
+        let (q0, v0): ([f64; 2], [f64; 2]) = ([1.0 - e, 0.0], [0.0, ((1.0 + e) / (1.0 - e)).sqrt()]);
+        let e0 = sys.energy(&q0, &v0).expect("energy");
+        let ias = Ias15::new(Natural::unit(Kepler))
+            .expect("IAS15")
+            .with_dense_output(false);
+        let mut d = Driver::new(ias, State::new(0.0, q0, v0))
+            .and_then(|d| d.save(Save::End))
+            .expect("driver")
+            .max_steps(1_000_000_000);
+        let clock = Instant::now();
+        let period = 2.0 * std::f64::consts::PI;
+        let errors = energy_errors(e0, 100, |j| {
+            d.run_until(10.0 * j as f64 * period).expect("IAS15 run");
+            let s = d.state();
+            sys.energy(s.q.as_slice(), s.v.as_slice()).expect("energy")
+        });
+        long_row(
+            "IAS15, Kepler e = 0.9",
+            "10⁴ orbits",
+            &errors,
+            clock.elapsed().as_secs_f64(),
+        );
+    }
+    // The Lie-group variational integrator on the free asymmetric body of the gallery's
+    // free_rigid_body (I = 1, 2, 3, Ω₀ = (1, 0, 0.8)), h = 10⁻², 10⁶ steps; energy every 10³ steps.
+    {
+        use nalgebra::{UnitQuaternion, Vector3};
+        use noether::rigid::{Lgvi, RigidBody};
+        let body = RigidBody::free(1.0, 2.0, 3.0).expect("body");
+        let q0 = UnitQuaternion::from_euler_angles(0.4, -0.3, 1.2);
+        let mut s = body.state(0.0, &q0, &Vector3::new(1.0, 0.0, 0.8));
+        let e0 = body.energy(&s).expect("energy");
+        let mut lgvi = Lgvi::new(body).expect("LGVI");
+        let clock = Instant::now();
+        let errors = energy_errors(e0, 100, |_| {
+            for _ in 0..1000 {
+                lgvi.step(&mut s, 1e-2).expect("LGVI step");
+            }
+            body.energy(&s).expect("energy")
+        });
+        long_row(
+            "LGVI, free body I = (1, 2, 3)",
+            "10⁶ steps",
+            &errors,
+            clock.elapsed().as_secs_f64(),
+        );
+    }
+    // DPRKN12 at tol 1e-12 on the outer solar system, 10⁵ years; energy every 100 years.
+    {
+        let (sys, s0) = solar_system();
+        let e0 = sys.total_energy(&s0).expect("energy");
+        let m = Dprkn12::new(sys)
+            .and_then(|m| m.tolerances(1e-12, 1e-12))
+            .expect("DPRKN12")
+            .with_dense_output(false);
+        let (sys, _) = solar_system();
+        let mut d = Driver::new(m, s0)
+            .and_then(|d| d.save(Save::End))
+            .expect("driver")
+            .max_steps(1_000_000_000);
+        let clock = Instant::now();
+        let year = 365.25;
+        let errors = energy_errors(e0, 100, |j| {
+            d.run_until(100.0 * j as f64 * year).expect("DPRKN12 run");
+            sys.total_energy(d.state()).expect("energy")
+        });
+        long_row(
+            "DPRKN12 tol 1e-12, outer solar system",
+            "10⁵ years",
+            &errors,
+            clock.elapsed().as_secs_f64(),
         );
     }
 }
