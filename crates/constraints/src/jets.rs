@@ -15,7 +15,7 @@
 
 use nalgebra::{Const, DMatrix, U1};
 use noether_core::Scalar;
-use num_dual::{Dual2_64, Dual64, DualNum, DualVec};
+use num_dual::{Dual2_64, Dual64, DualVec};
 
 /// A vector-valued function g(t, x, y) ∈ ℝᵐ, generic over the scalar type.
 pub trait VectorField {
@@ -31,12 +31,6 @@ pub use noether_core::ad::Block;
 /// Buffers of up to 16 lifted scalars live on the stack.
 const STACK: usize = 16;
 type Buf<D> = noether_core::ad::Buf<D, STACK>;
-
-/// g at real arguments.
-#[inline]
-pub fn values<F: VectorField>(f: &F, t: f64, x: &[f64], y: &[f64], out: &mut [f64]) {
-    f.eval(t, x, y, out);
-}
 
 /// Jacobian ∂g/∂(block) (rows: outputs, columns: the block's variables) into `out`, which must be
 /// `outputs() × len(block)`.
@@ -111,12 +105,6 @@ pub fn along2<F: VectorField>(
         *a = gk.v1;
         *b = gk.v2;
     }
-}
-
-/// The real part of any scalar (for constraint functions that branch on values).
-#[inline]
-pub fn re<D: DualNum<f64>>(x: &D) -> f64 {
-    x.re()
 }
 
 #[cfg(test)]

@@ -65,7 +65,8 @@ pub mod forces;
 pub mod gibbs_appell;
 pub mod holonomic;
 pub mod impulse;
-pub mod jets;
+// The vector-valued AD kernels: unchecked, for this crate's own checked functions only.
+pub(crate) mod jets;
 pub mod nonholonomic;
 pub mod projection;
 pub mod rattle;

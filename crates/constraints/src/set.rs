@@ -15,6 +15,15 @@
 use nalgebra::DMatrix;
 
 /// A set of m constraints on n coordinates, seen at the velocity level: A(t, q) q̇ + a(t, q) = 0.
+///
+/// This is the engine's interface, called in the inner loop of every constrained step with buffers
+/// that the caller has sized: its methods do not check lengths, and an output of the wrong shape
+/// panics (a deliberate exception of docs/error-contract.md §4, as `Solution`'s indexing is).
+/// The checked forms, which return typed errors, are [`holonomic::values`](crate::holonomic::values),
+/// [`holonomic::velocity_residual`](crate::holonomic::velocity_residual),
+/// [`holonomic::acceleration_bias`](crate::holonomic::acceleration_bias),
+/// [`holonomic::jacobian`](crate::holonomic::jacobian) and [`Constrained`](crate::Constrained)'s
+/// methods.
 pub trait ConstraintSet {
     /// Number of coordinates n.
     fn dof(&self) -> usize;
