@@ -485,11 +485,7 @@ impl<S: TangentStepper> Shooting<S> {
             other => other,
         })?;
         let period = if self.fixed_period { period } else { x[2 * n] };
-        let initial = State::from_vectors(
-            guess.t,
-            DVector::from_column_slice(&x.as_slice()[..n]),
-            DVector::from_column_slice(&x.as_slice()[n..2 * n]),
-        );
+        let initial = State::from_parts(guess.t, &x.as_slice()[..n], &x.as_slice()[n..2 * n]);
         // A rest point solves the equations too (with any period): rejected when the flow there is
         // below 1e-8 of the flow at the guess.
         let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
@@ -592,11 +588,7 @@ impl<S: TangentStepper> Problem<'_, S> {
             None => (x[2 * n], &x[2 * n + 1..]),
         };
         check_period(period)?;
-        let y0 = State::from_vectors(
-            self.t0,
-            DVector::from_column_slice(&x[..n]),
-            DVector::from_column_slice(&x[n..2 * n]),
-        );
+        let y0 = State::from_parts(self.t0, &x[..n], &x[n..2 * n]);
         Ok((y0, period, lambda))
     }
 

@@ -40,7 +40,7 @@
 //! ```
 
 use crate::Result;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use noether_core::tangent::run_jacobian;
 use noether_core::{Hamiltonian, Scalar, State, TangentStepper};
 
@@ -124,11 +124,7 @@ pub fn parameter_sensitivity<S: TangentStepper>(
     let idx: Vec<usize> = (0..n).chain(big..big + n).collect();
     let wrt_initial = DMatrix::from_fn(2 * n, 2 * n, |i, j| jac[(idx[i], idx[j])]);
     let wrt_parameters = DMatrix::from_fn(2 * n, k, |i, j| jac[(idx[i], n + j)]);
-    let end = State::from_vectors(
-        s.t,
-        DVector::from_column_slice(&s.q.as_slice()[..n]),
-        DVector::from_column_slice(&s.v.as_slice()[..n]),
-    );
+    let end = State::from_parts(s.t, &s.q.as_slice()[..n], &s.v.as_slice()[..n]);
     Ok(Sensitivity {
         state: end,
         wrt_initial,
@@ -147,9 +143,5 @@ fn augment<K: noether_core::Partner>(state: &State<K>, theta: &[f64], n: usize) 
         .copied()
         .chain(std::iter::repeat_n(0.0, theta.len()))
         .collect();
-    Ok(State::from_vectors(
-        state.t,
-        DVector::from_vec(q),
-        DVector::from_vec(v),
-    ))
+    Ok(State::from_parts(state.t, q, v))
 }

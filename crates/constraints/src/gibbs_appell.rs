@@ -257,7 +257,7 @@ impl<M: GibbsAppell> GibbsAppellEquations<M> {
         check_len("u", u, k)?;
         let mut v = vec![0.0; n];
         v[..k].copy_from_slice(u);
-        let s = State::from_vectors(t, DVector::from_column_slice(q), DVector::from_vec(v));
+        let s = State::from_parts(t, q, v);
         s.validate(n)?;
         Ok(s)
     }

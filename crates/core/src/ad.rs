@@ -448,7 +448,7 @@ fn hessian_diag_w<F: Field, const W: usize>(
 /// (x, y) lifted to `Dual2Vec<W>` with the variables of `block` seeded as the directions 0..: generic
 /// in W only, not in the model ([`Buf::new`] says why).
 #[allow(clippy::type_complexity)]
-fn seed_second<const W: usize>(
+pub(crate) fn seed_second<const W: usize>(
     x: &[f64],
     y: &[f64],
     block: Block,

@@ -352,11 +352,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
         }
         let (t1, y1) = (self.state.t, concat(&self.state));
         if start.has_rates && start.f.is_none() {
-            let s0 = State::from_vectors(
-                t0,
-                nalgebra::DVector::from_column_slice(&start.y[..n]),
-                nalgebra::DVector::from_column_slice(&start.y[n..]),
-            );
+            let s0 = State::from_parts(t0, &start.y[..n], &start.y[n..]);
             start.f = self.rates_at(&s0, stats)?;
             start.has_rates = start.f.is_some();
         }

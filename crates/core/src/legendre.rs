@@ -321,7 +321,7 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 ) -> (Vec<f64>, DMatrix<f64>) {
     type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
     let n = v.len();
-    let (qs, vs) = (Buf::<D2<W>, W>::constants(q), velocities::<W>(n, Some(v)));
+    let (qs, vs) = crate::ad::seed_second::<W>(q, v, Block::Y);
     let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
     let g = r.v1.unwrap_generic(U1, Const::<W>);
     let h = r.v2.unwrap_generic(Const::<W>, Const::<W>);
@@ -337,7 +337,7 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -> Option<Vec<f64>> {
     type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
     let n = p.len();
-    let (qs, vs) = (Buf::<D2<W>, W>::constants(q), velocities::<W>(n, None));
+    let (qs, vs) = crate::ad::seed_second::<W>(q, &[0.0; W][..n], Block::Y);
     let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
     let g = r.v1.unwrap_generic(U1, Const::<W>);
     let mut m = r.v2.unwrap_generic(Const::<W>, Const::<W>);
@@ -352,14 +352,6 @@ fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -
     let chol = m.cholesky()?;
     chol.solve_mut(&mut b);
     Some(b.as_slice()[..n].to_vec())
-}
-
-/// The n velocities `v` (zero when `None`) as `Dual2Vec<W>`, v_i carrying the direction i. Generic
-/// in W only, not in the model (`noether_core::ad::Buf::new` says why).
-fn velocities<const W: usize>(n: usize, v: Option<&[f64]>) -> Buf<Dual2Vec<f64, f64, Const<W>>, W> {
-    Buf::new(n, |i| {
-        Dual2Vec::<f64, f64, Const<W>>::from_re(v.map_or(0.0, |v| v[i])).derivative(i)
-    })
 }
 
 /// The entries of `x` lifted to nested duals `Dual<D>` (constants); generic in D only.

@@ -73,7 +73,7 @@ impl State<Velocities> {
     /// inferred from where a state goes (a (q, q̇) handed to a Hamiltonian stepper does not compile
     /// rather than silently being read as (q, p)), and `State::new` needs no annotation anywhere.
     pub fn new(t: f64, q: impl Into<Vec<f64>>, v: impl Into<Vec<f64>>) -> Self {
-        Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(v.into()))
+        Self::from_parts(t, q, v)
     }
 }
 
@@ -81,7 +81,7 @@ impl State<Momenta> {
     /// A state from time, coordinates and momenta p: the state of a Hamiltonian stepper
     /// ([`HamiltonEquations`](crate::HamiltonEquations), separable Hamiltonians, …).
     pub fn with_momenta(t: f64, q: impl Into<Vec<f64>>, p: impl Into<Vec<f64>>) -> Self {
-        Self::from_vectors(t, DVector::from_vec(q.into()), DVector::from_vec(p.into()))
+        Self::from_parts(t, q, p)
     }
 }
 

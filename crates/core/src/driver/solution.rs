@@ -172,11 +172,7 @@ impl<K: Partner> Solution<K> {
 
     /// The saved state at row `i`. Indexing: panics if `i >= len()` (see [`q`](Self::q)).
     pub fn state(&self, i: usize) -> State<K> {
-        State::from_vectors(
-            self.t[i],
-            nalgebra::DVector::from_column_slice(self.q(i)),
-            nalgebra::DVector::from_column_slice(self.v(i)),
-        )
+        State::from_parts(self.t[i], self.q(i), self.v(i))
     }
 
     /// The saved state at row `i`, `None` if `i >= len()`.
