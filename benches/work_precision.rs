@@ -26,6 +26,8 @@
 #![allow(missing_docs)]
 
 use nalgebra::SVector;
+use noether::core::integrators::Dprkn8;
+use noether::particles::{AllPairs, Parallel, Particle, System, Vec3};
 use noether::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;

@@ -13,6 +13,10 @@
 //! Run: `cargo run --release --features examples --example bead_cycloid`.
 
 use noether::prelude::*;
+
+use noether::constraints::{Constrained, Holonomic, Projected};
+
+use noether::core::integrators::Rk4;
 use noether_gallery::examples::bead_rotating_hoop::period;
 use noether_gallery::examples::pendulum_cartesian::PlanarMass;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -9,6 +9,10 @@
 //! Run: `cargo run --release --features examples --example bead_helix`.
 
 use noether::prelude::*;
+
+use noether::constraints::{Constrained, Holonomic, Projected};
+
+use noether::core::integrators::Rk4;
 /// A point mass in 3D, z up: L = ½ m |ṙ|² − m g z.
 pub use noether_gallery::examples::bead_rotating_hoop::Bead;
 use noether_gallery::{BoxError, Check, Options, Report};

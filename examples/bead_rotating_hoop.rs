@@ -24,6 +24,10 @@
 //! Run: `cargo run --release --features examples --example bead_rotating_hoop`.
 
 use noether::prelude::*;
+
+use noether::constraints::{Constrained, Holonomic, HolonomicSet, Projected};
+
+use noether::core::integrators::Rk4;
 use noether_gallery::measure::mean_period;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

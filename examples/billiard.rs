@@ -14,6 +14,7 @@
 //! Run: `cargo run --release --features examples --example billiard`.
 
 use noether::particles::laws::Billiard;
+use noether::particles::{Internal, Method, Particle, System};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

@@ -8,6 +8,7 @@
 //! Run: `cargo run --release --features examples --example binary_star`.
 
 use noether::particles::laws::Gravity;
+use noether::particles::{Internal, Method, Particle, System};
 use noether::prelude::*;
 use noether_gallery::closed_form::kepler_eccentric_anomaly;
 use noether_gallery::{BoxError, Check, Options, Report};

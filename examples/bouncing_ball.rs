@@ -10,6 +10,7 @@
 //!
 //! Run: `cargo run --release --features examples --example bouncing_ball` (the height against time goes to `gallery-out/`).
 
+use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

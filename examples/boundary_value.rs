@@ -18,7 +18,7 @@
 //!
 //! Run: `cargo run --release --features examples --example boundary_value` (pictures in `gallery-out/`).
 
-use noether::discrete::boundary::{straight_line, BoundaryValue, ConjugatePoint, PathConstraint};
+use noether::discrete::boundary::{straight_line, BoundaryValue, PathConstraint};
 use noether::discrete::{DiscreteDerivatives, Midpoint};
 use noether::nalgebra::{DMatrix, DVector, Rotation2, Vector2, Vector3};
 use noether::plot::Figure;
@@ -198,10 +198,11 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let n = 200usize;
     let t_star = 2.0 * n as f64 / w * (PI / (2.0 * n as f64)).tan();
     let named = match osc.solve(0.0, &[0.5], t_star * (1.0 - 1e-11), &[0.25], n) {
-        Err(e) => e
-            .downcast_ref::<ConjugatePoint>()
-            .map(|c| c.t)
-            .unwrap_or(f64::NAN),
+        // The facade's error names the conjugate point whichever interface reported it.
+        Err(e) => match noether::Error::from(e) {
+            noether::Error::Discrete(noether::discrete::Error::ConjugatePoint(c)) => c.t,
+            _ => f64::NAN,
+        },
         Ok(_) => f64::NAN,
     };
     report.checks.push(Check::rel(

@@ -29,6 +29,7 @@
 //! Run: `cargo run --release --features examples --example collision_lab_cm`.
 
 use noether::particles::Coulomb;
+use noether::particles::{Internal, Particle, System};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

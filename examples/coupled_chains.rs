@@ -30,6 +30,7 @@
 
 use noether::core::Newton;
 use noether::discrete::chains::CoupledChains;
+use noether::discrete::{Mass, Mechanical, MechanicalMidpoint};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -19,6 +19,7 @@
 //! Run: `cargo run --release --features examples --example coupled_chains_heat` (the pictures go to `gallery-out/`).
 
 use noether::discrete::chains::CoupledChains;
+use noether::discrete::Verlet;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::examples::coupled_chains::{paper_run, paper_samples, system, PaperSample};

@@ -22,6 +22,8 @@
 //! Run: `cargo run --release --features examples --example cyclotron`.
 
 use noether::prelude::*;
+
+use noether::core::integrators::Rk4;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;

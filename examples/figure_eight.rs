@@ -20,6 +20,7 @@
 
 use noether::analysis::periodic::{Energy, FirstIntegral, Integral, Shooting, Stability};
 use noether::core::ad::Field;
+use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -18,7 +18,9 @@
 //!
 //! Run: `cargo run --release --features examples --example gibbs_appell`.
 
+use noether::constraints::{Constrained, Nonholonomic, Projected};
 use noether::constraints::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
+use noether::core::integrators::Rk4;
 use noether::nalgebra::{Matrix3, Vector3};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

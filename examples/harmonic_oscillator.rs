@@ -13,6 +13,7 @@
 //! Run: `cargo run --release --features examples --example harmonic_oscillator` (the energy-error plot goes to
 //! `gallery-out/`).
 
+use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::measure::envelope;
@@ -38,7 +39,7 @@ impl Potential for Spring {
 
 /// The oscillator L = ½ m q̇² − ½ k q² as a natural system (so both RK4 and the explicit symplectic
 /// methods can step it).
-pub fn oscillator(m: f64, k: f64) -> Result<Natural<Spring>, Error> {
+pub fn oscillator(m: f64, k: f64) -> noether::core::Result<Natural<Spring>> {
     Natural::diagonal(Spring { k }, &[m])
 }
 

@@ -30,6 +30,7 @@
 //!
 //! Run: `cargo run --release --features examples --example heavy_top`.
 
+use noether::core::integrators::Rk4;
 use noether::core::ChartGuard;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
@@ -72,7 +73,7 @@ impl Lagrangian for HeavyTop {
 }
 
 /// The Euler-angle integrator: RK4 guarded against the poles of the chart (sin θ < 10⁻²).
-pub fn euler_angle_stepper(top: HeavyTop) -> Result<ChartGuard<Rk4<EulerLagrange<HeavyTop>>>, Error> {
+pub fn euler_angle_stepper(top: HeavyTop) -> noether::core::Result<ChartGuard<Rk4<EulerLagrange<HeavyTop>>>> {
     ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(top)), 0, "θ", 1e-2)
 }
 
@@ -80,7 +81,7 @@ pub fn euler_angle_stepper(top: HeavyTop) -> Result<ChartGuard<Rk4<EulerLagrange
 // The closed forms.
 
 /// The conserved quantities (p_φ, p_ψ, E) at a state.
-pub fn constants(el: &EulerLagrange<HeavyTop>, s: &State) -> Result<(f64, f64, f64)> {
+pub fn constants(el: &EulerLagrange<HeavyTop>, s: &State) -> noether::core::Result<(f64, f64, f64)> {
     let mut p = [0.0; 3];
     el.momenta(s.t, s.q.as_slice(), s.v.as_slice(), &mut p)?;
     Ok((p[1], p[2], el.energy(s.t, s.q.as_slice(), s.v.as_slice())?))

@@ -17,6 +17,8 @@
 //! Run: `cargo run --release --features examples --example hoop_equilibria`.
 
 use noether::prelude::*;
+
+use noether::analysis::{normal_modes, EffectivePotential, EquilibriumFinder, Kind};
 use noether_gallery::examples::bead_rotating_hoop::{angle_of, hoop, period, stepper, HoopAngle};
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

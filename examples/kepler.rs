@@ -11,6 +11,7 @@
 //! Run: `cargo run --release --features examples --example kepler` (the orbit and the energy-error plot go to
 //! `gallery-out/`).
 
+use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::measure::{envelope, mean_period};
@@ -41,7 +42,7 @@ impl Potential for Kepler {
 
 impl Kepler {
     /// L = ½ m |ṙ|² − V(r) as a natural system with M = m I.
-    pub fn system(self) -> Result<Natural<Kepler>, Error> {
+    pub fn system(self) -> noether::core::Result<Natural<Kepler>> {
         Natural::diagonal(self, &[self.m, self.m])
     }
 

@@ -19,6 +19,7 @@
 //! calls [`run_steps`] with 2·10⁴).
 
 use noether::particles::laws::LennardJones;
+use noether::particles::{AllPairs, Method, Particle, System, Vec3};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use rand::{rngs::StdRng, Rng, SeedableRng};

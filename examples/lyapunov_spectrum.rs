@@ -14,6 +14,8 @@
 //! `gallery-out/`).
 
 use noether::analysis::{Lyapunov, Spectrum};
+use noether::core::integrators::Rk4;
+use noether::core::TangentStepper;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};

@@ -14,6 +14,8 @@
 //! Run: `cargo run --release --features examples --example normal_modes`.
 
 use noether::prelude::*;
+
+use noether::analysis::{normal_modes, EffectivePotential, EquilibriumFinder};
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::f64::consts::PI;
 use std::process::ExitCode;

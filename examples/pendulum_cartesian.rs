@@ -10,6 +10,10 @@
 //! Run: `cargo run --release --features examples --example pendulum_cartesian`.
 
 use noether::prelude::*;
+
+use noether::constraints::{Constrained, Holonomic, Projected, Rattle};
+
+use noether::core::integrators::Rk4;
 use noether_gallery::examples::pendulum::Pendulum;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

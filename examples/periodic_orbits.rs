@@ -11,6 +11,7 @@
 //! Run: `cargo run --release --features examples --example periodic_orbits` (the L1 family goes to `gallery-out/`).
 
 use noether::analysis::periodic::{Energy, FirstIntegral, Shooting, Stability};
+use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_k_complementary;

@@ -15,6 +15,10 @@
 //! Run: `cargo run --release --features examples --example rolling_disk`.
 
 use noether::prelude::*;
+
+use noether::constraints::{Constrained, Nonholonomic, Projected};
+
+use noether::core::integrators::Rk4;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
 

@@ -20,6 +20,7 @@
 //! Run: `cargo run --release --features examples --example rolling_sphere`.
 
 use noether::constraints::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
+use noether::core::integrators::Rk4;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_k;
 use noether_gallery::measure::mean_period;

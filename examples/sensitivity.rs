@@ -19,6 +19,7 @@
 //! `gallery-out/`).
 
 use noether::analysis::{parameter_sensitivity, Parametric, ParametricHamiltonian};
+use noether::core::integrators::Rk4;
 use noether::core::tangent::run_jacobian;
 use noether::plot::Figure;
 use noether::prelude::*;

@@ -17,6 +17,7 @@
 //!
 //! Run: `cargo run --release --features examples --example sleeping_top`.
 
+use noether::core::integrators::Rk4;
 use noether::core::ChartGuard;
 use noether::prelude::*;
 use noether_gallery::examples::heavy_top::{
@@ -142,7 +143,7 @@ fn pole_approach(top: HeavyTop, report: &mut Report) -> Result<(), BoxError> {
     let h = 1e-3;
     let mut driver = Driver::with_step(euler_angle_stepper(top)?, start, h)?.save(Save::End)?;
     let t_err = match driver.run_until(5.0) {
-        Err(Error::CoordinateSingularity { t, .. }) => t,
+        Err(noether::core::Error::CoordinateSingularity { t, .. }) => t,
         Ok(_) => return Err("the run through the pole finished without a chart error".into()),
         Err(other) => return Err(format!("expected a coordinate singularity, got: {other}").into()),
     };

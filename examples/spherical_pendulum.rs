@@ -14,7 +14,12 @@
 //!
 //! Run: `cargo run --release --features examples --example spherical_pendulum`.
 
+use noether::constraints::{Constrained, Holonomic, Projected, Rattle};
+use noether::core::integrators::Rk4;
 use noether::core::roots::bracketed_root;
+use noether::discrete::momentum::PlanarRotation;
+use noether::discrete::noether_momentum;
+use noether::discrete::FromLagrangian;
 use noether::prelude::*;
 /// A point mass in 3D, z up: L = ½ m |ṙ|² − m g z.
 pub use noether_gallery::examples::bead_rotating_hoop::Bead;

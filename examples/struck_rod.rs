@@ -17,6 +17,7 @@
 //! Run: `cargo run --release --features examples --example struck_rod`.
 
 use noether::constraints::impulse::{Impact, StruckPoints};
+use noether::constraints::Holonomic;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

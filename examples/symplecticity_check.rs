@@ -15,6 +15,7 @@
 //!
 //! Run: `cargo run --release --features examples --example symplecticity_check` (the error-vs-h plot goes to `gallery-out/`).
 
+use noether::core::integrators::{EulerCromer, Rk4};
 use noether::core::selfcheck::{observed_order, reversibility, symplecticity};
 use noether::plot::Figure;
 use noether::prelude::*;

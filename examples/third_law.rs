@@ -11,6 +11,7 @@
 //! Run: `cargo run --release --features examples --example third_law`.
 
 use noether::particles::laws::{GaussianCoupling, Spring};
+use noether::particles::{Internal, Method, PairPotential, Particle, System, Vec3};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use rand::{rngs::StdRng, Rng, SeedableRng};

@@ -19,6 +19,7 @@
 //!
 //! Run: `cargo run --release --features examples --example three_body`.
 
+use noether::analysis::{linear_stability, EffectivePotential, EquilibriumFinder, Kind};
 use noether::core::roots::bracketed_root;
 use noether::nalgebra::Complex;
 use noether::prelude::*;

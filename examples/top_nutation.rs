@@ -103,7 +103,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // of the cubic.
     let samples = (0..=(t_end / 1e-2).round() as usize)
         .map(|k| run.at(k as f64 * 1e-2))
-        .collect::<Result<Vec<State>>>()?;
+        .collect::<noether::core::Result<Vec<State>>>()?;
     let apex = samples
         .iter()
         .map(|s| (s.q[0].sin() * s.q[1].cos(), s.q[0].sin() * s.q[1].sin()))

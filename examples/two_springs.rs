@@ -11,6 +11,7 @@
 //! Run: `cargo run --release --features examples --example two_springs`.
 
 use noether::particles::laws::{FixedEnd, Spring};
+use noether::particles::{External, Internal, Method, Particle, System};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;

@@ -205,7 +205,4 @@ examples! {
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
-/// The code blocks of `docs/guide.md`, run as doc-tests so that the guide stays true.
-#[cfg(doctest)]
-#[doc = include_str!("../docs/guide.md")]
-pub struct GuideDoctests;
+// The guide (docs/guide.md) is the facade's `noether::guide` and is doc-tested there.

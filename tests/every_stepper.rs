@@ -15,6 +15,14 @@
 //! zero, are 100 times better); RATTLE, which gives the driver no vector field, is interpolated
 //! linearly. A method that lost an order, an event or an output time fails.
 
+use noether::constraints::HolonomicSet;
+use noether::constraints::{Constrained, Holonomic, Projected, Rattle};
+use noether::core::integrators::{Dopri5, Euler, EulerCromer, Rk4, SymplecticEuler};
+use noether::discrete::Composition as DiscreteComposition;
+use noether::discrete::{
+    Galerkin, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Trapezoidal, Verlet,
+};
+use noether::particles::{External, Method, Particle, System};
 use noether::particles::{ParticleStepper, Trap};
 use noether::prelude::*;
 use std::f64::consts::PI;

@@ -97,7 +97,7 @@ impl PathConstraint for Free {
 
 /// The boundary-value problem is (nearly) singular: t₁ is close to a discrete conjugate point of t₀
 /// (see the module docs). Travels through core's interfaces as [`noether_core::Error::Model`]: get it
-/// back with `e.downcast_ref::<ConjugatePoint>()`.
+/// back as [`crate::Error::ConjugatePoint`] by `noether_discrete::Error::from(e)`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
     "conjugate point: the discrete Jacobi operator of the path from t₀ = {t0} to t₁ = {t1} is singular \
@@ -120,13 +120,8 @@ pub struct ConjugatePoint {
     pub passed: usize,
 }
 
-impl From<ConjugatePoint> for Error {
-    fn from(e: ConjugatePoint) -> Self {
-        Error::model(e)
-    }
-}
-
-/// [`BoundaryValue::minimize`] ended on a stationary point that is not a minimum of the action.
+/// [`BoundaryValue::minimize`] ended on a stationary point that is not a minimum of the action
+/// ([`crate::Error::NotMinimum`] by `noether_discrete::Error::from(e)`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
     "no minimum of the action: the stationary path has Morse index {morse_index:?} \
@@ -138,12 +133,6 @@ pub struct NotMinimum {
     /// (by the descent, or by Newton from the guess when the descent ran away); `None` when there is
     /// none.
     pub morse_index: Option<usize>,
-}
-
-impl From<NotMinimum> for Error {
-    fn from(e: NotMinimum) -> Self {
-        Error::model(e)
-    }
 }
 
 /// A discrete path that makes the discrete action stationary, with what was learnt on the way.
@@ -372,14 +361,23 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
                 let morse_index = self.solve_from(t0, t1, nodes).ok().and_then(|p| p.morse_index);
                 return Err(NotMinimum { morse_index }.into());
             }
-            Err(e) => return Err(Error::model(Optimizer(e.to_string()))),
+            Err(e) => {
+                return Err(crate::Error::Optimizer {
+                    reason: e.to_string(),
+                }
+                .into())
+            }
         };
         let state = res.state();
         let x = state
             .best_param
             .as_ref()
             .or(state.param.as_ref())
-            .ok_or_else(|| Error::model(Optimizer("no parameter in the final state".into())))?;
+            .ok_or_else(|| {
+                Error::from(crate::Error::Optimizer {
+                    reason: "no parameter in the final state".into(),
+                })
+            })?;
         let mut polished = nodes.to_vec();
         let n = self.ld.dof();
         for (k, node) in polished
@@ -610,11 +608,6 @@ pub fn straight_line(a: &[f64], b: &[f64], steps: usize) -> Result<Vec<Vec<f64>>
         })
         .collect())
 }
-
-/// The optimiser (argmin) failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("optimiser: {0}")]
-struct Optimizer(String);
 
 /// The discrete Euler-Lagrange equations of the whole path as one Newton system.
 struct System<'a, Ld, C> {

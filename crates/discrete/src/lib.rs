@@ -54,6 +54,7 @@
 pub mod boundary;
 pub mod chains;
 pub mod composition;
+mod error;
 pub mod flow;
 pub mod galerkin;
 pub mod integrator;
@@ -66,8 +67,9 @@ pub mod quadrature;
 pub mod tangent;
 pub mod verlet;
 
-pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, PathConstraint};
+pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, NotMinimum, PathConstraint};
 pub use composition::Composition;
+pub use error::{Error, Result};
 pub use flow::DiscreteFlow;
 pub use galerkin::Galerkin;
 pub use integrator::VariationalIntegrator;

@@ -17,7 +17,7 @@
 
 use nalgebra::{DVector, SymmetricEigen};
 use noether_core::linalg::{self, SINGULAR_PIVOT};
-use noether_core::{Error, EulerLagrange, Lagrangian, Result};
+use noether_core::{EulerLagrange, Lagrangian, Result};
 
 /// Default relative tolerance τ of the primary-constraint check: a state is refused when its momenta
 /// are off the constraint by more than τ·max(‖p‖₂, ‖∂L/∂q̇(t, q, 0)‖₂).
@@ -30,8 +30,8 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-8;
 
 /// A state whose momenta are off the primary constraint of a degenerate Lagrangian (see the module
 /// docs), refused by a variational integrator before its step. Travels through core's interfaces as
-/// [`noether_core::Error::Model`]: get it back with
-/// `e.downcast_ref::<OffPrimaryConstraint>()`.
+/// [`noether_core::Error::Model`]: get it back as [`crate::Error::OffPrimaryConstraint`] by
+/// `noether_discrete::Error::from(e)`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
     "momenta off the primary constraint of a degenerate Lagrangian at t = {t}: ‖p − ∂L/∂q̇(q, 0)‖ = {residual:e} \
@@ -48,12 +48,6 @@ pub struct OffPrimaryConstraint {
     pub tolerance: f64,
     /// Dimension of the null space of ∂²L/∂q̇² at (t, q, 0).
     pub null_directions: usize,
-}
-
-impl From<OffPrimaryConstraint> for Error {
-    fn from(e: OffPrimaryConstraint) -> Self {
-        Error::model(e)
-    }
 }
 
 /// Checks that the momenta `p` at (t, q) lie on the primary constraint of `el`'s Lagrangian to the

@@ -2,16 +2,17 @@
 //!
 //! Lagrangian and Hamiltonian mechanics with automatic differentiation. Write a Lagrangian
 //! L(t, q, q̇) or a Hamiltonian H(t, q, p) once, as generic Rust code; noether derives the equations of
-//! motion with dual numbers and integrates them. `use noether::prelude::*` brings in what a model and
-//! a simulation need, from every part of the toolkit:
+//! motion with dual numbers and integrates them. `use noether::prelude::*` brings in what a first program
+//! needs (about thirty names: [`prelude`]); the rest is in the crates re-exported here, and the [`guide`]
+//! walks from a first pendulum through all of them:
 //!
 //! | module | crate | what |
 //! |---|---|---|
-//! | [`core`] | noether-core | models, equations of motion by AD, Legendre maps, integrators, the driver, Newton |
+//! | [`core`] | noether-core | models, equations of motion by AD, Legendre maps, integrators (explicit, adaptive Dormand-Prince, Nyström DPRKN, IAS15, symplectic, Gauss), exact tangents of the flow, the driver, Newton |
 //! | [`constraints`] | noether-constraints | holonomic and nonholonomic constraints, multipliers, RATTLE |
 //! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta |
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
-//! | [`analysis`] | noether-analysis | equilibria and normal modes |
+//! | [`analysis`] | noether-analysis | equilibria and normal modes, Lyapunov spectra, sensitivities, periodic orbits |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
 //! | `ensemble` (feature `ensemble`) | noether-ensemble | many runs on every core, and across MPI ranks (feature `mpi`): grids, random samples, reductions bit-identical for any thread count |
@@ -34,7 +35,7 @@
 //!     .run_until(10.0)?;
 //! let e = sol.observed("energy")?;
 //! assert!((e[e.len() - 1] - e[0]).abs() < 1e-8 * e[0].abs());
-//! # Ok::<(), noether::core::Error>(())
+//! # Ok::<(), noether::Error>(())
 //! ```
 
 pub use nalgebra;
@@ -54,29 +55,34 @@ pub use num_dual;
 /// Closure-like shorthands for small models (see [`noether_core::shorthand`]).
 pub use noether_core::{hamiltonian, lagrangian};
 
-/// Everything a model and a simulation need, in one import: the core prelude (models, integrators, the
-/// driver), constraints, discrete mechanics, particles and equilibria. The discrete crate's
-/// composition of variational integrators is `DiscreteComposition` here (core's `Composition` is the
-/// symmetric composition of Störmer-Verlet).
+mod error;
+pub use error::{Error, Result};
+
+/// The guide: from a first pendulum to the heavy top, each step with its code (these examples are
+/// compiled and run as doc-tests, so they stay true).
+#[doc = include_str!("../../../docs/guide.md")]
+pub mod guide {}
+
+/// The names a first program needs, in one import: the models, the systems that turn them into equations
+/// of motion, states, the driver and what it returns, the recommended integrators, and the toolkit's
+/// [`Error`]. Everything else is imported from its crate (`noether::constraints::Rattle`) or from that
+/// crate's own prelude (`noether::core::prelude`, `noether::discrete::prelude`,
+/// `noether::particles::prelude`, `noether::constraints::prelude`).
 pub mod prelude {
-    pub use noether_analysis::{
-        linear_stability, normal_modes, EffectivePotential, Equilibrium, EquilibriumFinder, Kind,
+    // The user's model, and the shorthands that write one.
+    pub use noether_core::{hamiltonian, lagrangian, Hamiltonian, Lagrangian, Potential, Scalar, Separable};
+    // The model's equations of motion (Euler-Lagrange, Hamilton, H built from L).
+    pub use noether_core::{
+        EulerLagrange, HamiltonEquations, LegendreTransform, Natural, SeparableHamiltonian,
     };
-    pub use noether_constraints::{
-        project, Constrained, ConstraintForces, ConstraintSet, GibbsAppell, GibbsAppellEquations, Holonomic,
-        HolonomicSet, Impact, Nonholonomic, NonholonomicSet, Projected, Projection, Rattle, StruckPoints,
+    // States, one run, and what it returns.
+    pub use noether_core::{
+        Direction, Driver, Dynamics, Event, Momenta, Save, Solution, State, Stepper, Stop, Velocities,
     };
-    pub use noether_core::prelude::*;
-    pub use noether_discrete::prelude::{
-        noether_momentum, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, FromLagrangian, Galerkin,
-        LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, PlanarRotation, Symmetry,
-        Translation, Trapezoidal, VariationalIntegrator, Verlet,
-    };
-    pub use noether_discrete::Composition as DiscreteComposition;
-    #[cfg(feature = "ensemble")]
-    pub use noether_ensemble::{Ensemble, Members, Reducer};
-    pub use noether_particles::prelude::{
-        AllPairs, Body, External, ExternalForce, Internal, InternalForce, Method, OneBodyForce, OnePotential,
-        PairPotential, Parallel, Particle, ShortRange, System, Vec3,
-    };
+    // The recommended integrators: adaptive (DOP853), symplectic for any H (Gauss-Legendre), symplectic
+    // compositions and high-order Nyström for natural systems, IAS15 for close encounters, and the
+    // variational integrator of the midpoint discrete Lagrangian.
+    pub use crate::{Error, Result};
+    pub use noether_core::integrators::{Composition, DefaultMethod, Dop853, Dprkn12, Gauss, Ias15};
+    pub use noether_discrete::{Midpoint, VariationalIntegrator};
 }
