@@ -289,16 +289,23 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
                 let morse_index = self.solve_from(t0, t1, nodes).ok().and_then(|p| p.morse_index);
                 return Err(NotMinimum { morse_index }.into());
             }
-            Err(e) => return Err(crate::Error::Optimizer { reason: e.to_string() }.into()),
+            Err(e) => {
+                return Err(crate::Error::Optimizer {
+                    reason: e.to_string(),
+                }
+                .into())
+            }
         };
         let state = res.state();
         let x = state
             .best_param
             .as_ref()
             .or(state.param.as_ref())
-            .ok_or_else(|| Error::from(crate::Error::Optimizer {
-                reason: "no parameter in the final state".into(),
-            }))?;
+            .ok_or_else(|| {
+                Error::from(crate::Error::Optimizer {
+                    reason: "no parameter in the final state".into(),
+                })
+            })?;
         let mut polished = nodes.to_vec();
         let n = self.ld.dof();
         for (k, node) in polished
