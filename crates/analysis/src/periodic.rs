@@ -410,48 +410,9 @@ impl<S: TangentStepper> Shooting<S> {
     /// ([`Error::ShootingDiverged`] with the iteration count and residual), and the stepper's errors.
     pub fn solve(&mut self, guess: &State<S::Partner>, period: f64) -> Result<PeriodicOrbit<S::Partner>> {
         let n = self.stepper.dof();
-        check_period(period)?;
-        guess.validate(n)?;
-        noether_core::error::check_positive("Floquet tolerance", self.floquet_tol)?;
-        self.newton.validate()?;
-        for g in &self.symmetries {
-            noether_core::error::check_len("symmetry generator (length 2n)", g, 2 * n)?;
-        }
+        self.check_setup(guess, period)?;
         let k = self.integrals.len();
-        let levels = self.integrals.iter().filter(|(_, c)| c.is_some()).count();
-        let unknowns = 2 * n + usize::from(!self.fixed_period) + k;
-        let equations = 2 * n + 1 + levels + self.symmetries.len();
-        if unknowns != equations {
-            return Err(Error::ShootingSetup { unknowns, equations });
-        }
-        // The flow at the guess: the normal of the phase plane.
-        let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
-        vector_field(&self.stepper, guess, &mut fq, &mut fv)?;
-        let flow: Vec<f64> = fq.into_iter().chain(fv).collect();
-        let speed = flow.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-        if speed == 0.0 {
-            return Err(Error::Equilibrium { rate_norm: speed });
-        }
-        let reference: Vec<f64> = guess.q.iter().chain(guess.v.iter()).copied().collect();
-        // A coordinate phase is ⟨e_i, y₀ − y*⟩ with y*_i replaced by the value.
-        let (flow, reference_phase) = match self.phase_coordinate {
-            None => (flow, reference.clone()),
-            Some((i, value)) => {
-                if i >= 2 * n || !value.is_finite() {
-                    return Err(noether_core::Error::InvalidParameter {
-                        name: "phase coordinate (index into (q, v), finite value)",
-                        value: i as f64,
-                        reason: "the index must be below 2n and the value finite",
-                    }
-                    .into());
-                }
-                let mut e = vec![0.0; 2 * n];
-                e[i] = 1.0;
-                let mut r = reference.clone();
-                r[i] = value;
-                (e, r)
-            }
-        };
+        let (speed, reference, (flow, reference_phase)) = self.phase_plane(guess)?;
         let mut x0 = reference.clone();
         if !self.fixed_period {
             x0.push(period);
@@ -468,32 +429,11 @@ impl<S: TangentStepper> Shooting<S> {
             reference: &reference,
             phase: (&flow, &reference_phase),
         };
-        let (x, info) = solve_dense(&self.newton, problem, &x0).map_err(|e| match Error::from(e) {
-            Error::Core(noether_core::Error::NewtonDiverged {
-                iterations,
-                residual,
-                tolerance,
-                ..
-            }) => Error::ShootingDiverged {
-                iterations,
-                residual,
-                tolerance,
-            },
-            Error::Core(noether_core::Error::SingularMatrix { pivot_ratio, .. }) => {
-                Error::DegenerateOrbit { pivot_ratio }
-            }
-            other => other,
-        })?;
+        let (x, info) =
+            solve_dense(&self.newton, problem, &x0).map_err(|e| shooting_error(Error::from(e)))?;
         let period = if self.fixed_period { period } else { x[2 * n] };
         let initial = State::from_parts(guess.t, &x.as_slice()[..n], &x.as_slice()[n..2 * n]);
-        // A rest point solves the equations too (with any period): rejected when the flow there is
-        // below 1e-8 of the flow at the guess.
-        let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
-        vector_field(&self.stepper, &initial, &mut fq, &mut fv)?;
-        let rate = fq.iter().chain(fv.iter()).fold(0.0_f64, |m, x| m.max(x.abs()));
-        if rate <= 1e-8 * speed {
-            return Err(Error::Equilibrium { rate_norm: rate });
-        }
+        self.check_not_at_rest(&initial, speed)?;
         let (end, monodromy) = run(&mut self.stepper, self.steps, &initial, period, true)?;
         let closure = end
             .q
@@ -516,6 +456,99 @@ impl<S: TangentStepper> Shooting<S> {
             floquet,
             newton: info,
         })
+    }
+
+    /// Checks the input of [`solve`](Self::solve): the period, the guess, the Floquet tolerance, the
+    /// Newton settings, the symmetry generators' lengths (2n), and that the unknowns (y₀, T unless
+    /// fixed, one unfolding parameter per integral) balance the equations (closure, phase, the
+    /// integrals' levels, one per symmetry).
+    fn check_setup(&self, guess: &State<S::Partner>, period: f64) -> Result<()> {
+        let n = self.stepper.dof();
+        check_period(period)?;
+        guess.validate(n)?;
+        noether_core::error::check_positive("Floquet tolerance", self.floquet_tol)?;
+        self.newton.validate()?;
+        for g in &self.symmetries {
+            noether_core::error::check_len("symmetry generator (length 2n)", g, 2 * n)?;
+        }
+        let k = self.integrals.len();
+        let levels = self.integrals.iter().filter(|(_, c)| c.is_some()).count();
+        let unknowns = 2 * n + usize::from(!self.fixed_period) + k;
+        let equations = 2 * n + 1 + levels + self.symmetries.len();
+        if unknowns != equations {
+            return Err(Error::ShootingSetup { unknowns, equations });
+        }
+        Ok(())
+    }
+
+    /// The phase condition at the guess y*: the largest rate |F(y*)| (an [`Error::Equilibrium`] when
+    /// it is 0), y* itself, and the phase plane ⟨normal, y₀ − point⟩ = 0 as (normal, point): the plane
+    /// through y* normal to the flow F(y*), or, with a phase coordinate (i, value), the plane
+    /// y₀,i = value (normal e_i, y* with its i-th entry replaced by the value).
+    #[allow(clippy::type_complexity)]
+    fn phase_plane(&self, guess: &State<S::Partner>) -> Result<(f64, Vec<f64>, (Vec<f64>, Vec<f64>))> {
+        let n = self.stepper.dof();
+        let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
+        vector_field(&self.stepper, guess, &mut fq, &mut fv)?;
+        let flow: Vec<f64> = fq.into_iter().chain(fv).collect();
+        let speed = flow.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        if speed == 0.0 {
+            return Err(Error::Equilibrium { rate_norm: speed });
+        }
+        let reference: Vec<f64> = guess.q.iter().chain(guess.v.iter()).copied().collect();
+        let plane = match self.phase_coordinate {
+            None => (flow, reference.clone()),
+            Some((i, value)) => {
+                if i >= 2 * n || !value.is_finite() {
+                    return Err(noether_core::Error::InvalidParameter {
+                        name: "phase coordinate (index into (q, v), finite value)",
+                        value: i as f64,
+                        reason: "the index must be below 2n and the value finite",
+                    }
+                    .into());
+                }
+                let mut e = vec![0.0; 2 * n];
+                e[i] = 1.0;
+                let mut r = reference.clone();
+                r[i] = value;
+                (e, r)
+            }
+        };
+        Ok((speed, reference, plane))
+    }
+
+    /// A rest point solves the shooting equations too (with any period): [`Error::Equilibrium`] when
+    /// the largest rate |F| at the converged `initial` is below 1e-8 of `speed`, the one at the guess.
+    fn check_not_at_rest(&self, initial: &State<S::Partner>, speed: f64) -> Result<()> {
+        let n = self.stepper.dof();
+        let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
+        vector_field(&self.stepper, initial, &mut fq, &mut fv)?;
+        let rate = fq.iter().chain(fv.iter()).fold(0.0_f64, |m, x| m.max(x.abs()));
+        if rate <= 1e-8 * speed {
+            return Err(Error::Equilibrium { rate_norm: rate });
+        }
+        Ok(())
+    }
+}
+
+/// The shooting Newton's failures as the orbit's: no convergence is [`Error::ShootingDiverged`], a
+/// singular Jacobian [`Error::DegenerateOrbit`]; other errors pass unchanged.
+fn shooting_error(e: Error) -> Error {
+    match e {
+        Error::Core(noether_core::Error::NewtonDiverged {
+            iterations,
+            residual,
+            tolerance,
+            ..
+        }) => Error::ShootingDiverged {
+            iterations,
+            residual,
+            tolerance,
+        },
+        Error::Core(noether_core::Error::SingularMatrix { pivot_ratio, .. }) => {
+            Error::DegenerateOrbit { pivot_ratio }
+        }
+        other => other,
     }
 }
 

@@ -273,8 +273,42 @@ where
         h: f64,
         continued: bool,
     ) -> noether_core::Result<(State<Momenta>, DVector<f64>)> {
+        let t0 = state.t;
+        let (q1, big_lambda, iterations) = self.position_stage(state, v0, h)?;
+        let (v1, big_mu, end) = self.momentum_stage(state, &q1, h)?;
+        let (p1, (pos, vel)) = (end.p1, end.residuals);
+        if !q1.iter().chain(p1.iter()).all(|z| z.is_finite()) || !pos.is_finite() {
+            return Err(CoreError::NonFiniteResult {
+                what: "state after the step",
+                t: t0,
+                component: None,
+            });
+        }
+        self.last = RattleInfo {
+            position_residual: pos,
+            velocity_residual: vel,
+            iterations,
+            momentum_iterations: end.iterations,
+        };
+        self.worst = (self.worst.0.max(pos), self.worst.1.max(vel));
+        let start = big_lambda * (2.0 / h);
+        // Μ_{k−1}/h from the previous step (stored as 2Μ/h) plus Λ_k/h.
+        self.symmetric = continued.then(|| (t0, (&self.multipliers.1 + &start) * 0.5));
+        self.multipliers = (start, big_mu * (2.0 / h));
+        Ok((State::from_vectors(t0 + h, q1, p1), v1))
+    }
+
+    /// Stage 1, the positions: (q₁, Λ) from p₀ + D₁L_d(q₀, q₁) + G(t₀, q₀)ᵀΛ = 0, φ(t₁, q₁) = 0 by
+    /// Newton from (q₀ + h q̇₀, the last step's Λ), with the Jacobian's factor kept across steps of
+    /// the same h. Returns q₁, Λ and the Newton iterations.
+    fn position_stage(
+        &mut self,
+        state: &State<Momenta>,
+        v0: &DVector<f64>,
+        h: f64,
+    ) -> noether_core::Result<(DVector<f64>, DVector<f64>, usize)> {
         let (n, m) = (self.ld.dof(), self.constraints.count());
-        let (t0, t1) = (state.t, state.t + h);
+        let t0 = state.t;
         let (q0, p0) = (state.q.as_slice(), state.v.as_slice());
         let mut g0 = DMatrix::zeros(m, n);
         holonomic::jacobian_unchecked(&self.constraints, t0, q0, &mut g0);
@@ -282,8 +316,6 @@ where
         // of q, with rounding floor ~ε‖q‖, so the constraint rows converge to rounding as well.
         let w = h / self.mass_scale(t0, q0, v0.as_slice())?;
         let floor1 = max_abs(q0) + (w * max_abs(p0)).abs();
-
-        // Stage 1: (q₁, Λ').
         let mut x = vec![0.0; n + m];
         for i in 0..n {
             x[i] = q0[i] + h * v0[i];
@@ -328,8 +360,21 @@ where
         }
         let q1 = DVector::from_column_slice(&x[..n]);
         let big_lambda = DVector::from_column_slice(&x[n..]) / w;
+        Ok((q1, big_lambda, info1.iterations))
+    }
 
-        // Stage 2: (q̇₁, Μ) with p₁ = D₂L_d + G₁ᵀΜ.
+    /// Stage 2, the velocities and momenta: (q̇₁, Μ) from ∂L/∂q̇(t₁, q₁, q̇₁) = D₂L_d(q₀, q₁) +
+    /// G(t₁, q₁)ᵀΜ, G(t₁, q₁) q̇₁ + φ_t = 0 by Newton from (q₁ − q₀)/h; p₁ = D₂L_d + G₁ᵀΜ. Returns
+    /// q̇₁, Μ, and p₁ with the residuals |φ|, |G₁q̇₁ + φ_t| (max norms) left on the manifold.
+    fn momentum_stage(
+        &mut self,
+        state: &State<Momenta>,
+        q1: &DVector<f64>,
+        h: f64,
+    ) -> noether_core::Result<(DVector<f64>, DVector<f64>, MomentumEnd)> {
+        let (n, m) = (self.ld.dof(), self.constraints.count());
+        let (t0, t1) = (state.t, state.t + h);
+        let q0 = state.q.as_slice();
         let mut d2 = vec![0.0; n];
         self.ld.d2(t0, h, q0, q1.as_slice(), &mut d2);
         let mut g1 = DMatrix::zeros(m, n);
@@ -357,7 +402,6 @@ where
         let v1 = DVector::from_column_slice(&y[..n]);
         let big_mu = DVector::from_column_slice(&y[n..]);
         let p1 = DVector::from_column_slice(&d2) + g1.tr_mul(&big_mu);
-
         // Residuals left on the manifold.
         let mut r = vec![0.0; m];
         holonomic::values_unchecked(&self.constraints, t1, q1.as_slice(), &mut r);
@@ -367,26 +411,21 @@ where
             .iter()
             .zip(&phi_t)
             .fold(0.0_f64, |a, (x, y)| a.max((x + y).abs()));
-        if !q1.iter().chain(p1.iter()).all(|z| z.is_finite()) || !pos.is_finite() {
-            return Err(CoreError::NonFiniteResult {
-                what: "state after the step",
-                t: t0,
-                component: None,
-            });
-        }
-        self.last = RattleInfo {
-            position_residual: pos,
-            velocity_residual: vel,
-            iterations: info1.iterations,
-            momentum_iterations: info2.iterations,
+        let end = MomentumEnd {
+            p1,
+            residuals: (pos, vel),
+            iterations: info2.iterations,
         };
-        self.worst = (self.worst.0.max(pos), self.worst.1.max(vel));
-        let start = big_lambda * (2.0 / h);
-        // Μ_{k−1}/h from the previous step (stored as 2Μ/h) plus Λ_k/h.
-        self.symmetric = continued.then(|| (t0, (&self.multipliers.1 + &start) * 0.5));
-        self.multipliers = (start, big_mu * (2.0 / h));
-        Ok((State::from_vectors(t1, q1, p1), v1))
+        Ok((v1, big_mu, end))
     }
+}
+
+/// The end of the momentum stage: p₁, the residuals (|φ(t₁, q₁)|, |G₁q̇₁ + φ_t|) in the max norm
+/// left on the manifold, and the stage's Newton iterations.
+struct MomentumEnd {
+    p1: DVector<f64>,
+    residuals: (f64, f64),
+    iterations: usize,
 }
 
 /// A singular Newton Jacobian is reported as rank-deficient constraints when G has low rank.

@@ -242,6 +242,20 @@ fn hermite_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
     }
 }
 
+/// y(θ) = y₀ + θ Σ_m `c[m]` θ^m = y₀ + θ(c₀ + θ(c₁ + … + θ c_last)) by Horner's rule: the evaluation
+/// of the dense outputs stored as plain power series ([`Nystrom`](crate::integrators::Nystrom),
+/// [`Ias15`](crate::integrators::Ias15)).
+pub(crate) fn horner_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
+    let last = c.len() - 1;
+    for i in 0..y0.len() {
+        let mut acc = c[last][i];
+        for cm in c[..last].iter().rev() {
+            acc = cm[i] + theta * acc;
+        }
+        out[i] = y0[i] + theta * acc;
+    }
+}
+
 /// y₀ + θ r₁.
 fn linear_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
     for i in 0..y0.len() {

@@ -43,6 +43,7 @@
 
 mod csv_io;
 mod event;
+mod in_step;
 mod solution;
 
 pub use event::{Direction, Event, Observation, Reset};
@@ -50,7 +51,7 @@ pub use solution::{EventRecord, Solution, Stats, Stop};
 
 use crate::error::{check_finite, check_step};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
-use event::{Action, Observer};
+use event::Observer;
 use std::time::Instant;
 
 /// The default step limit of a run ([`Driver::max_steps`]): 10¹⁰ steps (`usize::MAX` on targets
@@ -416,7 +417,6 @@ impl<'a, S: Stepper> Driver<'a, S> {
     /// The run proper: steps until the target or a terminal event, filling `sol` as it goes (so that
     /// after an error `sol` holds the run up to it).
     fn run_into(&mut self, sol: &mut Solution<S::Partner>, target: Target) -> Result<()> {
-        let n = self.state.dof();
         let interpolate = matches!(self.save, Save::Times(_)) || !self.events.is_empty();
         self.stepper.request_dense_output(interpolate || self.keep_dense);
         let adaptive = self.stepper.is_adaptive();
@@ -424,6 +424,44 @@ impl<'a, S: Stepper> Driver<'a, S> {
         if let (Target::Time(t_end), false) = (target, adaptive) {
             self.check_step_count(t_end, h_fixed)?;
         }
+        let plan = Plan {
+            target,
+            adaptive,
+            h_fixed,
+            dense: interpolate || self.keep_dense,
+        };
+        let mut run = self.begin_run(sol)?;
+        loop {
+            let t0 = self.state.t;
+            let Some((h_try, last)) = self.next_step_size(target, adaptive, h_fixed, &run)? else {
+                if matches!(target, Target::Steps(_)) {
+                    sol.stop = Stop::Steps;
+                }
+                break;
+            };
+            if run.stepped >= self.max_steps {
+                return Err(Error::StepLimit {
+                    steps: run.stepped,
+                    t: t0,
+                });
+            }
+            self.take_step(plan, (h_try, last), &mut run, &mut sol.stats)?;
+            if let Some(i) = self.output_step(t0, plan, sol, &mut run)? {
+                sol.stop = Stop::Event(i);
+                break;
+            }
+        }
+        if matches!(self.save, Save::End) {
+            observe(&mut self.observers, &self.state, &mut run.obs_row)?;
+            sol.push(&self.state, &run.obs_row);
+        }
+        Ok(())
+    }
+
+    /// The bookkeeping of a run from the current state, whose start is saved into `sol`; an event
+    /// that stopped the previous run here counts as just applied.
+    fn begin_run(&mut self, sol: &mut Solution<S::Partner>) -> Result<RunState<S::Partner>> {
+        let n = self.state.dof();
         let mut run = RunState {
             obs_row: vec![0.0; sol.observer_names.len()],
             next_time: 0,
@@ -447,79 +485,91 @@ impl<'a, S: Stepper> Driver<'a, S> {
             }
         }
         self.save_start(sol, &mut run)?;
-        loop {
-            let t0 = self.state.t;
-            let Some((h_try, last)) = self.next_step_size(target, adaptive, h_fixed, &run)? else {
-                if matches!(target, Target::Steps(_)) {
-                    sol.stop = Stop::Steps;
-                }
-                break;
-            };
-            if run.stepped >= self.max_steps {
-                return Err(Error::StepLimit {
-                    steps: run.stepped,
-                    t: t0,
-                });
-            }
-            if interpolate || self.keep_dense {
-                run.start.y[..n].copy_from_slice(self.state.q.as_slice());
-                run.start.y[n..].copy_from_slice(self.state.v.as_slice());
-            }
-            let info = self.advance(h_try)?;
-            run.stepped += 1;
-            run.k += 1;
-            if last && info.h == h_try {
-                if let Target::Time(t_end) = target {
-                    self.state.t = t_end;
-                }
-            } else if !adaptive {
-                self.state.t = run.origin + run.k as f64 * h_fixed;
-            }
-            add_step(&mut sol.stats, &info);
+        Ok(run)
+    }
 
-            // The continuous extension of this step, when something needs it.
-            let dense = if interpolate || self.keep_dense {
-                let d = self.extension(t0, &mut run.start, &mut sol.stats)?;
-                let order = sol.interpolation_order.map_or(d.order(), |o| o.min(d.order()));
-                sol.interpolation_order = Some(order);
-                Some(d)
-            } else {
-                None
-            };
-            let cut = match &dense {
-                Some(d) => {
-                    let cut = self.record_events(d, sol, &mut run)?;
-                    self.sample_times(d, cut.map_or(self.state.t, |c| c.0), sol, &mut run)?;
-                    cut
-                }
-                None => None,
-            };
-            if let Some(d) = dense.filter(|_| self.keep_dense) {
-                sol.segments.push(d);
-            }
-            match cut {
-                None => {
-                    let save_step = match self.save {
-                        Save::Steps => true,
-                        Save::Every(every) => {
-                            run.stepped.is_multiple_of(every) || self.is_done(target, run.stepped)
-                        }
-                        _ => false,
-                    };
-                    if save_step {
-                        observe(&mut self.observers, &self.state, &mut run.obs_row)?;
-                        sol.push(&self.state, &run.obs_row);
-                    }
-                }
-                Some((_, i)) => {
-                    if self.apply_event(i, sol, &mut run)? {
-                        sol.stop = Stop::Event(i);
-                        break;
-                    }
-                }
-            }
+    /// One step of the run, trying h (`last`: it ends the run at t_end when taken whole): y at its
+    /// start kept for the interpolation, the stepper's step, then t set exactly to t_end after the
+    /// last step, and to the grid t_k = origin + k h after a fixed step (no drift from summing h).
+    fn take_step(
+        &mut self,
+        plan: Plan,
+        (h_try, last): (f64, bool),
+        run: &mut RunState<S::Partner>,
+        stats: &mut Stats,
+    ) -> Result<()> {
+        if plan.dense {
+            let n = self.state.dof();
+            run.start.y[..n].copy_from_slice(self.state.q.as_slice());
+            run.start.y[n..].copy_from_slice(self.state.v.as_slice());
         }
-        if matches!(self.save, Save::End) {
+        let info = self.advance(h_try)?;
+        run.stepped += 1;
+        run.k += 1;
+        if last && info.h == h_try {
+            if let Target::Time(t_end) = plan.target {
+                self.state.t = t_end;
+            }
+        } else if !plan.adaptive {
+            self.state.t = run.origin + run.k as f64 * plan.h_fixed;
+        }
+        add_step(stats, &info);
+        Ok(())
+    }
+
+    /// The output of the step just taken from t₀: on its continuous extension (when the run needs
+    /// one) the events are located and the output times sampled, up to the first stop or reset; the
+    /// extension is kept when asked for; then the step is saved, or the event that cut it applied.
+    /// Returns the index of a terminal event that ends the run.
+    fn output_step(
+        &mut self,
+        t0: f64,
+        plan: Plan,
+        sol: &mut Solution<S::Partner>,
+        run: &mut RunState<S::Partner>,
+    ) -> Result<Option<usize>> {
+        let dense = if plan.dense {
+            let d = self.extension(t0, &mut run.start, &mut sol.stats)?;
+            let order = sol.interpolation_order.map_or(d.order(), |o| o.min(d.order()));
+            sol.interpolation_order = Some(order);
+            Some(d)
+        } else {
+            None
+        };
+        let cut = match &dense {
+            Some(d) => {
+                let cut = self.record_events(d, sol, run)?;
+                self.sample_times(d, cut.map_or(self.state.t, |c| c.0), sol, run)?;
+                cut
+            }
+            None => None,
+        };
+        if let Some(d) = dense.filter(|_| self.keep_dense) {
+            sol.segments.push(d);
+        }
+        match cut {
+            None => {
+                self.save_step(plan.target, sol, run)?;
+                Ok(None)
+            }
+            Some((_, i)) => Ok(self.apply_event(i, sol, run)?.then_some(i)),
+        }
+    }
+
+    /// Saves the state after a step that no event cut, when the [`Save`] mode asks for it (every
+    /// step, every m-th and the last).
+    fn save_step(
+        &mut self,
+        target: Target,
+        sol: &mut Solution<S::Partner>,
+        run: &mut RunState<S::Partner>,
+    ) -> Result<()> {
+        let save_step = match self.save {
+            Save::Steps => true,
+            Save::Every(every) => run.stepped.is_multiple_of(every) || self.is_done(target, run.stepped),
+            _ => false,
+        };
+        if save_step {
             observe(&mut self.observers, &self.state, &mut run.obs_row)?;
             sol.push(&self.state, &run.obs_row);
         }
@@ -595,144 +645,6 @@ impl<'a, S: Stepper> Driver<'a, S> {
         }))
     }
 
-    /// Finds the events that fired in the step just taken (on its continuous extension `d`), records
-    /// those up to the first stop or reset, and returns the (time, index) of that stop or reset; g at
-    /// the end of the step becomes each event's starting value for the next.
-    ///
-    /// An event whose g vanishes at the start of the step, or that was just applied there (a reset, or
-    /// the terminal stop a continued run starts from), takes its starting sign just after the start,
-    /// at t₀ + δ with δ = max(1e-9 h, 64 ε |t₀|): the located root is only known to rounding, so its
-    /// own g may have either sign, and a crossing later in the same step must still be seen (a ball
-    /// that bounces and lands again within one long step). Only a crossing closer than δ to the point
-    /// where the event was applied is not seen, so a reset cannot fire again at once.
-    fn record_events(
-        &mut self,
-        d: &DenseOutput<S::Partner>,
-        sol: &mut Solution<S::Partner>,
-        run: &mut RunState<S::Partner>,
-    ) -> Result<Option<(f64, usize)>> {
-        let (t0, t1) = (d.t_start(), self.state.t);
-        let mut hits = Vec::new();
-        for (i, ev) in self.events.iter_mut().enumerate() {
-            let g1 = ev.value(&self.state)?;
-            let (mut ta, mut ga) = (t0, std::mem::replace(&mut run.g_prev[i], g1));
-            if run.just_applied[i] || ga == 0.0 {
-                run.just_applied[i] = false;
-                ta = t0 + (1e-9 * (t1 - t0)).max(64.0 * f64::EPSILON * t0.abs());
-                if ta >= t1 {
-                    continue; // a step too short to tell the side: the next one starts from g1
-                }
-                d.fill_state(ta, &mut run.scratch)?;
-                ga = ev.value(&run.scratch)?;
-            }
-            if ev.direction.fires(ga, g1) {
-                let scratch = &mut run.scratch;
-                let g = &mut ev.g;
-                let tc = crate::roots::bracketed_root(
-                    |t| match d.fill_state(t, scratch) {
-                        Ok(()) => g(scratch),
-                        Err(_) => f64::NAN,
-                    },
-                    (ta, ga),
-                    (t1, g1),
-                )
-                .map_err(|e| match e {
-                    Error::NonFiniteResult { t, .. } => Error::NonFiniteResult {
-                        what: "event function inside the step",
-                        t,
-                        component: None,
-                    },
-                    e => e,
-                })?;
-                hits.push((tc, i));
-            }
-        }
-        hits.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for &(tc, i) in &hits {
-            let state = if tc == t1 {
-                self.state.clone()
-            } else {
-                d.state_at(tc)?
-            };
-            sol.events.push(EventRecord {
-                event: i,
-                t: tc,
-                state,
-            });
-            sol.stats.events += 1;
-            if !matches!(self.events[i].action, Action::Record) {
-                return Ok(Some((tc, i)));
-            }
-        }
-        Ok(None)
-    }
-
-    /// Saves the output times inside (t₀, t_out] of the step just taken, from its continuous extension
-    /// (the computed state itself at its end). The list of times is read in place: sampling costs
-    /// O(steps + times).
-    fn sample_times(
-        &mut self,
-        d: &DenseOutput<S::Partner>,
-        t_out: f64,
-        sol: &mut Solution<S::Partner>,
-        run: &mut RunState<S::Partner>,
-    ) -> Result<()> {
-        let Save::Times(times) = &self.save else {
-            return Ok(());
-        };
-        while let Some(&t) = times.get(run.next_time).filter(|&&t| t <= t_out) {
-            if t == self.state.t {
-                run.scratch.copy_from(&self.state);
-            } else {
-                d.fill_state(t, &mut run.scratch)?;
-            }
-            observe(&mut self.observers, &run.scratch, &mut run.obs_row)?;
-            sol.push(&run.scratch, &run.obs_row);
-            run.next_time += 1;
-        }
-        Ok(())
-    }
-
-    /// Applies the stop or reset of event `i`, whose record is the last of `sol`: the state becomes
-    /// the one at the event, then (a reset) the changed one. Returns `true` when the run stops.
-    fn apply_event(
-        &mut self,
-        i: usize,
-        sol: &mut Solution<S::Partner>,
-        run: &mut RunState<S::Partner>,
-    ) -> Result<bool> {
-        let at = sol.events.last().expect("the event just recorded").state.clone();
-        let save_steps = matches!(self.save, Save::Steps | Save::Every(_));
-        if save_steps {
-            observe(&mut self.observers, &at, &mut run.obs_row)?;
-            sol.push(&at, &run.obs_row);
-        }
-        self.state = at;
-        let n = self.state.dof();
-        let reset = match &mut self.events[i].action {
-            Action::Stop => {
-                self.stopped_at = Some((i, self.state.t));
-                return Ok(true);
-            }
-            Action::Reset(reset) => reset,
-            Action::Record => unreachable!("a cut is a stop or a reset"),
-        };
-        let mut changed = self.state.clone();
-        reset(&mut changed)?;
-        changed.validate(n)?;
-        check_reset_time(self.state.t, changed.t, &self.save, run.next_time)?;
-        self.state = changed;
-        if save_steps {
-            observe(&mut self.observers, &self.state, &mut run.obs_row)?;
-            sol.push(&self.state, &run.obs_row);
-        }
-        (run.origin, run.k) = (self.state.t, 0);
-        run.start.f = None;
-        run.g_prev = self.event_values()?;
-        run.just_applied[i] = true;
-        Ok(false)
-    }
-
     /// `true` when the run will stop after this step (for [`Save::Every`] to save the end).
     fn is_done(&self, target: Target, stepped: usize) -> bool {
         match target {
@@ -740,11 +652,16 @@ impl<'a, S: Stepper> Driver<'a, S> {
             Target::Steps(m) => stepped >= m,
         }
     }
+}
 
-    fn event_values(&mut self) -> Result<Vec<f64>> {
-        let state = &self.state;
-        self.events.iter_mut().map(|e| e.value(state)).collect()
-    }
+/// What a run does at every step: its target, whether the stepper is adaptive (else the size of its
+/// fixed steps), and whether each step's continuous extension is needed.
+#[derive(Debug, Clone, Copy)]
+struct Plan {
+    target: Target,
+    adaptive: bool,
+    h_fixed: f64,
+    dense: bool,
 }
 
 /// The bookkeeping of one run between its steps.
@@ -765,29 +682,6 @@ struct RunState<K: crate::Partner> {
     start: StepStart,
     /// A state to interpolate into.
     scratch: State<K>,
-}
-
-/// A reset may move t forward (a dead time), not back; an output time inside the interval it skips
-/// has no state, so it is an error rather than a row made up from outside any step.
-fn check_reset_time(t_event: f64, t_new: f64, save: &Save, next_time: usize) -> Result<()> {
-    if t_new < t_event {
-        return Err(Error::InvalidParameter {
-            name: "t after a reset",
-            value: t_new,
-            reason: "a reset may not move time backward",
-        });
-    }
-    if let Save::Times(times) = save {
-        if let Some(&t) = times.get(next_time).filter(|&&t| t < t_new) {
-            return Err(Error::InvalidParameter {
-                name: "output time",
-                value: t,
-                reason:
-                    "lies in the interval a reset skipped (it moved t forward): the run has no state there",
-            });
-        }
-    }
-    Ok(())
 }
 
 /// Evaluates every observer at `state` into `row`.

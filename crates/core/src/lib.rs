@@ -47,12 +47,12 @@ pub mod selfcheck;
 pub mod shorthand;
 pub mod state;
 pub mod stepper;
+pub mod system;
 pub mod tangent;
 
 pub use chart::ChartGuard;
 pub use dense::DenseOutput;
 pub use driver::{Direction, Driver, Event, EventRecord, Save, Solution, Stats, Stop};
-pub use dynamics::Dynamics;
 pub use error::{Error, Result};
 pub use hamilton::HamiltonEquations;
 pub use lagrange::EulerLagrange;
@@ -64,6 +64,7 @@ pub use newton::{Newton, NewtonInfo, NewtonSystem};
 pub use scalar::Scalar;
 pub use state::{Momenta, Partner, State, Velocities};
 pub use stepper::{StepInfo, Stepper};
+pub use system::Dynamics;
 pub use tangent::TangentStepper;
 
 /// Everything a model and a simulation need, in one import.

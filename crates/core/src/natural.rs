@@ -6,7 +6,7 @@
 //! - a [`Lagrangian`] (so [`EulerLagrange`](crate::EulerLagrange) and every Lagrangian tool apply),
 //! - a [`Separable`] Hamiltonian T(p) + V(q) (state (q, p) through
 //!   [`SeparableHamiltonian`](crate::SeparableHamiltonian)),
-//! - a [`Dynamics`] on (q, q̇) itself, with the fast vector field
+//! - a [`Dynamics`](crate::Dynamics) on (q, q̇) itself, with the fast vector field
 //!   q̈ = −M⁻¹ ∇V(q) (one gradient of V by dual numbers, no Hessian, no mass matrix by AD).
 //!
 //! ```
@@ -27,7 +27,7 @@
 
 use crate::ad::{self, Block, Field};
 use crate::error::{check_finite, check_len, check_result, finite_result};
-use crate::{Dynamics, Error, Lagrangian, Result, Scalar, Separable};
+use crate::{Error, Lagrangian, Result, Scalar, Separable};
 use nalgebra::{DMatrix, DVector};
 
 /// A potential energy V(q), generic over the scalar so that its gradient and Hessian come from dual
@@ -78,7 +78,7 @@ enum Mass {
 /// A natural system L = ½ q̇ᵀ M q̇ − V(q) with constant SPD mass matrix M (see the [module](self) docs).
 ///
 /// Two phase-space readings, both documented where they are used:
-/// - as [`Dynamics`] and [`SplitDynamics`](crate::integrators::SplitDynamics) the state
+/// - as [`Dynamics`](crate::Dynamics) and [`SplitDynamics`](crate::system::SplitDynamics) the state
 ///   is (q, q̇);
 /// - wrapped as `SeparableHamiltonian(natural)` the state is (q, p) with p = M q̇.
 #[derive(Debug, Clone)]
@@ -280,7 +280,7 @@ impl<P: Potential> Natural<P> {
     /// the caller folds into `also` (0 times the values it returns with q̈). `None` otherwise, for
     /// the cold path to name the error.
     #[inline(always)]
-    fn accelerations_fast<const W: usize>(&self, q: [f64; W], also: f64) -> Option<[f64; W]> {
+    pub(crate) fn accelerations_fast<const W: usize>(&self, q: [f64; W], also: f64) -> Option<[f64; W]> {
         let inv = match self.diagonal_inverse(true) {
             Some(inv) if W == self.dof() && W <= ad::MAX_FIXED => inv,
             _ => return None,
@@ -297,14 +297,19 @@ impl<P: Potential> Natural<P> {
     #[cold]
     #[inline(never)]
     fn accelerations_cold<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
-        crate::dynamics::rate_by_slices(q, "accelerations", |q, a| self.accelerations(q, a))
+        crate::system::rate_by_slices(q, "accelerations", |q, a| self.accelerations(q, a))
     }
 
     /// `rates` out of the fixed-size loops' way (see [`accelerations_cold`](Self::accelerations_cold)).
     #[cold]
     #[inline(never)]
-    fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        crate::dynamics::rates_by_slices(self, t, q, v)
+    pub(crate) fn rates_cold<const N: usize>(
+        &self,
+        t: f64,
+        q: [f64; N],
+        v: [f64; N],
+    ) -> Result<([f64; N], [f64; N])> {
+        crate::system::rates_by_slices(self, t, q, v)
     }
 
     /// The scaling of −∇V that the force kernels apply: `Some(None)` for none (forces, or unit masses),
@@ -532,41 +537,5 @@ impl<P: Potential> Separable for Natural<P> {
     }
     fn potential<D: Scalar>(&self, q: &[D]) -> D {
         self.potential.potential(q)
-    }
-}
-
-/// State (q, q̇): q̇ = q̇, q̈ = −M⁻¹∇V(q).
-impl<P: Potential> Dynamics for Natural<P> {
-    type Partner = crate::Velocities;
-    fn dof(&self) -> usize {
-        Natural::dof(self)
-    }
-    #[inline]
-    fn rates(&self, t: f64, q: &[f64], v: &[f64], dq: &mut [f64], dv: &mut [f64]) -> Result<()> {
-        check_len("q̇", v, self.dof())?;
-        check_len("q̇ (output)", dq, self.dof())?;
-        // An element loop: a few entries, no call to memcpy.
-        dq.iter_mut().zip(v).for_each(|(d, x)| *d = *x);
-        self.accelerations(q, dv).map_err(|e| e.at_time(t))?;
-        // q̇ = v is returned as given: one check of it, after the work (the error still names it).
-        check_finite("q̇", v)
-    }
-    /// q̇ = v and q̈ from the fixed-width force kernel, called directly: the same values and errors
-    /// as [`rates`](Dynamics::rates).
-    #[inline(always)]
-    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], v: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        // q̇ = v is returned as given: its check joins the kernel's one test.
-        match self.accelerations_fast(q, v.iter().fold(0.0, |c, x| c + x * 0.0)) {
-            Some(a) => Ok((v, a)),
-            None => self.rates_cold(t, q, v),
-        }
-    }
-    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> Result<f64> {
-        Natural::energy(self, q, v).map_err(|e| e.at_time(t))
-    }
-    fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> Result<()> {
-        check_len("q̇", v, self.dof())?;
-        dq.copy_from_slice(v);
-        Ok(())
     }
 }

@@ -115,6 +115,98 @@ impl Assemble for Banded {
     }
 }
 
+/// Checks the mass matrix of n degrees of freedom and factors a dense one: a diagonal M must have
+/// length n, be finite, nonsingular and non-negative (so positive definite); a dense M must be n × n,
+/// symmetric to 1e-14 of its largest entry, and positive definite (its Cholesky factor, returned).
+fn factor_checked(mass: &Mass, n: usize) -> Result<Option<DenseFactor>> {
+    match mass {
+        Mass::Diagonal(m) => {
+            check_len("diagonal mass", m, n)?;
+            check_finite("diagonal mass", m)?;
+            let pivot_ratio = linalg::diagonal_pivot_ratio(m);
+            if linalg::is_singular(pivot_ratio) {
+                return Err(Error::SingularMassMatrix { t: 0.0, pivot_ratio });
+            }
+            if m.iter().any(|v| *v < 0.0) {
+                return Err(Error::InvalidParameter {
+                    name: "diagonal mass",
+                    value: m.iter().fold(f64::INFINITY, |a, v| a.min(*v)),
+                    reason: "must be positive definite",
+                });
+            }
+            Ok(None)
+        }
+        Mass::Dense(m) => {
+            if m.shape() != (n, n) {
+                return Err(Error::Dimension {
+                    what: "mass matrix rows",
+                    expected: n,
+                    got: m.nrows(),
+                });
+            }
+            if (m - m.transpose()).amax() > 1e-14 * m.amax() {
+                return Err(Error::InvalidParameter {
+                    name: "mass matrix asymmetry",
+                    value: (m - m.transpose()).amax(),
+                    reason: "M = ∂²L/∂q̇² must be symmetric",
+                });
+            }
+            let f = linalg::factor_mass(m.clone(), 0.0)?;
+            if f.cholesky().is_none() {
+                return Err(Error::InvalidParameter {
+                    name: "mass matrix",
+                    value: f64::NAN,
+                    reason: "must be positive definite",
+                });
+            }
+            Ok(Some(f))
+        }
+    }
+}
+
+/// The supports of the potential's terms, gathered: (offsets, indices) with term k's support at
+/// `indices[offsets[k]..offsets[k + 1]]`, the largest support, and the largest index distance
+/// within a support (the Hessian's bandwidth from the potential); an [`Error::Dimension`] for an
+/// index ≥ n.
+fn supports<P: LocalPotential>(potential: &P, n: usize) -> Result<(Vec<usize>, Vec<usize>, usize, usize)> {
+    let mut offsets = Vec::with_capacity(potential.terms() + 1);
+    let mut indices = Vec::new();
+    offsets.push(0);
+    let (mut max_support, mut bandwidth) = (0, 0);
+    for k in 0..potential.terms() {
+        let start = indices.len();
+        potential.support(k, &mut indices);
+        let s = &indices[start..];
+        if let Some(&bad) = s.iter().find(|&&i| i >= n) {
+            return Err(Error::Dimension {
+                what: "support index of a potential term (must be < dof)",
+                expected: n,
+                got: bad,
+            });
+        }
+        if let (Some(lo), Some(hi)) = (s.iter().min(), s.iter().max()) {
+            bandwidth = bandwidth.max(hi - lo);
+        }
+        max_support = max_support.max(s.len());
+        offsets.push(indices.len());
+    }
+    Ok((offsets, indices, max_support, bandwidth))
+}
+
+/// The bandwidth of a square matrix: the largest |i − j| of a nonzero entry (0 for none).
+fn matrix_bandwidth(m: &DMatrix<f64>) -> usize {
+    let n = m.nrows();
+    let mut bandwidth = 0;
+    for j in 0..n {
+        for i in 0..n {
+            if m[(i, j)] != 0.0 {
+                bandwidth = bandwidth.max(i.abs_diff(j));
+            }
+        }
+    }
+    bandwidth
+}
+
 /// L = ½ q̇ᵀMq̇ − Σ_k V_k(q) − with optional damping (see the module docs).
 pub struct Mechanical<P> {
     mass: Mass,
@@ -133,78 +225,10 @@ impl<P: LocalPotential> Mechanical<P> {
     /// in range.
     pub fn new(mass: Mass, potential: P) -> Result<Self> {
         let n = potential.dof();
-        let factor = match &mass {
-            Mass::Diagonal(m) => {
-                check_len("diagonal mass", m, n)?;
-                check_finite("diagonal mass", m)?;
-                let pivot_ratio = linalg::diagonal_pivot_ratio(m);
-                if linalg::is_singular(pivot_ratio) {
-                    return Err(Error::SingularMassMatrix { t: 0.0, pivot_ratio });
-                }
-                if m.iter().any(|v| *v < 0.0) {
-                    return Err(Error::InvalidParameter {
-                        name: "diagonal mass",
-                        value: m.iter().fold(f64::INFINITY, |a, v| a.min(*v)),
-                        reason: "must be positive definite",
-                    });
-                }
-                None
-            }
-            Mass::Dense(m) => {
-                if m.shape() != (n, n) {
-                    return Err(Error::Dimension {
-                        what: "mass matrix rows",
-                        expected: n,
-                        got: m.nrows(),
-                    });
-                }
-                if (m - m.transpose()).amax() > 1e-14 * m.amax() {
-                    return Err(Error::InvalidParameter {
-                        name: "mass matrix asymmetry",
-                        value: (m - m.transpose()).amax(),
-                        reason: "M = ∂²L/∂q̇² must be symmetric",
-                    });
-                }
-                let f = linalg::factor_mass(m.clone(), 0.0)?;
-                if f.cholesky().is_none() {
-                    return Err(Error::InvalidParameter {
-                        name: "mass matrix",
-                        value: f64::NAN,
-                        reason: "must be positive definite",
-                    });
-                }
-                Some(f)
-            }
-        };
-        let mut offsets = Vec::with_capacity(potential.terms() + 1);
-        let mut indices = Vec::new();
-        offsets.push(0);
-        let (mut max_support, mut bandwidth) = (0, 0);
-        for k in 0..potential.terms() {
-            let start = indices.len();
-            potential.support(k, &mut indices);
-            let s = &indices[start..];
-            if let Some(&bad) = s.iter().find(|&&i| i >= n) {
-                return Err(Error::Dimension {
-                    what: "support index of a potential term (must be < dof)",
-                    expected: n,
-                    got: bad,
-                });
-            }
-            if let (Some(lo), Some(hi)) = (s.iter().min(), s.iter().max()) {
-                bandwidth = bandwidth.max(hi - lo);
-            }
-            max_support = max_support.max(s.len());
-            offsets.push(indices.len());
-        }
+        let factor = factor_checked(&mass, n)?;
+        let (offsets, indices, max_support, mut bandwidth) = supports(&potential, n)?;
         if let Mass::Dense(m) = &mass {
-            for j in 0..n {
-                for i in 0..n {
-                    if m[(i, j)] != 0.0 {
-                        bandwidth = bandwidth.max(i.abs_diff(j));
-                    }
-                }
-            }
+            bandwidth = bandwidth.max(matrix_bandwidth(m));
         }
         Ok(Mechanical {
             mass,

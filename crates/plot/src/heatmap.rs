@@ -4,6 +4,30 @@ use crate::{draw_error, Error, Result};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
+/// A drawing area of the SVG file.
+type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+/// The cell edges of centres c: the midpoints between neighbours, and outside the first and last
+/// centre as far as the neighbouring midpoint is inside (±1/2 around a single centre).
+fn cell_edges(c: &[f64]) -> Vec<f64> {
+    let n = c.len();
+    let half = |i: usize, j: usize| 0.5 * (c[i] + c[j]);
+    let first = if n > 1 {
+        c[0] - (half(0, 1) - c[0])
+    } else {
+        c[0] - 0.5
+    };
+    let last = if n > 1 {
+        c[n - 1] + (c[n - 1] - half(n - 2, n - 1))
+    } else {
+        c[0] + 0.5
+    };
+    std::iter::once(first)
+        .chain((1..n).map(|i| half(i - 1, i)))
+        .chain(std::iter::once(last))
+        .collect()
+}
+
 /// Values on a grid of cells (x outer, y inner: `values[i * ny + j]` at `(x[i], y[j])`, the order of a
 /// two-axis `noether_ensemble::Grid`), drawn as a heat map with a colour bar (viridis; linear or
 /// logarithmic). A NaN cell (no value: a pendulum that never flipped) is drawn white.
@@ -100,6 +124,19 @@ impl Heatmap {
     pub fn save(&self, path: impl AsRef<Path>) -> Result<PathBuf> {
         let path = path.as_ref();
         super::check_folder(path)?;
+        let (lo, hi) = self.level_range()?;
+        let root = SVGBackend::new(path, self.size).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let (main, bar) = root.split_horizontally(self.size.0.saturating_sub(130));
+        self.draw_cells(&main, (lo, hi))?;
+        self.draw_bar(&bar, (lo, hi))?;
+        root.present().map_err(super::write_error(path))?;
+        Ok(path.to_path_buf())
+    }
+
+    /// The range [lo, hi] of the cells' colour levels (hi = lo + 1 when they are all equal);
+    /// [`Error::Empty`] when no cell has a level.
+    fn level_range(&self) -> Result<(f64, f64)> {
         let levels: Vec<f64> = self.values.iter().filter_map(|&v| self.level(v)).collect();
         let lo = levels.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = levels.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -109,29 +146,14 @@ impl Heatmap {
             });
         }
         let hi = if hi > lo { hi } else { lo + 1.0 };
-        let edges = |c: &[f64]| -> Vec<f64> {
-            let n = c.len();
-            let half = |i: usize, j: usize| 0.5 * (c[i] + c[j]);
-            let first = if n > 1 {
-                c[0] - (half(0, 1) - c[0])
-            } else {
-                c[0] - 0.5
-            };
-            let last = if n > 1 {
-                c[n - 1] + (c[n - 1] - half(n - 2, n - 1))
-            } else {
-                c[0] + 0.5
-            };
-            std::iter::once(first)
-                .chain((1..n).map(|i| half(i - 1, i)))
-                .chain(std::iter::once(last))
-                .collect()
-        };
-        let (xe, ye) = (edges(&self.x), edges(&self.y));
-        let root = SVGBackend::new(path, self.size).into_drawing_area();
-        root.fill(&WHITE).map_err(draw_error)?;
-        let (main, bar) = root.split_horizontally(self.size.0.saturating_sub(130));
-        let mut chart = ChartBuilder::on(&main)
+        Ok((lo, hi))
+    }
+
+    /// The map proper on `area`: title, axes, and each cell with a level as a rectangle between the
+    /// edges of its neighbours' midpoints, coloured by viridis((level − lo)/(hi − lo)).
+    fn draw_cells(&self, area: &Area<'_>, (lo, hi): (f64, f64)) -> Result<()> {
+        let (xe, ye) = (cell_edges(&self.x), cell_edges(&self.y));
+        let mut chart = ChartBuilder::on(area)
             .caption(&self.title, ("sans-serif", 22))
             .margin(15)
             .x_label_area_size(45)
@@ -159,7 +181,13 @@ impl Heatmap {
                 ))
             }))
             .map_err(draw_error)?;
-        let mut scale = ChartBuilder::on(&bar)
+        Ok(())
+    }
+
+    /// The colour bar on `area`: 100 bands from lo to hi, labelled in the values (10^level for a
+    /// logarithmic map).
+    fn draw_bar(&self, area: &Area<'_>, (lo, hi): (f64, f64)) -> Result<()> {
+        let mut scale = ChartBuilder::on(area)
             .margin_top(50)
             .margin_bottom(60)
             .margin_right(10)
@@ -193,8 +221,7 @@ impl Heatmap {
                 )
             }))
             .map_err(draw_error)?;
-        root.present().map_err(super::write_error(path))?;
-        Ok(path.to_path_buf())
+        Ok(())
     }
 }
 

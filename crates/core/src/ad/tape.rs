@@ -428,52 +428,14 @@ fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: O
         x.len().max(y.len()) < u32::MAX as usize / 2,
         "taped evaluation: too many variables"
     );
-    let (dt, dx, dy) = seeds.dir;
-    let dir = |d: &[f64], i: usize| d.get(i).copied().unwrap_or(0.0);
-    let span = |b: Block, i: usize| match seeds.grad {
-        Grad::Block(g) if g == b => Some(i),
-        Grad::Both if b == Block::Y => Some(x.len() + i),
-        Grad::Both => Some(i),
-        _ => None,
-    };
-    let (base, cbase, gbase, tt, xs, ys) = TAPE.with_borrow_mut(|tp| {
-        if tp.edges.is_empty() {
-            tp.input(0.0, None); // the sink
-        }
-        let marks = (tp.edges.len(), tp.curv.len(), tp.grads.len());
-        let tt = TapeVar::with(t, tp.input(dt, None));
-        let xs: Vec<TapeVar> = (0..x.len())
-            .map(|i| TapeVar::with(x[i], tp.input(dir(dx, i), span(Block::X, i))))
-            .collect();
-        let ys: Vec<TapeVar> = (0..y.len())
-            .map(|i| TapeVar::with(y[i], tp.input(dir(dy, i), span(Block::Y, i))))
-            .collect();
-        (marks.0, marks.1, marks.2, tt, xs, ys)
-    });
+    let (marks, tt, xs, ys) = TAPE.with_borrow_mut(|tp| record_inputs(tp, (t, x, y), &seeds));
+    let (base, cbase, gbase) = marks;
     let r = f.eval(tt, &xs, &ys);
     TAPE.with_borrow_mut(|tp| {
-        // Reverse sweep: ā_v for every node of this evaluation.
-        let end = tp.edges.len();
-        tp.adj.clear();
-        tp.adj.resize(end, 0.0);
-        let Tape {
-            edges,
-            flows,
-            grads,
-            curv,
-            adj,
-        } = tp;
-        if r.arg.id != SINK {
-            adj[r.arg.id as usize] = 1.0;
-            for v in (base..=r.arg.id as usize).rev() {
-                let (e, g) = (edges[v], adj[v]);
-                adj[e.a as usize] += e.da * g;
-                adj[e.b as usize] += e.db * g;
-            }
-        }
+        reverse(tp, base, r.arg.id);
         let adjoints = |vars: &[TapeVar], out: &mut [f64]| {
             for (o, v) in out.iter_mut().zip(vars) {
-                *o = adj[v.arg.id as usize];
+                *o = tp.adj[v.arg.id as usize];
             }
         };
         if let Some(g) = outputs.grad_x.as_deref_mut() {
@@ -482,50 +444,119 @@ fn sweep<F: Field>(f: &F, (t, x, y): Point<'_>, seeds: Seeds<'_>, mut outputs: O
         if let Some(g) = outputs.grad_y.as_deref_mut() {
             adjoints(&ys, g);
         }
-        // Second order: Σ ā_v d²φ_v over the curvatures of this evaluation.
-        let (mut mixed, mut hess) = (outputs.mixed, outputs.hess);
-        mixed.iter_mut().for_each(|m| m.fill(0.0));
-        hess.iter_mut().for_each(|h| h.fill(0.0));
-        for c in &curv[cbase..] {
-            let w = adj[c.node as usize];
-            if w == 0.0 {
-                continue;
-            }
-            let e = edges[c.node as usize];
-            let (fa, fb) = (flows[e.a as usize], flows[e.b as usize]);
-            let (ga, gb) = (fa.w.of(grads), fb.w.of(grads));
-            if let Some(m) = mixed.as_deref_mut() {
-                for (m, g) in m[fa.w.lo as usize..].iter_mut().zip(ga) {
-                    *m += w * (c.haa * fa.gs + c.hab * fb.gs) * g;
-                }
-                for (m, g) in m[fb.w.lo as usize..].iter_mut().zip(gb) {
-                    *m += w * (c.hab * fa.gs + c.hbb * fb.gs) * g;
-                }
-            }
-            if let Some(h) = hess.as_deref_mut() {
-                if c.haa != 0.0 {
-                    add_tri(h, n, w * c.haa, (fa.w, ga), (fa.w, ga));
-                }
-                if c.hab != 0.0 {
-                    add_tri(h, n, w * c.hab, (fa.w, ga), (fb.w, gb));
-                    add_tri(h, n, w * c.hab, (fb.w, gb), (fa.w, ga));
-                }
-                if c.hbb != 0.0 {
-                    add_tri(h, n, w * c.hbb, (fb.w, gb), (fb.w, gb));
-                }
-            }
-        }
-        if let Some(h) = hess {
-            for i in 0..n {
-                for j in 0..i {
-                    h[i + j * n] = h[j + i * n];
-                }
-            }
-        }
-        edges.truncate(base);
-        flows.truncate(base);
-        grads.truncate(gbase);
-        curv.truncate(cbase);
+        second_order(tp, cbase, n, outputs.mixed, outputs.hess);
+        tp.edges.truncate(base);
+        tp.flows.truncate(base);
+        tp.grads.truncate(gbase);
+        tp.curv.truncate(cbase);
     });
     r.re
+}
+
+/// The lengths of a tape's edges, curvatures and gradients before an evaluation (where its nodes
+/// start).
+type Marks = (usize, usize, usize);
+
+/// Records the inputs of an evaluation at (t, x, y) on the tape, each seeded with its component of
+/// the direction and, for the variables `seeds.grad` names, its unit gradient; returns where the
+/// evaluation starts on the tape and the variables t, x, y.
+fn record_inputs(
+    tp: &mut Tape,
+    (t, x, y): Point<'_>,
+    seeds: &Seeds<'_>,
+) -> (Marks, TapeVar, Vec<TapeVar>, Vec<TapeVar>) {
+    let (dt, dx, dy) = seeds.dir;
+    let dir = |d: &[f64], i: usize| d.get(i).copied().unwrap_or(0.0);
+    let span = |b: Block, i: usize| match seeds.grad {
+        Grad::Block(g) if g == b => Some(i),
+        Grad::Both if b == Block::Y => Some(x.len() + i),
+        Grad::Both => Some(i),
+        _ => None,
+    };
+    if tp.edges.is_empty() {
+        tp.input(0.0, None); // the sink
+    }
+    let marks = (tp.edges.len(), tp.curv.len(), tp.grads.len());
+    let tt = TapeVar::with(t, tp.input(dt, None));
+    let xs: Vec<TapeVar> = (0..x.len())
+        .map(|i| TapeVar::with(x[i], tp.input(dir(dx, i), span(Block::X, i))))
+        .collect();
+    let ys: Vec<TapeVar> = (0..y.len())
+        .map(|i| TapeVar::with(y[i], tp.input(dir(dy, i), span(Block::Y, i))))
+        .collect();
+    (marks, tt, xs, ys)
+}
+
+/// The reverse sweep: the adjoint ā_v = ∂f/∂v of every node v of the evaluation that starts at node
+/// `base` and ends at `root` (ā_root = 1, ā_a += ∂φ_v/∂a · ā_v back from the root).
+fn reverse(tp: &mut Tape, base: usize, root: u32) {
+    let end = tp.edges.len();
+    tp.adj.clear();
+    tp.adj.resize(end, 0.0);
+    let Tape { edges, adj, .. } = tp;
+    if root != SINK {
+        adj[root as usize] = 1.0;
+        for v in (base..=root as usize).rev() {
+            let (e, g) = (edges[v], adj[v]);
+            adj[e.a as usize] += e.da * g;
+            adj[e.b as usize] += e.db * g;
+        }
+    }
+}
+
+/// The second-order outputs from the curvatures of the evaluation (from `cbase` on) and the
+/// adjoints: Σ_v ā_v d²φ_v pulled back along the seeded direction (`mixed`) and onto the seeded
+/// variables' gradients (`hess`, n × n, filled in its lower triangle and then mirrored).
+fn second_order(
+    tp: &Tape,
+    cbase: usize,
+    n: usize,
+    mut mixed: Option<&mut [f64]>,
+    mut hess: Option<&mut [f64]>,
+) {
+    let Tape {
+        edges,
+        flows,
+        grads,
+        curv,
+        adj,
+    } = tp;
+    mixed.iter_mut().for_each(|m| m.fill(0.0));
+    hess.iter_mut().for_each(|h| h.fill(0.0));
+    for c in &curv[cbase..] {
+        let w = adj[c.node as usize];
+        if w == 0.0 {
+            continue;
+        }
+        let e = edges[c.node as usize];
+        let (fa, fb) = (flows[e.a as usize], flows[e.b as usize]);
+        let (ga, gb) = (fa.w.of(grads), fb.w.of(grads));
+        if let Some(m) = mixed.as_deref_mut() {
+            for (m, g) in m[fa.w.lo as usize..].iter_mut().zip(ga) {
+                *m += w * (c.haa * fa.gs + c.hab * fb.gs) * g;
+            }
+            for (m, g) in m[fb.w.lo as usize..].iter_mut().zip(gb) {
+                *m += w * (c.hab * fa.gs + c.hbb * fb.gs) * g;
+            }
+        }
+        if let Some(h) = hess.as_deref_mut() {
+            if c.haa != 0.0 {
+                add_tri(h, n, w * c.haa, (fa.w, ga), (fa.w, ga));
+            }
+            if c.hab != 0.0 {
+                add_tri(h, n, w * c.hab, (fa.w, ga), (fb.w, gb));
+                add_tri(h, n, w * c.hab, (fb.w, gb), (fa.w, ga));
+            }
+            if c.hbb != 0.0 {
+                add_tri(h, n, w * c.hbb, (fb.w, gb), (fb.w, gb));
+            }
+        }
+    }
+    if let Some(h) = hess {
+        for i in 0..n {
+            for j in 0..i {
+                h[i + j * n] = h[j + i * n];
+            }
+        }
+    }
 }

@@ -3,7 +3,7 @@
 //! All three step any [`Dynamics`] on (q, v), v = q̇ or p, and leave the state untouched on error.
 
 use crate::error::{check_step, check_time_resolution};
-use crate::integrators::LinearizedDynamics;
+use crate::system::LinearizedDynamics;
 use crate::tangent::{check_tangent_shape, explicit_rk_tangent, step_then_tangent};
 use crate::{Dynamics, Error, Partner, Result, State, StepInfo, Stepper, TangentStepper};
 use nalgebra::DMatrix;

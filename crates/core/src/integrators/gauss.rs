@@ -23,10 +23,10 @@
 //! 1e-15, a solve to rounding (Newton's round-off-aware stopping rule ends it when the increments stop
 //! decreasing), so that quadratic invariants are kept to rounding at every step size.
 //!
-//! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`] on (q, p), a
-//! `SeparableHamiltonian` on (q, p), a [`Natural`] system on (q, q̇), and an
+//! **Which systems.** Any [`LinearizedDynamics`]: [`HamiltonEquations`](crate::HamiltonEquations) on
+//! (q, p), a `SeparableHamiltonian` on (q, p), a [`Natural`](crate::Natural) system on (q, q̇), and an
 //! [`EulerLagrange`](crate::EulerLagrange) without generalized forces on (q, q̇) (its Jacobian from
-//! third derivatives of L, see [`crate::tangent`]). A general Lagrangian is best written as a
+//! third derivatives of L, see [`crate::system`]). A general Lagrangian is best written as a
 //! Hamiltonian for these methods (collocation applied to (q, q̇) of a Lagrangian with
 //! a configuration-dependent mass matrix is not symplectic in any case).
 //!
@@ -39,107 +39,12 @@
 //! - E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, IV.8 (stage values as unknowns).
 
 use crate::error::{check_step, check_time_resolution};
-use crate::natural::{Natural, Potential, PotentialField};
 use crate::newton::{max_norm, Dense, DenseProblem, Newton};
-use crate::{
-    ad, Dynamics, Error, HamiltonEquations, Hamiltonian, Result, Scalar, Separable, SeparableHamiltonian,
-    State, StepInfo, Stepper,
-};
+use crate::{Error, Result, State, StepInfo, Stepper};
 use nalgebra::DMatrix;
 
-/// A [`Dynamics`] that also provides the Jacobian of its vector field.
-pub trait LinearizedDynamics: Dynamics {
-    /// J = ∂(q̇, v̇)/∂(q, v) at (t, q, v), written into the 2n × 2n matrix `out`.
-    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()>;
-}
-
-/// J = [[H_pq, H_pp], [−H_qq, −H_qp]] for q̇ = ∂H/∂p, ṗ = −∂H/∂q.
-impl<H: Hamiltonian> LinearizedDynamics for HamiltonEquations<H> {
-    fn jacobian(&self, t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
-        let n = self.dof();
-        let hess = self.hessian(t, q, p)?;
-        for i in 0..n {
-            for j in 0..n {
-                out[(i, j)] = hess[(n + i, j)];
-                out[(i, n + j)] = hess[(n + i, n + j)];
-                out[(n + i, j)] = -hess[(i, j)];
-                out[(n + i, n + j)] = -hess[(i, n + j)];
-            }
-        }
-        Ok(())
-    }
-}
-
-struct KineticOf<'a, S: ?Sized>(&'a S);
-impl<S: Separable + ?Sized> ad::Field for KineticOf<'_, S> {
-    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        self.0.kinetic(x)
-    }
-}
-struct PotentialOfSep<'a, S: ?Sized>(&'a S);
-impl<S: Separable + ?Sized> ad::Field for PotentialOfSep<'_, S> {
-    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        self.0.potential(x)
-    }
-}
-
-/// J = [[0, ∇²T(p)], [−∇²V(q), 0]].
-impl<S: Separable> LinearizedDynamics for SeparableHamiltonian<S> {
-    fn jacobian(&self, _t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
-        let n = self.0.dof();
-        let mut block = DMatrix::zeros(n, n);
-        out.fill(0.0);
-        ad::hessian(
-            &KineticOf(&self.0),
-            0.0,
-            p,
-            &[],
-            ad::Block::X,
-            ad::Block::X,
-            &mut block,
-        );
-        out.view_mut((0, n), (n, n)).copy_from(&block);
-        ad::hessian(
-            &PotentialOfSep(&self.0),
-            0.0,
-            q,
-            &[],
-            ad::Block::X,
-            ad::Block::X,
-            &mut block,
-        );
-        out.view_mut((n, 0), (n, n)).copy_from(&(-&block));
-        Ok(())
-    }
-}
-
-/// On (q, q̇): J = [[0, I], [−M⁻¹∇²V(q), 0]].
-impl<P: Potential> LinearizedDynamics for Natural<P> {
-    fn jacobian(&self, _t: f64, q: &[f64], _v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
-        let n = self.dof();
-        let mut hess = DMatrix::zeros(n, n);
-        ad::hessian(
-            &PotentialField(self.potential_model()),
-            0.0,
-            q,
-            &[],
-            ad::Block::X,
-            ad::Block::X,
-            &mut hess,
-        );
-        let minv_hess = -self.inverse_mass_matrix() * hess;
-        out.fill(0.0);
-        out.view_mut((0, n), (n, n)).fill_with_identity();
-        out.view_mut((n, 0), (n, n)).copy_from(&minv_hess);
-        Ok(())
-    }
-}
-
-impl<S: LinearizedDynamics> LinearizedDynamics for &S {
-    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
-        (**self).jacobian(t, q, v, out)
-    }
-}
+/// Re-exported from [`system`](crate::system), where the system traits live.
+pub use crate::system::LinearizedDynamics;
 
 /// The last accepted step, for the extrapolated starting guess.
 struct LastStep {

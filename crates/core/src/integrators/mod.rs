@@ -21,12 +21,13 @@ pub mod ias15;
 pub mod nystrom;
 pub mod symplectic;
 
+pub use crate::system::{LinearizedDynamics, SplitDynamics};
 pub use adaptive::{Adaptive, Controller, EmbeddedPair, Stages, RTOL_FLOOR};
 pub use default_method::DefaultMethod;
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
 pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
-pub use gauss::{Gauss, LinearizedDynamics};
+pub use gauss::Gauss;
 pub use ias15::{Ias15, Ias15Control};
 pub use nystrom::{Dprkn12, Dprkn6, Dprkn8, Nystrom, NystromPair, Rkn12, Rkn6, Rkn8};
-pub use symplectic::{Composition, SplitDynamics, SymplecticEuler};
+pub use symplectic::{Composition, SymplecticEuler};

@@ -3,13 +3,13 @@
 //!
 //! They need the vector field split as q̇ = D(v) (depending on v only) and v̇ = K(q) (depending on q
 //! only): the [`SplitDynamics`] trait. Two kinds of systems provide it:
-//! - `SeparableHamiltonian(s)` for any [`Separable`] H = T(p) + V(q): state **(q, p)**,
+//! - `SeparableHamiltonian(s)` for any [`Separable`](crate::Separable) H = T(p) + V(q): state **(q, p)**,
 //!   D(p) = ∇T(p), K(q) = −∇V(q);
-//! - [`Natural`] L = ½ q̇ᵀ M q̇ − V(q) with constant M: state **(q, q̇)**, D(q̇) = q̇,
+//! - [`Natural`](crate::Natural) L = ½ q̇ᵀ M q̇ − V(q) with constant M: state **(q, q̇)**, D(q̇) = q̇,
 //!   K(q) = −M⁻¹∇V(q) (M factored once). This is the same method as on (q, p = M q̇), written in
 //!   velocities.
 //!
-//! All gradients come from dual numbers ([`ad::gradient`]); no Hessian is formed.
+//! All gradients come from dual numbers ([`ad::gradient`](crate::ad::gradient)); no Hessian is formed.
 //! A general [`EulerLagrange`](crate::EulerLagrange) or [`HamiltonEquations`](crate::HamiltonEquations)
 //! system is not split, so asking an explicit symplectic method to step it does not compile:
 //!
@@ -30,242 +30,15 @@
 //! - W. Kahan, R.-C. Li, Composition constants for raising the orders of unconventional schemes for
 //!   ordinary differential equations, Math. Comp. 66 (1997) 1089.
 
-use crate::ad::{self, Block, Field};
-use crate::dynamics::{rate_by_slices, rates_by_slices};
-use crate::error::{check_finite, check_len, check_result, check_step, check_time_resolution, finite_result};
-use crate::integrators::LinearizedDynamics;
-use crate::natural::{Natural, Potential};
+use crate::error::{check_finite, check_result, check_step, check_time_resolution};
+use crate::system::LinearizedDynamics;
 use crate::tangent::{check_tangent_shape, step_then_tangent};
-use crate::{
-    Dynamics, Error, Partner, Result, Scalar, Separable, SeparableHamiltonian, State, StepInfo, Stepper,
-    TangentStepper,
-};
+use crate::{Error, Partner, Result, State, StepInfo, Stepper, TangentStepper};
 use nalgebra::DMatrix;
 use std::ops::AddAssign;
 
-/// A vector field split as q̇ = D(v), v̇ = K(q): what explicit symplectic methods need.
-pub trait SplitDynamics: Dynamics {
-    /// The drift rate q̇ = D(v) (a function of v alone).
-    fn drift_rate(&self, v: &[f64], dq: &mut [f64]) -> Result<()>;
-    /// The kick rate v̇ = K(q) (a function of q alone).
-    fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> Result<()>;
-    /// `true` when D(v) = v, so the drift needs no call.
-    fn drift_is_identity(&self) -> bool {
-        false
-    }
-    /// [`drift_rate`](Self::drift_rate) for exactly W coordinates, by value, and only when every
-    /// value is finite (else an error): what the fixed-size loop of [`Composition`] calls when the
-    /// drift is not the identity. The default forwards to `drift_rate` and checks;
-    /// `SeparableHamiltonian` calls its fixed-width gradient of T directly.
-    #[inline]
-    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]>
-    where
-        Self: Sized,
-    {
-        rate_by_slices(v, "drift rate", |v, dq| self.drift_rate(v, dq))
-    }
-    /// [`kick_rate`](Self::kick_rate) for a system of exactly W coordinates, by value, and only when
-    /// every value is finite (else an error, [`Error::NonFiniteResult`] when `kick_rate` gave none):
-    /// what the fixed-size loops of [`Composition`] and [`Nystrom`](super::Nystrom) call for small
-    /// systems. The default forwards to `kick_rate` and checks; [`Natural`] calls its fixed-width
-    /// kernel directly, so that the model inlines into the loop, q, v and the force stay in
-    /// registers, and one test covers the result.
-    #[inline]
-    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]>
-    where
-        Self: Sized,
-    {
-        rate_by_slices(q, "kick rate", |q, dv| self.kick_rate(q, dv))
-    }
-}
-
-struct KineticField<'a, S: ?Sized>(&'a S);
-impl<S: Separable + ?Sized> Field for KineticField<'_, S> {
-    fn eval<D: Scalar>(&self, _t: D, _x: &[D], y: &[D]) -> D {
-        self.0.kinetic(y)
-    }
-}
-struct PotentialOf<'a, S: ?Sized>(&'a S);
-impl<S: Separable + ?Sized> Field for PotentialOf<'_, S> {
-    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        self.0.potential(x)
-    }
-}
-
-/// T(x) as a field of the first block, for [`ad::gradient_exact`] (which differentiates that block).
-struct KineticOfX<'a, S: ?Sized>(&'a S);
-impl<S: Separable + ?Sized> Field for KineticOfX<'_, S> {
-    fn eval<D: Scalar>(&self, _t: D, x: &[D], _y: &[D]) -> D {
-        self.0.kinetic(x)
-    }
-}
-
-impl<S: Separable> SeparableHamiltonian<S> {
-    /// ∇T(p) (given p) and −∇V(q) (given q) for exactly N = dof ≤ [`ad::MAX_FIXED`] degrees of
-    /// freedom, one fixed-width gradient each with every length a constant (the model inlines), zeros
-    /// for the half not asked for; `None` when N does not fit or T + V + Σ 0·(rates, q, p) is not
-    /// finite, for the general path to name the error.
-    #[inline(always)]
-    fn rates_fast<const N: usize>(
-        &self,
-        q: Option<&[f64; N]>,
-        p: Option<&[f64; N]>,
-    ) -> Option<([f64; N], [f64; N])> {
-        if N != self.0.dof() || N > ad::MAX_FIXED {
-            return None;
-        }
-        let (mut dq, mut dp, mut check) = ([0.0; N], [0.0; N], 0.0);
-        // q and p enter the test too: T or V need not depend on all of them (the general path
-        // checks its input).
-        if let Some(p) = p {
-            check += ad::gradient_exact(&KineticOfX(&self.0), 0.0, p, &mut dq);
-            check = p.iter().fold(check, |c, x| c + x * 0.0);
-        }
-        if let Some(q) = q {
-            check += ad::gradient_exact(&PotentialOf(&self.0), 0.0, q, &mut dp);
-            dp = dp.map(|x| -x);
-            check = q.iter().fold(check, |c, x| c + x * 0.0);
-        }
-        let check = dq.iter().chain(&dp).fold(check, |c, x| c + x * 0.0);
-        check.is_finite().then_some((dq, dp))
-    }
-
-    /// The general path of the fixed-size rates, out of their way.
-    #[cold]
-    #[inline(never)]
-    fn rates_cold<const N: usize>(&self, t: f64, q: [f64; N], p: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        rates_by_slices(self, t, q, p)
-    }
-}
-
-/// Ok when the gradient `out` and the value it was taken of are finite (where T or V is infinite
-/// there is no rate to return).
-fn finite_or(value: f64, out: &[f64]) -> Result<()> {
-    finite_result("forces", f64::NAN, value).and_then(|_| check_result("forces", f64::NAN, out))
-}
-
-/// State (q, p): q̇ = ∇T(p), ṗ = −∇V(q).
-impl<S: Separable> Dynamics for SeparableHamiltonian<S> {
-    type Partner = crate::Momenta;
-    fn dof(&self) -> usize {
-        self.0.dof()
-    }
-    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Result<()> {
-        check_len("p", p, self.0.dof())?;
-        check_finite("q", q)?;
-        check_finite("p", p)?;
-        self.drift_rate(p, dq)
-            .and_then(|_| self.kick_rate(q, dp))
-            .map_err(|e| e.at_time(t))
-    }
-    fn energy(&self, _t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
-        let n = self.0.dof();
-        check_len("q", q, n)?;
-        check_len("p", p, n)?;
-        Ok(self.0.kinetic(p) + self.0.potential(q))
-    }
-    fn position_rates(&self, t: f64, _q: &[f64], p: &[f64], dq: &mut [f64]) -> Result<()> {
-        self.drift_rate(p, dq).map_err(|e| e.at_time(t))
-    }
-    /// ∇T(p) and −∇V(q) by fixed-width kernels called directly (the same values and errors as
-    /// [`rates`](Dynamics::rates)).
-    #[inline(always)]
-    fn rates_fixed<const N: usize>(&self, t: f64, q: [f64; N], p: [f64; N]) -> Result<([f64; N], [f64; N])> {
-        match self.rates_fast(Some(&q), Some(&p)) {
-            Some(r) => Ok(r),
-            None => self.rates_cold(t, q, p),
-        }
-    }
-}
-
-impl<S: Separable> SplitDynamics for SeparableHamiltonian<S> {
-    fn drift_rate(&self, p: &[f64], dq: &mut [f64]) -> Result<()> {
-        check_len("p", p, self.0.dof())?;
-        check_len("q̇ (output)", dq, self.0.dof())?;
-        let value = ad::gradient(&KineticField(&self.0), 0.0, &[], p, Block::Y, dq);
-        finite_or(value, dq)
-    }
-    fn kick_rate(&self, q: &[f64], dp: &mut [f64]) -> Result<()> {
-        check_len("q", q, self.0.dof())?;
-        check_len("ṗ (output)", dp, self.0.dof())?;
-        let value = ad::gradient(&PotentialOf(&self.0), 0.0, q, &[], Block::X, dp);
-        dp.iter_mut().for_each(|x| *x = -*x);
-        finite_or(value, dp)
-    }
-    /// ∇T(p) by the fixed-width kernel called directly (the same values and errors as `drift_rate`).
-    #[inline]
-    fn drift_rate_fixed<const W: usize>(&self, p: [f64; W]) -> Result<[f64; W]> {
-        match self.rates_fast(None, Some(&p)) {
-            Some((dq, _)) => Ok(dq),
-            None => {
-                let mut dq = [0.0; W];
-                self.drift_rate(&p, &mut dq)?;
-                Ok(dq)
-            }
-        }
-    }
-    /// −∇V(q) by the fixed-width kernel called directly (the same values and errors as `kick_rate`).
-    #[inline]
-    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
-        match self.rates_fast(Some(&q), None) {
-            Some((_, dp)) => Ok(dp),
-            None => {
-                let mut dp = [0.0; W];
-                self.kick_rate(&q, &mut dp)?;
-                Ok(dp)
-            }
-        }
-    }
-}
-
-impl<P: Potential> SplitDynamics for Natural<P> {
-    /// q̇ = v, checked (lengths, finite).
-    fn drift_rate(&self, v: &[f64], dq: &mut [f64]) -> Result<()> {
-        check_len("q̇", v, self.dof())?;
-        check_len("q̇ (output)", dq, self.dof())?;
-        check_finite("q̇", v)?;
-        dq.copy_from_slice(v);
-        Ok(())
-    }
-    #[inline]
-    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]> {
-        check_len("q̇", &v, self.dof())?;
-        check_finite("q̇", &v)?;
-        Ok(v)
-    }
-    #[inline]
-    fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> Result<()> {
-        self.accelerations(q, dv)
-    }
-    fn drift_is_identity(&self) -> bool {
-        true
-    }
-    #[inline]
-    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
-        self.accelerations_fixed(q)
-    }
-}
-
-// `S: Sized` (no `&dyn SplitDynamics`): the fixed-size kick forwards to the system's own.
-impl<S: SplitDynamics> SplitDynamics for &S {
-    fn drift_rate(&self, v: &[f64], dq: &mut [f64]) -> Result<()> {
-        (**self).drift_rate(v, dq)
-    }
-    fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> Result<()> {
-        (**self).kick_rate(q, dv)
-    }
-    fn drift_is_identity(&self) -> bool {
-        (**self).drift_is_identity()
-    }
-    #[inline]
-    fn drift_rate_fixed<const W: usize>(&self, v: [f64; W]) -> Result<[f64; W]> {
-        (**self).drift_rate_fixed(v)
-    }
-    #[inline]
-    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> Result<[f64; W]> {
-        (**self).kick_rate_fixed(q)
-    }
-}
+/// Re-exported from [`system`](crate::system), where the system traits live.
+pub use crate::system::SplitDynamics;
 
 fn check_state<K: Partner>(state: &State<K>, n: usize) -> Result<()> {
     state.validate(n)
@@ -317,7 +90,7 @@ impl Work {
 
 /// Symplectic Euler, order 1: v_{n+1} = v_n + h K(q_n), q_{n+1} = q_n + h D(v_{n+1}).
 ///
-/// On a [`Natural`] system this is the Euler-Cromer method. One force evaluation per step.
+/// On a [`Natural`](crate::Natural) system this is the Euler-Cromer method. One force evaluation per step.
 pub struct SymplecticEuler<S> {
     system: S,
     work: Work,
@@ -721,8 +494,9 @@ impl<S: SplitDynamics + LinearizedDynamics> TangentStepper for SymplecticEuler<S
 
 /// Ψ of a composition of Störmer-Verlet steps: the product of the kick and drift Jacobians in the
 /// order the step applies them (K_{a₀h}, D_{b₁h}, K_{a₁h}, …, D_{b_s h}, K_{a_s h}), each at the
-/// point where the step evaluates it. For a [`SeparableHamiltonian`] every factor is symplectic, so
-/// det Ψ = 1 to rounding. Needs `S: LinearizedDynamics` (as [`SymplecticEuler`]).
+/// point where the step evaluates it. For a [`SeparableHamiltonian`](crate::SeparableHamiltonian)
+/// every factor is symplectic, so det Ψ = 1 to rounding. Needs `S: LinearizedDynamics` (as
+/// [`SymplecticEuler`]).
 impl<S: SplitDynamics + LinearizedDynamics> TangentStepper for Composition<S> {
     fn step_tangent(
         &mut self,

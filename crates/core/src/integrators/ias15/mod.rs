@@ -75,119 +75,16 @@
 //!   Open J. Astrophys. 7 (2024).
 //! - REBOUND's `integrator_ias15.c`, for the constants (given there to 25 digits) and the control.
 
+mod coefficients;
+mod control;
+
 use super::SplitDynamics;
-use crate::dense::DenseEval;
+use crate::dense::{horner_eval, DenseEval};
 use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
-
-/// Gauss-Radau nodes h₀ = 0 < h₁ < … < h₇ of [0, 1].
-#[allow(clippy::excessive_precision)] // the published digits, kept verbatim
-const H: [f64; 8] = [
-    0.0,
-    0.0562625605369221464656521910318,
-    0.180240691736892364987579942780,
-    0.352624717113169637373907769648,
-    0.547153626330555383001448554766,
-    0.734210177215410531523210605558,
-    0.885320946839095768090359771030,
-    0.977520613561287501891174488626,
-];
-
-/// Differences r = h_j − h_k (k < j, by rows j = 1..7) of the nodes, for the divided differences g.
-#[allow(clippy::excessive_precision)]
-const RR: [f64; 28] = [
-    0.0562625605369221464656522,
-    0.1802406917368923649875799,
-    0.1239781311999702185219278,
-    0.3526247171131696373739078,
-    0.2963621565762474909082556,
-    0.1723840253762772723863278,
-    0.5471536263305553830014486,
-    0.4908910657936332365357964,
-    0.3669129345936630180138686,
-    0.1945289092173857456275408,
-    0.7342101772154105315232106,
-    0.6779476166784883850575584,
-    0.5539694854785181665356307,
-    0.3815854601022408941493028,
-    0.1870565508848551485217621,
-    0.8853209468390957680903598,
-    0.8290583863021736216247076,
-    0.7050802551022034031027798,
-    0.5326962297259261307164520,
-    0.3381673205085403850889112,
-    0.1511107696236852365671492,
-    0.9775206135612875018911745,
-    0.9212580530243653554255223,
-    0.7972799218243951369035945,
-    0.6248958964481178645172667,
-    0.4303669872307321188897259,
-    0.2433104363458769703679639,
-    0.0921996667221917338008147,
-];
-
-/// 1/r, so that the divided differences multiply instead of divide.
-const RR_INV: [f64; 28] = {
-    let mut inv = [0.0; 28];
-    let mut i = 0;
-    while i < 28 {
-        inv[i] = 1.0 / RR[i];
-        i += 1;
-    }
-    inv
-};
-
-/// Everhart's c: b from g (the Newton form re-expanded in powers of θ), by rows.
-#[allow(clippy::excessive_precision)]
-const C: [f64; 21] = [
-    -0.0562625605369221464656522,
-    0.0101408028300636299864818,
-    -0.2365032522738145114532321,
-    -0.0035758977292516175949345,
-    0.0935376952594620658957485,
-    -0.5891279693869841488271399,
-    0.0019565654099472210769006,
-    -0.0547553868890686864408084,
-    0.4158812000823068616886219,
-    -1.1362815957175395318285885,
-    -0.0014365302363708915424460,
-    0.0421585277212687077072973,
-    -0.3600995965020568122897665,
-    1.2501507118406910258505441,
-    -1.8704917729329500633517991,
-    0.0012717903090268677492943,
-    -0.0387603579159067703699046,
-    0.3609622434528459832253398,
-    -1.4668842084004269643701553,
-    2.9061362593084293014237913,
-    -2.7558127197720458314421588,
-];
-
-/// Everhart's d: g from b (the inverse of c), by rows.
-#[allow(clippy::excessive_precision)]
-const D: [f64; 21] = [
-    0.0562625605369221464656522,
-    0.0031654757181708292499905,
-    0.2365032522738145114532321,
-    0.0001780977692217433881125,
-    0.0457929855060279188954539,
-    0.5891279693869841488271399,
-    0.0000100202365223291272096,
-    0.0084318571535257015445000,
-    0.2535340690545692665214616,
-    1.1362815957175395318285885,
-    0.0000005637641639318207610,
-    0.0015297840025004658189490,
-    0.0978342365324440053653648,
-    0.8752546646840910912297246,
-    1.8704917729329500633517991,
-    0.0000000317188154017613665,
-    0.0002762930909826476593130,
-    0.0360285539837364596003871,
-    0.5767330002770787313544596,
-    2.2485887607691597933926895,
-    2.7558127197720458314421588,
-];
+#[cfg(test)]
+use coefficients::RR;
+use coefficients::{C, D, H, HORNER, RR_INV};
 
 /// Largest shrinking of a step that is still accepted, and largest growth (its inverse).
 const SAFETY: f64 = 0.25;
@@ -202,27 +99,6 @@ const PC_ACCEPT: f64 = 1e-10;
 /// Above this ratio of consecutive step sizes the predictor starts from zero.
 const PREDICT_MAX_RATIO: f64 = 20.0;
 
-/// Factors of the Horner scheme for q at node n: q = q₀ + (((b₆·F₀ + b₅)·F₁ + …)·F₆ + a₀)·(hh_n)²/2 +
-/// v₀ hh_n, with F = (7h_n/9, 3h_n/4, 5h_n/7, 2h_n/3, 3h_n/5, h_n/2, h_n/3).
-const HORNER: [[f64; 7]; 8] = {
-    let mut f = [[0.0; 7]; 8];
-    let mut n = 0;
-    while n < 8 {
-        let h = H[n];
-        f[n] = [
-            7.0 * h / 9.0,
-            3.0 * h / 4.0,
-            5.0 * h / 7.0,
-            2.0 * h / 3.0,
-            3.0 * h / 5.0,
-            h / 2.0,
-            h / 3.0,
-        ];
-        n += 1;
-    }
-    f
-};
-
 /// The step-size criterion of IAS15 (see the [module](self) docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Ias15Control {
@@ -235,7 +111,22 @@ pub enum Ias15Control {
     Global,
 }
 
+/// A trial step the control accepted ([`Ias15::converge`]).
+struct Trial {
+    /// Its size.
+    h: f64,
+    /// The control's proposal for the next step.
+    h_next: f64,
+    /// The trials rejected before it.
+    rejected: usize,
+    /// The rounds of the predictor-corrector of all trials.
+    iterations: usize,
+    /// Whether its b started from a prediction.
+    predicted: bool,
+}
+
 /// How the predictor-corrector of one trial step ended.
+#[derive(Debug, Clone, Copy)]
 enum Attempt {
     /// Converged after this many iterations.
     Converged(usize),
@@ -655,87 +546,129 @@ const DENSE_LEN: usize = 9;
 /// Order of the dense output (its local error inside a step is O(h^{order+1})); measured in the tests.
 const DENSE_ORDER: u32 = 8;
 
-/// y(t₀ + θh) = y₀ + θ(P₁ + θ(P₂ + … + θ P₉)).
-fn dense_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
-    for (i, (o, y)) in out.iter_mut().zip(y0).enumerate() {
-        let mut acc = c[DENSE_LEN - 1][i];
-        for p in c[..DENSE_LEN - 1].iter().rev() {
-            acc = p[i] + theta * acc;
-        }
-        *o = y + theta * acc;
-    }
-}
-
 impl<S: SplitDynamics> Ias15<S> {
-    /// The step size the control proposes after a converged step of size h.
-    fn proposal(&self, h: f64) -> f64 {
-        let d = self.block;
-        let blocks = if self.n == 0 { 0 } else { self.n / d };
-        match self.control {
-            Ias15Control::Prs23 => {
-                let mut min_t2 = f64::INFINITY;
-                for blk in 0..blocks {
-                    let (mut a0i, mut y2, mut y3, mut y4) = (0.0, 0.0, 0.0, 0.0);
-                    for k in blk * d..(blk + 1) * d {
-                        let b = &self.b[k];
-                        a0i += self.a0[k] * self.a0[k];
-                        let a1 = self.a0[k] + b[0] + b[1] + b[2] + b[3] + b[4] + b[5] + b[6];
-                        y2 += a1 * a1;
-                        let j = b[0]
-                            + 2.0 * b[1]
-                            + 3.0 * b[2]
-                            + 4.0 * b[3]
-                            + 5.0 * b[4]
-                            + 6.0 * b[5]
-                            + 7.0 * b[6];
-                        y3 += j * j;
-                        let s =
-                            2.0 * b[1] + 6.0 * b[2] + 12.0 * b[3] + 20.0 * b[4] + 30.0 * b[5] + 42.0 * b[6];
-                        y4 += s * s;
-                    }
-                    if !a0i.is_normal() {
-                        // No acceleration (or a non-finite one): no timescale.
-                        continue;
-                    }
-                    let t2 = 2.0 * y2 / (y3 + (y4 * y2).sqrt());
-                    if t2.is_normal() && t2 < min_t2 {
-                        min_t2 = t2;
-                    }
-                }
-                if min_t2.is_normal() {
-                    min_t2.sqrt() * h * (5040.0 * self.epsilon).powf(1.0 / 7.0)
-                } else {
-                    h / SAFETY
-                }
-            }
-            Ias15Control::Global => {
-                let (mut max_a, mut max_b6) = (0.0_f64, 0.0_f64);
-                for blk in 0..blocks {
-                    let range = blk * d..(blk + 1) * d;
-                    let v2: f64 = self.v0[range.clone()].iter().map(|v| v * v).sum();
-                    let x2: f64 = self.x0[range.clone()].iter().map(|x| x * x).sum();
-                    // Skip slowly varying accelerations.
-                    if (v2 * h * h / x2).abs() < 1e-16 {
-                        continue;
-                    }
-                    for k in range {
-                        let (a, b6) = (self.at[k].abs(), self.b[k][6].abs());
-                        if a.is_normal() && a > max_a {
-                            max_a = a;
-                        }
-                        if b6.is_normal() && b6 > max_b6 {
-                            max_b6 = b6;
-                        }
-                    }
-                }
-                let error = max_b6 / max_a;
-                if error.is_normal() {
-                    h * (self.epsilon / error).powf(1.0 / 7.0)
-                } else {
-                    h / SAFETY
-                }
-            }
+    /// The start of a step from `state`: q₀, v₀ and a₀ = f(q₀) (the one the initial-step choice
+    /// evaluated when the step starts there). The predictor's data and the compensations of q and v
+    /// carry over only when the step continues the last accepted one; they are reset otherwise.
+    fn start(&mut self, state: &State<S::Partner>) -> Result<()> {
+        let (q, v) = (state.q.as_slice(), state.v.as_slice());
+        if !(self.have_last && self.last_q == q && self.last_v == v) {
+            self.have_last = false;
+            self.h_prev = 0.0;
+            self.csx.iter_mut().for_each(|c| *c = 0.0);
+            self.csv.iter_mut().for_each(|c| *c = 0.0);
         }
+        self.x0.copy_from_slice(q);
+        self.v0.copy_from_slice(v);
+        if self.have_cached && self.cached_q == q {
+            self.a0.copy_from_slice(&self.cached_a);
+        } else if !Self::accelerations(&self.system, q, &mut self.a0, &mut self.evaluations)? {
+            return Err(Error::NonFiniteResult {
+                what: "accelerations",
+                t: state.t,
+                component: None,
+            });
+        }
+        self.have_cached = false;
+        Ok(())
+    }
+
+    /// Trial steps from t, trying h first, until the predictor-corrector converges on a step the
+    /// control accepts. A trial whose accelerations are not finite is retried with h·[`SAFETY`], one
+    /// whose iteration does not converge with h/2 (in fixed-step mode both are errors), and a
+    /// converged one is redone with the control's proposal when that is far smaller (< h/4), or
+    /// smaller at all on the first trial of a run (its size is a guess, and a step 4× too large has a
+    /// local error 4¹⁶ times the control's). [`Error::StepSizeUnderflow`] when h falls below `h_min`
+    /// or 10 ulps of t.
+    fn converge(&mut self, t: f64, h: f64) -> Result<Trial> {
+        let (mut h, mut rejected, mut iterations, mut last_err) = (h, 0, 0, f64::NAN);
+        loop {
+            if !self.fixed && (h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs()) {
+                return Err(Error::StepSizeUnderflow {
+                    t,
+                    h,
+                    error: last_err,
+                });
+            }
+            let predicted = self.predict(h);
+            let attempt = self.iterate(h)?;
+            iterations += match attempt {
+                Attempt::Converged(it) | Attempt::NonFinite(it) => it,
+                Attempt::NotConverged(_) => MAX_ITERATIONS,
+            };
+            if let Some((factor, err)) = self.retry(t, attempt)? {
+                rejected += 1;
+                last_err = err;
+                h *= factor;
+                continue;
+            }
+            let h_next = if self.fixed {
+                h
+            } else {
+                let proposal = self.proposal(h);
+                let fresh = self.h_prev == 0.0 && rejected == 0;
+                if proposal < SAFETY * h || (fresh && proposal < h) {
+                    // Smaller than the step just done allows: redo it with the proposal.
+                    rejected += 1;
+                    last_err = h / proposal;
+                    h = proposal;
+                    continue;
+                }
+                proposal.min(h / SAFETY)
+            };
+            return Ok(Trial {
+                h,
+                h_next,
+                rejected,
+                iterations,
+                predicted,
+            });
+        }
+    }
+
+    /// How a trial that did not converge is retried: the factor of its step size ([`SAFETY`] after
+    /// accelerations that were not finite, 1/2 after an iteration that did not converge) and the
+    /// error it reports (∞, or the last relative correction of b₆); `None` for a converged trial.
+    /// In fixed-step mode such a trial is an error: [`Error::NonFiniteResult`] or
+    /// [`Error::NewtonDiverged`].
+    fn retry(&self, t: f64, attempt: Attempt) -> Result<Option<(f64, f64)>> {
+        match attempt {
+            Attempt::Converged(_) => Ok(None),
+            Attempt::NonFinite(_) if self.fixed => Err(Error::NonFiniteResult {
+                what: "accelerations",
+                t,
+                component: None,
+            }),
+            Attempt::NonFinite(_) => Ok(Some((SAFETY, f64::INFINITY))),
+            Attempt::NotConverged(err) if self.fixed => Err(Error::NewtonDiverged {
+                iterations: MAX_ITERATIONS,
+                residual: err,
+                tolerance: PC_TOLERANCE,
+                t,
+            }),
+            Attempt::NotConverged(err) => Ok(Some((0.5, err))),
+        }
+    }
+
+    /// Commits the step of size h from t: `state` = (t + h, q₁, v₁), the compensations of q₁ and v₁,
+    /// and the predictor's data for the next step (its b, and the prediction e when there was one).
+    fn commit(&mut self, state: &mut State<S::Partner>, t: f64, h: f64, predicted: bool) {
+        state.q.as_mut_slice().copy_from_slice(&self.x1);
+        state.v.as_mut_slice().copy_from_slice(&self.v1);
+        state.t = t + h;
+        std::mem::swap(&mut self.csx, &mut self.csx1);
+        std::mem::swap(&mut self.csv, &mut self.csv1);
+        self.last_q.copy_from_slice(&self.x1);
+        self.last_v.copy_from_slice(&self.v1);
+        self.have_last = true;
+        std::mem::swap(&mut self.prev_b, &mut self.b);
+        if predicted {
+            std::mem::swap(&mut self.prev_e, &mut self.e);
+        } else {
+            // No prediction to correct: the next one starts from the converged b alone.
+            self.prev_e.copy_from_slice(&self.prev_b);
+        }
+        self.h_prev = h;
     }
 
     /// The end of a converged step of size h into x1, v1 and their compensations (Kahan sums of the
@@ -796,56 +729,8 @@ impl<S: SplitDynamics> Ias15<S> {
             }
             c[8][n + k] = 0.0;
         }
-        let eval: DenseEval = dense_eval;
+        let eval: DenseEval = horner_eval;
         self.dense = Some(DenseOutput::from_coefficients(t, h, DENSE_ORDER, y0, c, eval));
-    }
-
-    /// An initial step size at `state` by Hairer's rule (as [`Adaptive`](super::Adaptive) chooses it)
-    /// with order 15 and atol = rtol = ε; f(q₀) is kept for the first step.
-    fn hinit(&mut self, state: &State<S::Partner>) -> Result<f64> {
-        state.validate(self.n)?;
-        let (q, v) = (state.q.as_slice(), state.v.as_slice());
-        self.have_cached = false;
-        self.cached_q.copy_from_slice(q);
-        if !Self::accelerations(&self.system, q, &mut self.cached_a, &mut self.evaluations)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
-        }
-        self.have_cached = true;
-        let eps = self.epsilon;
-        let sk = |y: f64| eps + eps * y.abs();
-        let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|x| x * x).sum::<f64>().sqrt();
-        let a = &self.cached_a;
-        let d0 = norm(&mut q.iter().chain(v).map(|y| y / sk(*y)));
-        let d1 = norm(&mut v.iter().zip(q).chain(a.iter().zip(v)).map(|(f, y)| f / sk(*y)));
-        let h0 = if d0 <= 1e-5 || d1 <= 1e-5 {
-            1e-6
-        } else {
-            0.01 * d0 / d1
-        };
-        // The explicit Euler step (q + h₀v, v + h₀a) and f there.
-        for k in 0..self.n {
-            self.xs[k] = q[k] + h0 * v[k];
-        }
-        if !Self::accelerations(&self.system, &self.xs, &mut self.at, &mut self.evaluations)? {
-            return Ok(h0 * 1e-3);
-        }
-        let a = &self.cached_a;
-        let d2 = norm(
-            &mut (0..self.n)
-                .map(|k| h0 * a[k] / sk(q[k]))
-                .chain((0..self.n).map(|k| (self.at[k] - a[k]) / sk(v[k]))),
-        ) / h0;
-        let der12 = d1.max(d2);
-        let h1 = if der12 <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / der12).powf(1.0 / 15.0)
-        };
-        Ok((100.0 * h0).min(h1))
     }
 }
 
@@ -863,128 +748,35 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
         state.validate(self.n)?;
         check_time_resolution(state.t, h)?;
         let t = state.t;
-        let (q, v) = (state.q.as_slice(), state.v.as_slice());
-        self.system.admissible(t, q, v)?;
-        // Predictor and compensations carry over only when this step continues the last one.
-        if !(self.have_last && self.last_q == q && self.last_v == v) {
-            self.have_last = false;
-            self.h_prev = 0.0;
-            self.csx.iter_mut().for_each(|c| *c = 0.0);
-            self.csv.iter_mut().for_each(|c| *c = 0.0);
-        }
-        self.x0.copy_from_slice(q);
-        self.v0.copy_from_slice(v);
+        self.system
+            .admissible(t, state.q.as_slice(), state.v.as_slice())?;
         let evaluations = self.evaluations;
-        if self.have_cached && self.cached_q == q {
-            self.a0.copy_from_slice(&self.cached_a);
-        } else if !Self::accelerations(&self.system, q, &mut self.a0, &mut self.evaluations)? {
+        self.start(state)?;
+        let trial = self.converge(t, h)?;
+        let h = trial.h;
+        self.finish(h);
+        if !self
+            .x1
+            .iter()
+            .chain(&self.v1)
+            .fold(true, |ok, x| ok & x.is_finite())
+        {
             return Err(Error::NonFiniteResult {
-                what: "accelerations",
+                what: "state after the step",
                 t,
                 component: None,
             });
         }
-        self.have_cached = false;
-        let (mut h, mut rejected, mut iterations, mut last_err) = (h, 0, 0, f64::NAN);
-        loop {
-            if !self.fixed && (h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs()) {
-                return Err(Error::StepSizeUnderflow {
-                    t,
-                    h,
-                    error: last_err,
-                });
-            }
-            let predicted = self.predict(h);
-            match self.iterate(h)? {
-                Attempt::Converged(it) => iterations += it,
-                Attempt::NonFinite(it) => {
-                    iterations += it;
-                    if self.fixed {
-                        return Err(Error::NonFiniteResult {
-                            what: "accelerations",
-                            t,
-                            component: None,
-                        });
-                    }
-                    rejected += 1;
-                    last_err = f64::INFINITY;
-                    h *= SAFETY;
-                    continue;
-                }
-                Attempt::NotConverged(err) => {
-                    iterations += MAX_ITERATIONS;
-                    if self.fixed {
-                        return Err(Error::NewtonDiverged {
-                            iterations: MAX_ITERATIONS,
-                            residual: err,
-                            tolerance: PC_TOLERANCE,
-                            t,
-                        });
-                    }
-                    rejected += 1;
-                    last_err = err;
-                    h *= 0.5;
-                    continue;
-                }
-            }
-            let h_next = if self.fixed {
-                h
-            } else {
-                let proposal = self.proposal(h);
-                // A step is redone when the proposal is far smaller (< h/4). The first trial of a run
-                // (or after the state was changed) is redone as soon as the proposal is smaller at
-                // all: its size is a guess, and a step 4× too large has a local error 4¹⁶ times the
-                // control's.
-                let fresh = self.h_prev == 0.0 && rejected == 0;
-                if proposal < SAFETY * h || (fresh && proposal < h) {
-                    // Smaller than the step just done allows: redo it with the proposal.
-                    rejected += 1;
-                    last_err = h / proposal;
-                    h = proposal;
-                    continue;
-                }
-                proposal.min(h / SAFETY)
-            };
-            self.finish(h);
-            if !self
-                .x1
-                .iter()
-                .chain(&self.v1)
-                .fold(true, |ok, x| ok & x.is_finite())
-            {
-                return Err(Error::NonFiniteResult {
-                    what: "state after the step",
-                    t,
-                    component: None,
-                });
-            }
-            if self.dense_allowed && self.dense_requested {
-                self.build_dense(t, h);
-            } else {
-                self.dense = None;
-            }
-            // Commit: the state, the compensations, the predictor's data.
-            state.q.as_mut_slice().copy_from_slice(&self.x1);
-            state.v.as_mut_slice().copy_from_slice(&self.v1);
-            state.t = t + h;
-            std::mem::swap(&mut self.csx, &mut self.csx1);
-            std::mem::swap(&mut self.csv, &mut self.csv1);
-            self.last_q.copy_from_slice(&self.x1);
-            self.last_v.copy_from_slice(&self.v1);
-            self.have_last = true;
-            std::mem::swap(&mut self.prev_b, &mut self.b);
-            if predicted {
-                std::mem::swap(&mut self.prev_e, &mut self.e);
-            } else {
-                // No prediction to correct: the next one starts from the converged b alone.
-                self.prev_e.copy_from_slice(&self.prev_b);
-            }
-            self.h_prev = h;
-            return Ok(StepInfo::fixed(h)
-                .with_control(rejected, h_next)
-                .with_evaluations(self.evaluations - evaluations)
-                .with_newton(iterations, 0));
+        if self.dense_allowed && self.dense_requested {
+            self.build_dense(t, h);
+        } else {
+            self.dense = None;
         }
+        self.commit(state, t, h, trial.predicted);
+        Ok(StepInfo::fixed(h)
+            .with_control(trial.rejected, trial.h_next)
+            .with_evaluations(self.evaluations - evaluations)
+            .with_newton(trial.iterations, 0))
     }
     fn dof(&self) -> usize {
         self.n

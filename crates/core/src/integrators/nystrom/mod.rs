@@ -60,11 +60,16 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., II.14
 //!   (Nyström methods, order conditions).
 
+mod tableaux;
+
+pub use tableaux::{Dprkn12, Dprkn6, Dprkn8, Rkn12, Rkn6, Rkn8};
+
 use super::adaptive::{
-    check_tolerances, check_underflow, checked_error, combine_stages, error_scale, finite_stage,
-    initial_step_size, settings_methods, stage_sum, Controller, Settings, StageArgument, Stages,
+    check_tolerances, checked_error, combine_stages, error_scale, finite_stage, initial_step_size,
+    settings_methods, stage_sum, until_accepted, Controller, Settings, StageArgument, Stages,
 };
 use super::SplitDynamics;
+use crate::dense::horner_eval;
 use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 
@@ -147,18 +152,6 @@ pub trait NystromPair {
                 c[n + i] = 0.0;
             }
         }
-    }
-}
-
-/// y(θ) = y₀ + θ Σ_m `c[m]` θ^m (Horner), the evaluation of every Nyström dense output.
-fn dense_eval(theta: f64, y0: &[f64], c: &[Vec<f64>], out: &mut [f64]) {
-    let last = c.len() - 1;
-    for i in 0..y0.len() {
-        let mut acc = c[last][i];
-        for cm in c[..last].iter().rev() {
-            acc = cm[i] + theta * acc;
-        }
-        out[i] = y0[i] + theta * acc;
     }
 }
 
@@ -424,7 +417,12 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             M::DENSE_ORDER
         };
         self.dense = Some(DenseOutput::from_coefficients(
-            t, h, order, y0, coeffs, dense_eval,
+            t,
+            h,
+            order,
+            y0,
+            coeffs,
+            horner_eval,
         ));
     }
 
@@ -480,30 +478,14 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         }
     }
 
-    fn load<K: crate::Partner>(&mut self, state: &State<K>) {
-        self.q0.copy_from_slice(state.q.as_slice());
-        self.v0.copy_from_slice(state.v.as_slice());
-    }
-}
-
-impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
-    type Partner = S::Partner;
-    /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
-    /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
-    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
-        check_step(h)?;
-        state.validate(self.n)?;
-        check_time_resolution(state.t, h)?;
-        self.system
-            .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
+    /// The start of a step from `state`: (q₀, q̇₀) loaded and the first stage k₁ = f(q₀), the last
+    /// step's f(q₁) when the step starts at its q₁ (f depends on q alone), evaluated otherwise. When
+    /// the step continues the last accepted one (same q and q̇) and a Hermite dense output is wanted,
+    /// that step's start (q, q̇, q̈) and size are kept as the third node of the interpolant.
+    fn start(&mut self, state: &State<S::Partner>) -> Result<()> {
         let n = self.n;
-        let evaluations = self.evaluations;
-        let t = state.t;
-        // f depends on q alone: f(q₁) of the last step is the first stage when the step starts there.
         let reuse = self.fsal && self.q1 == *state.q.as_slice();
-        let s = M::C.len();
-        // This step continues the last accepted one (same q and q̇): keep that step's start for the
-        // dense output (q₀, q̇₀ and k₁ still hold it).
+        // q₀, q̇₀ and k₁ still hold the last step's start.
         self.prev = M::HERMITE
             && reuse
             && self.h_last > 0.0
@@ -522,65 +504,77 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         if !reuse && !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
             return Err(Error::NonFiniteResult {
                 what: "accelerations",
-                t,
+                t: state.t,
                 component: None,
             });
         }
         self.k[..n].copy_from_slice(&self.a1);
-        let c = self.settings.controller;
-        let alpha = 1.0 / M::CONTROL_ORDER - 0.75 * c.beta;
-        let (mut h, mut rejected, mut last_err) = (h, 0, f64::NAN);
-        loop {
-            check_underflow(t, h, self.settings.h_min, last_err)?;
-            let err = self.attempt(h)?;
-            if err <= 1.0 {
-                let dense = self.settings.dense_allowed && self.settings.dense_requested;
-                if M::FSAL {
-                    self.a1.copy_from_slice(&self.k[(s - 1) * n..s * n]);
-                    self.fsal = true;
-                } else if dense {
-                    if !Self::accel(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
-                        return Err(Error::NonFiniteResult {
-                            what: "accelerations",
-                            t: t + h,
-                            component: None,
-                        });
-                    }
-                    self.fsal = true;
-                }
-                let mut h_next = if self.settings.fixed {
-                    h
-                } else {
-                    h / c.accepted_divisor(err, self.err_prev, alpha)
-                };
-                if rejected > 0 {
-                    h_next = h_next.min(h);
-                }
-                self.err_prev = err.max(1e-4);
-                self.h_last = h;
-                if dense {
-                    self.build_dense(t, h);
-                } else if let Some(d) = self.dense.take() {
-                    self.spare = Some(d.into_parts());
-                }
-                state.q.as_mut_slice().copy_from_slice(&self.q1);
-                state.v.as_mut_slice().copy_from_slice(&self.v1);
-                state.t = t + h;
-                return Ok(StepInfo::fixed(h)
-                    .with_control(rejected, h_next)
-                    .with_evaluations(self.evaluations - evaluations));
-            }
-            if self.settings.fixed {
+        Ok(())
+    }
+
+    /// a₁ = f(q₁) after the accepted trial of size h from t: the last stage of an FSAL pair, else
+    /// evaluated when the dense output needs it (and then reused by the next step).
+    fn end_acceleration(&mut self, t: f64, h: f64, dense: bool) -> Result<()> {
+        let (n, s) = (self.n, M::C.len());
+        if M::FSAL {
+            self.a1.copy_from_slice(&self.k[(s - 1) * n..s * n]);
+            self.fsal = true;
+        } else if dense {
+            if !Self::accel(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
                 return Err(Error::NonFiniteResult {
                     what: "accelerations",
-                    t,
+                    t: t + h,
                     component: None,
                 });
             }
-            rejected += 1;
-            last_err = err;
-            h /= c.rejected_divisor(err, alpha);
+            self.fsal = true;
         }
+        Ok(())
+    }
+
+    /// Accepts the trial of size h from t: its dense output when `dense`, then `state` = (t + h, q₁, q̇₁).
+    fn accept(&mut self, state: &mut State<S::Partner>, t: f64, h: f64, dense: bool) {
+        if dense {
+            self.build_dense(t, h);
+        } else if let Some(d) = self.dense.take() {
+            self.spare = Some(d.into_parts());
+        }
+        state.q.as_mut_slice().copy_from_slice(&self.q1);
+        state.v.as_mut_slice().copy_from_slice(&self.v1);
+        state.t = t + h;
+    }
+
+    fn load<K: crate::Partner>(&mut self, state: &State<K>) {
+        self.q0.copy_from_slice(state.q.as_slice());
+        self.v0.copy_from_slice(state.v.as_slice());
+    }
+}
+
+impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
+    type Partner = S::Partner;
+    /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
+    /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
+    fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
+        check_step(h)?;
+        state.validate(self.n)?;
+        check_time_resolution(state.t, h)?;
+        self.system
+            .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
+        let evaluations = self.evaluations;
+        let t = state.t;
+        self.start(state)?;
+        let settings = self.settings;
+        let trial = until_accepted(&settings, M::CONTROL_ORDER, (t, h), "accelerations", |h| {
+            self.attempt(h)
+        })?;
+        let dense = settings.dense_allowed && settings.dense_requested;
+        self.end_acceleration(t, trial.h, dense)?;
+        let h_next = trial.next_step(&settings, &mut self.err_prev);
+        self.h_last = trial.h;
+        self.accept(state, t, trial.h, dense);
+        Ok(StepInfo::fixed(trial.h)
+            .with_control(trial.rejected, h_next)
+            .with_evaluations(self.evaluations - evaluations))
     }
     fn dof(&self) -> usize {
         self.n
@@ -652,592 +646,6 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
     }
 }
 
-/// The DPRKN 6(4) tableau (see the [module](self) docs).
-#[derive(Debug, Clone, Copy)]
-pub struct Rkn6;
-
-/// Dormand-El-Mikkawy-Prince RKN 6(4): 6 stages (the last is f(q₁): FSAL, 5 new per step), sixth-order
-/// solution, fourth-order embedded estimate, a free dense output of order 5.
-pub type Dprkn6<S> = Nystrom<S, Rkn6>;
-
-/// Dense-output weights of DPRKN 6(4): b_i(θ) = Σ_m `R6[i][m]` θ^m (q₁ at θ = 1 has weights b_i),
-/// b'_i(θ) = Σ_m RP[i][m] θ^m; row 2 is zero (k₂ does not enter).
-const R6: [[f64; 5]; 6] = [
-    [
-        0.5,
-        -1.245014245014245,
-        1.5161443494776827,
-        -0.9066951566951567,
-        0.21367521367521367,
-    ],
-    [0.0, 0.0, 0.0, 0.0, 0.0],
-    [
-        0.0,
-        1.9859371988705032,
-        -3.577652872294921,
-        2.5384011164109506,
-        -0.6583937017967658,
-    ],
-    [
-        0.0,
-        -1.8559358276926614,
-        5.547586751052329,
-        -5.164133553908094,
-        1.5949081677229964,
-    ],
-    [
-        0.0,
-        2.178649237472767,
-        -6.926987319144182,
-        7.273336685101391,
-        -2.513826043237808,
-    ],
-    [
-        0.0,
-        -1.0636363636363637,
-        3.440909090909091,
-        -3.7409090909090907,
-        1.3636363636363635,
-    ],
-];
-/// See [`R6`].
-const RP6: [[f64; 5]; 6] = [
-    [
-        1.0,
-        -3.735042735042735,
-        6.064577397910731,
-        -4.533475783475783,
-        1.2820512820512822,
-    ],
-    [0.0, 0.0, 0.0, 0.0, 0.0],
-    [
-        0.0,
-        5.95781159661151,
-        -14.310611489179683,
-        12.692005582054751,
-        -3.950362210780595,
-    ],
-    [
-        0.0,
-        -5.567807483077984,
-        22.190347004209315,
-        -25.820667769540467,
-        9.56944900633798,
-    ],
-    [
-        0.0,
-        6.5359477124183005,
-        -27.707949276576727,
-        36.366683425506956,
-        -15.082956259426847,
-    ],
-    [
-        0.0,
-        -3.190909090909091,
-        13.763636363636364,
-        -18.704545454545453,
-        8.181818181818182,
-    ],
-];
-impl NystromPair for Rkn6 {
-    const NAME: &'static str = "DPRKN 6(4)";
-    const ORDER: u32 = 6;
-    const CONTROL_ORDER: f64 = 5.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.2,
-        fac_max: 10.0,
-        beta: 0.04,
-    };
-    const C: &'static [f64] = &[
-        0.0,
-        0.12929590313670442,
-        0.25859180627340883,
-        0.67029708261548,
-        0.9,
-        1.0,
-    ];
-    const A: &'static [&'static [f64]] = &[
-        &[],
-        &[0.008358715283968025],
-        &[0.011144953711957367, 0.022289907423914734],
-        &[0.1454747428010918, -0.22986064052264749, 0.3090349872029675],
-        &[
-            -0.20766826295078997,
-            0.6863667842925143,
-            -0.19954927787234925,
-            0.12585075653062489,
-        ],
-        &[
-            0.07811016144349478,
-            0.0,
-            0.2882917411897668,
-            0.12242553717457041,
-            0.011172560192168035,
-        ],
-    ];
-    const B: &'static [f64] = &[
-        0.07811016144349478,
-        0.0,
-        0.2882917411897668,
-        0.12242553717457041,
-        0.011172560192168035,
-        0.0,
-    ];
-    const BP: &'static [f64] = &[
-        0.07811016144349478,
-        0.0,
-        0.3888434787059826,
-        0.3713207579288423,
-        0.11172560192168035,
-        0.05,
-    ];
-    const B_ERR: &'static [f64] = &[
-        -0.9807490989269235,
-        2.406751371924452,
-        -1.559600370364267,
-        0.12242553717457041,
-        0.011172560192168035,
-        0.0,
-    ];
-    const BP_ERR: &'static [f64] = &[
-        0.023504273504273504,
-        0.0,
-        -0.07242330719764424,
-        0.17543989844952962,
-        -0.2765208647561589,
-        0.15,
-    ];
-    const FSAL: bool = true;
-    const DENSE_ORDER: u32 = 5;
-    const DENSE_LEN: usize = 6;
-    const HERMITE: bool = false;
-
-    /// q(θ) = q₀ + hθ(q̇₀ + hθ Σ_i b_i(θ) k_i), q̇(θ) = q̇₀ + hθ Σ_i b'_i(θ) k_i (k₆ = f(q₁)).
-    fn dense_coefficients(
-        h: f64,
-        k: Stages<'_>,
-        _q0: &[f64],
-        v0: &[f64],
-        _q1: &[f64],
-        _v1: &[f64],
-        _a1: &[f64],
-        out: &mut [Vec<f64>],
-    ) {
-        let n = v0.len();
-        let h2 = h * h;
-        for x in 0..n {
-            out[0][x] = h * v0[x];
-            out[5][n + x] = 0.0;
-            for m in 0..5 {
-                let (mut bq, mut bv) = (0.0, 0.0);
-                for i in 0..6 {
-                    let ki = k.get(i, x);
-                    bq += R6[i][m] * ki;
-                    bv += RP6[i][m] * ki;
-                }
-                out[m + 1][x] = h2 * bq;
-                out[m][n + x] = h * bv;
-            }
-        }
-    }
-}
-
-/// The DPRKN 8(6) tableau (see the [module](self) docs).
-#[derive(Debug, Clone, Copy)]
-pub struct Rkn8;
-
-/// Dormand-El-Mikkawy-Prince RKN 8(6): 9 stages (the last is f(q₁): FSAL, 8 new per step), eighth-order
-/// solution, sixth-order embedded estimate; quintic Hermite dense output (order 4).
-pub type Dprkn8<S> = Nystrom<S, Rkn8>;
-impl NystromPair for Rkn8 {
-    const NAME: &'static str = "DPRKN 8(6)";
-    const ORDER: u32 = 8;
-    const CONTROL_ORDER: f64 = 7.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.333,
-        fac_max: 6.0,
-        beta: 0.0,
-    };
-    const C: &'static [f64] = &[0.0, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0, 1.0];
-    const A: &'static [&'static [f64]] = &[
-        &[],
-        &[0.00125],
-        &[0.0016666666666666668, 0.0033333333333333335],
-        &[0.045, -0.09, 0.09],
-        &[
-            -0.3379798532571243,
-            0.8611516478170984,
-            -0.48613644655235316,
-            0.0879646519923791,
-        ],
-        &[
-            0.7461462641043086,
-            -1.804347430246737,
-            1.2761518285888953,
-            -0.031220932716737166,
-            0.05827027027027027,
-        ],
-        &[
-            -1.2551623461807584,
-            3.257463187064823,
-            -2.068866619575089,
-            0.4206478455603251,
-            -0.018382978723404254,
-            0.06930091185410335,
-        ],
-        &[
-            3.772901830095941,
-            -9.669613121677195,
-            6.7991544547851674,
-            -0.8490343907823893,
-            0.4671734865470852,
-            -0.04939742152466368,
-            0.028815162556053812,
-        ],
-        &[
-            0.028092718568909044,
-            0.0,
-            0.1457093253968254,
-            0.1529431216931217,
-            0.09151785714285714,
-            0.06554705215419501,
-            0.01618992504409171,
-            0.0,
-        ],
-    ];
-    const B: &'static [f64] = &[
-        0.028092718568909044,
-        0.0,
-        0.1457093253968254,
-        0.1529431216931217,
-        0.09151785714285714,
-        0.06554705215419501,
-        0.01618992504409171,
-        0.0,
-        0.0,
-    ];
-    const BP: &'static [f64] = &[
-        0.028092718568909044,
-        0.0,
-        0.1618992504409171,
-        0.2184901738473167,
-        0.18303571428571427,
-        0.2184901738473167,
-        0.1618992504409171,
-        0.028092718568909044,
-        0.0,
-    ];
-    const B_ERR: &'static [f64] = &[
-        -0.044557986852984274,
-        0.0,
-        0.10965442077101599,
-        -0.14620589436135464,
-        0.1315853049252192,
-        -0.06265966901200913,
-        0.012183824530112887,
-        0.0,
-        0.0,
-    ];
-    const BP_ERR: &'static [f64] = &[
-        -0.044557986852984274,
-        0.0,
-        0.12183824530112887,
-        -0.2088655633733638,
-        0.2631706098504384,
-        -0.2088655633733638,
-        0.12183824530112887,
-        0.10544201314701572,
-        -0.15,
-    ];
-    const FSAL: bool = true;
-    const DENSE_ORDER: u32 = 4;
-    const DENSE_LEN: usize = 8;
-    const HERMITE: bool = true;
-}
-
-/// The DPRKN 12(10) tableau (see the [module](self) docs).
-#[derive(Debug, Clone, Copy)]
-pub struct Rkn12;
-
-/// Dormand-El-Mikkawy-Prince RKN 12(10): 17 stages (16 new per step, plus f(q₁) for the next step),
-/// twelfth-order solution, tenth-order embedded estimate; quintic Hermite dense output (order 4).
-pub type Dprkn12<S> = Nystrom<S, Rkn12>;
-impl NystromPair for Rkn12 {
-    const NAME: &'static str = "DPRKN 12(10)";
-    const ORDER: u32 = 12;
-    const CONTROL_ORDER: f64 = 11.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.333,
-        fac_max: 6.0,
-        beta: 0.0,
-    };
-    const C: &'static [f64] = &[
-        0.0,
-        0.02,
-        0.04,
-        0.1,
-        0.13333333333333333,
-        0.16,
-        0.05,
-        0.2,
-        0.25,
-        0.3333333333333333,
-        0.5,
-        0.5555555555555556,
-        0.75,
-        0.8571428571428571,
-        0.9452162222720143,
-        1.0,
-        1.0,
-    ];
-    const A: &'static [&'static [f64]] = &[
-        &[],
-        &[0.0002],
-        &[0.0002666666666666667, 0.0005333333333333334],
-        &[0.002916666666666667, -0.004166666666666667, 0.00625],
-        &[
-            0.0016460905349794238,
-            0.0,
-            0.0054869684499314125,
-            0.0017558299039780521,
-        ],
-        &[
-            0.0019456,
-            0.0,
-            0.007151746031746032,
-            0.0029127111111111113,
-            0.0007899428571428571,
-        ],
-        &[
-            0.00056640625,
-            0.0,
-            0.0008809730489417989,
-            -0.0004369212962962963,
-            0.00033900669642857143,
-            -9.946469907407407e-05,
-        ],
-        &[
-            0.0030833333333333333,
-            0.0,
-            0.0,
-            0.0017777777777777779,
-            0.0027,
-            0.0015782828282828283,
-            0.01086060606060606,
-        ],
-        &[
-            0.00365183937480113,
-            0.0,
-            0.003965171714072343,
-            0.0031972582629306284,
-            0.008221467306855435,
-            -0.0013130926959572379,
-            0.009771586968064868,
-            0.003755769069232834,
-        ],
-        &[
-            0.003707241068718501,
-            0.0,
-            0.005082045854555286,
-            0.001174708002175412,
-            -0.021147629915126993,
-            0.06010463698107881,
-            0.02010573476850619,
-            -0.02835075012293358,
-            0.014879568918581932,
-        ],
-        &[
-            0.03512537656073344,
-            0.0,
-            -0.008615749195138479,
-            -0.005791448051007917,
-            1.945554823782616,
-            -3.4351238674565137,
-            -0.10930701107475221,
-            2.3496383118995166,
-            -0.7560094086870229,
-            0.10952897222156927,
-        ],
-        &[
-            0.020527792537482496,
-            0.0,
-            -0.00728644676448018,
-            -0.0021153556079618403,
-            0.9275807968723522,
-            -1.6522824844257367,
-            -0.02107956300568657,
-            1.2065364326207872,
-            -0.4137144770010661,
-            0.09079873982809654,
-            0.005355552600533985,
-        ],
-        &[
-            -0.14324078875545515,
-            0.0,
-            0.012528703773091817,
-            0.006826019163969827,
-            -4.799555395574387,
-            5.6986250439519415,
-            0.7553430369523645,
-            -0.12755487858281084,
-            -1.9605926051117384,
-            0.9185609056635262,
-            -0.23880085505284432,
-            0.15911081357234216,
-        ],
-        &[
-            0.8045019205520489,
-            0.0,
-            -0.016658527067011247,
-            -0.021415834042629735,
-            16.827235928962466,
-            -11.172835357176098,
-            -3.377159297226324,
-            -15.243326655360846,
-            17.179835738215417,
-            -5.437719239823995,
-            1.3878671618364655,
-            -0.5925827732652812,
-            0.029603873171297354,
-        ],
-        &[
-            -0.913296766697358,
-            0.0,
-            0.0024112725757805178,
-            0.01765812269386174,
-            -14.851649779720384,
-            2.1589708670045757,
-            3.99791558311788,
-            28.434151800232232,
-            -25.2593643549416,
-            7.733878542362238,
-            -1.8913028948478674,
-            1.0014845070224718,
-            0.004641199599109052,
-            0.011218755022148957,
-        ],
-        &[
-            -0.27519629720559396,
-            0.0,
-            0.03661188877915492,
-            0.009789519688231562,
-            -12.293062345886211,
-            14.207226453937903,
-            1.5866476906789537,
-            2.4577735327595946,
-            -8.935193694403273,
-            4.373672731613407,
-            -1.8347181765449492,
-            1.1592085289061491,
-            -0.017290253165383924,
-            0.019325977904460768,
-            0.005204442937554993,
-        ],
-        &[
-            1.3076391847404059,
-            0.0,
-            0.017364109189745843,
-            -0.018544456454265796,
-            14.811522032867726,
-            9.38317630848247,
-            -5.2284261999445425,
-            -48.95128052584765,
-            38.297096034337926,
-            -10.58738133697598,
-            2.4332304376226275,
-            -1.0453406042575444,
-            0.0717732095086726,
-            0.0021622109708082783,
-            0.007009595759602514,
-            0.0,
-        ],
-    ];
-    const B: &'static [f64] = &[
-        0.012127868517185414,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.08629746251568875,
-        0.2525469581187147,
-        -0.1974186799326823,
-        0.2031869190789726,
-        -0.020775808077714918,
-        0.10967804874502014,
-        0.038065132526466504,
-        0.01163406880432423,
-        0.0046580297040248785,
-        0.0,
-        0.0,
-    ];
-    const BP: &'static [f64] = &[
-        0.012127868517185414,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.09083943422704079,
-        0.3156836976483934,
-        -0.2632249065769097,
-        0.3047803786184589,
-        -0.041551616155429835,
-        0.2467756096762953,
-        0.15226053010586602,
-        0.08143848163026961,
-        0.08502571193890811,
-        -0.009155189630077963,
-        0.025,
-    ];
-    const B_ERR: &'static [f64] = &[
-        -0.004880833389821577,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.014038126584857338,
-        -0.11947921920803832,
-        0.20440246507662121,
-        -0.1322681492223791,
-        0.11053069299761689,
-        -0.07975385787102851,
-        0.011224330486437457,
-        -0.004671596801593694,
-        0.0008580413473282841,
-        0.0,
-        0.0,
-    ];
-    const BP_ERR: &'static [f64] = &[
-        -0.004880833389821577,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.0,
-        0.014776975352481408,
-        -0.1493490240100479,
-        0.2725366201021616,
-        -0.19840222383356862,
-        0.22106138599523378,
-        -0.17944618020981415,
-        0.04489732194574983,
-        -0.03270117761115586,
-        0.015662325288859434,
-        -0.029155189630077964,
-        0.025,
-    ];
-
-    const FSAL: bool = false;
-    const DENSE_ORDER: u32 = 4;
-    const DENSE_LEN: usize = 8;
-    const HERMITE: bool = true;
-}
-
 /// Ψ of the accepted Nyström step with its step size h frozen (as for [`Adaptive`](super::Adaptive)):
 /// the stages differentiated,
 ///
@@ -1297,66 +705,5 @@ impl<S: SplitDynamics + super::LinearizedDynamics, M: NystromPair> crate::Tangen
             psi.copy_from(&out);
             Ok(())
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Σ_j a_ij = c_i²/2 (the stage positions are exact for q̈ = const), Σ b_i = 1/2, Σ b'_i = 1 and
-    /// the same for the embedded weights (Σ (b − b̂) = 0, Σ (b' − b̂') = 0); the coefficients are
-    /// sums of a few f64 of size ≤ 50, so 1e-13 bounds their rounding.
-    fn conditions<M: NystromPair>() {
-        let s = M::C.len();
-        for w in [
-            M::A.len(),
-            M::B.len(),
-            M::BP.len(),
-            M::B_ERR.len(),
-            M::BP_ERR.len(),
-        ] {
-            assert_eq!(w, s, "{}", M::NAME);
-        }
-        for i in 0..s {
-            assert_eq!(M::A[i].len(), i);
-            let sum: f64 = M::A[i].iter().sum();
-            let want = 0.5 * M::C[i] * M::C[i];
-            assert!((sum - want).abs() < 1e-13, "{} row {i}: {sum} vs {want}", M::NAME);
-        }
-        let b: f64 = M::B.iter().sum();
-        let bp: f64 = M::BP.iter().sum();
-        let be: f64 = M::B_ERR.iter().sum();
-        let bpe: f64 = M::BP_ERR.iter().sum();
-        assert!((b - 0.5).abs() < 1e-14 && (bp - 1.0).abs() < 1e-14, "{}", M::NAME);
-        assert!(be.abs() < 1e-13 && bpe.abs() < 1e-13, "{}: {be} {bpe}", M::NAME);
-        // Σ b'_i c_i = 1/2 and Σ b_i c_i = 1/6: the next conditions, as cheap.
-        let bpc: f64 = M::BP.iter().zip(M::C).map(|(b, c)| b * c).sum();
-        let bc: f64 = M::B.iter().zip(M::C).map(|(b, c)| b * c).sum();
-        assert!(
-            (bpc - 0.5).abs() < 1e-14 && (bc - 1.0 / 6.0).abs() < 1e-14,
-            "{}",
-            M::NAME
-        );
-        if M::FSAL {
-            assert_eq!(M::C[s - 1], 1.0);
-            assert_eq!(M::A[s - 1], &M::B[..s - 1]);
-            assert_eq!(M::B[s - 1], 0.0);
-        }
-    }
-
-    #[test]
-    fn nystrom_order_conditions() {
-        conditions::<Rkn6>();
-        conditions::<Rkn8>();
-        conditions::<Rkn12>();
-        // The dense output of DPRKN 6(4) ends on the step's weights: b_i(1) = b_i, b'_i(1) = b'_i.
-        for i in 0..6 {
-            let (bq, bv): (f64, f64) = (R6[i].iter().sum(), RP6[i].iter().sum());
-            assert!(
-                (bq - Rkn6::B[i]).abs() < 1e-14 && (bv - Rkn6::BP[i]).abs() < 1e-14,
-                "{i}"
-            );
-        }
     }
 }
