@@ -660,3 +660,40 @@ fn bad_input_nan_parameter_names_quantity_component_and_hint() {
         );
     }
 }
+
+/// V = ½(q₀² + k q₁²) with a parameter k that may be NaN.
+struct NanSpring {
+    k: f64,
+}
+
+impl Potential for NanSpring {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        (q[0] * q[0] + q[1] * q[1] * self.k) * 0.5
+    }
+}
+
+#[test]
+fn bad_input_nan_parameter_nystrom_and_ias15_name_the_component() {
+    // Issue 30: the Nyström pairs and IAS15 reported "accelerations" without a component. With k = NaN
+    // the force −k q₁ is NaN in component 1 alone (q₁ = 1); at the start of a step no smaller step
+    // helps, so the error comes at once, naming t, the quantity and the component, the state kept.
+    let start = State::new(0.0, [1.0, 1.0], [0.0, 0.0]);
+    let expected = Error::NonFiniteResult {
+        what: "accelerations",
+        t: 0.0,
+        component: Some(1),
+    };
+    for mut s in [
+        Box::new(Dprkn8::new(Natural::unit(NanSpring { k: f64::NAN })).unwrap())
+            as Box<dyn Stepper<Partner = Velocities>>,
+        Box::new(Dprkn12::new(Natural::unit(NanSpring { k: f64::NAN })).unwrap()),
+        Box::new(Ias15::new(Natural::unit(NanSpring { k: f64::NAN })).unwrap()),
+    ] {
+        let mut state = start.clone();
+        assert_eq!(s.step(&mut state, 0.1).unwrap_err(), expected, "{}", s.name());
+        assert_eq!(state, start, "{}", s.name());
+    }
+}
