@@ -349,12 +349,11 @@ impl<P: Potential> Natural<P> {
         // The value too: where V itself is infinite there is no force to return.
         if !check.is_finite() {
             check_finite("q", q)?;
-            // A natural system does not depend on t: no time to name. The component when a force is
-            // not finite (None when only V is).
+            // A natural system does not depend on t: no time to name.
             return Err(Error::NonFiniteResult {
                 what: "potential forces",
                 t: f64::NAN,
-                component: out.iter().position(|x| !x.is_finite()),
+                component: None,
             });
         }
         Ok(())
