@@ -1,0 +1,281 @@
+//! Lagrange's equations of a recorded Lagrangian: q̈ and the energy as compiled programs.
+//!
+//! From the graph of L(t, q, q̇), with p = ∂L/∂q̇,
+//!
+//! ```text
+//! M q̈ = b,   M = ∂p/∂q̇ = ∂²L/∂q̇²,   b = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q,   h = p·q̇ − L,
+//! ```
+//!
+//! each a graph: ∂L/∂q and p by one reverse accumulation from L; the mixed term (∂p/∂q) q̇ + ∂p/∂t as
+//! one derivative of p along the flow direction (δt, δq) = (1, q̇) (forward accumulation); row i of M
+//! (its lower triangle) by reverse accumulation from p_i; and q̈ by the unrolled LDLᵀ solve of
+//! [`ldlt`](crate::ldlt). Generalized forces Q(t, q, q̇) (plain f64 functions of the model) are
+//! inputs of the program, evaluated before it runs.
+
+use crate::derive::{directional, gradient};
+use crate::graph::{sign, Graph, Id};
+use crate::program::{Outputs, Program};
+use crate::trace::{Guard, Recorded};
+use crate::{ldlt, Compile, Result};
+use noether_core::error::check_phase_point;
+use noether_core::linalg::{is_singular, pivot_range, pivot_ratio};
+use noether_core::{Dynamics, EulerLagrange, Lagrangian, Velocities};
+
+/// Operation counts of a compiled system: what the model recorded, how many operations its
+/// derivation asked for (before folding, identities and sharing), and what runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Operations {
+    /// Nodes of the recorded model (inputs and constants included).
+    pub recorded: usize,
+    /// Operations built for the model and its derivatives, before simplification and sharing.
+    pub requested: usize,
+    /// Nodes of the graph after simplification and sharing.
+    pub graph: usize,
+    /// Operations of the accelerations' program (after dead-code elimination).
+    pub accelerations: usize,
+    /// Operations of the energy's program.
+    pub energy: usize,
+}
+
+/// [`EulerLagrange`] compiled: q̈ and the energy from programs built once on the graph of L (see the
+/// [module docs](self)); the dual-number system kept for the calls the compiled code cannot take.
+///
+/// A call falls back to the dual-number path when a guard of a comparison in L fails, when a pivot
+/// of the mass matrix is not positive or says singular ([`linalg`](noether_core::linalg)'s criterion),
+/// or when a result is not finite: the fallback then gives the right value, or the error the
+/// dual-number path gives ([`Error::IndefiniteMassMatrix`](noether_core::Error::IndefiniteMassMatrix),
+/// [`Error::NonFiniteResult`](noether_core::Error::NonFiniteResult), …). Within the region where the
+/// guards hold, the compiled and the dual-number results agree to rounding.
+pub struct CompiledEulerLagrange<L> {
+    dual: EulerLagrange<L>,
+    graph: Graph,
+    outputs: Vec<Id>,
+    accelerations: Program,
+    energy: Program,
+    guards: Vec<f64>,
+    forced: bool,
+    operations: Operations,
+}
+
+/// The outputs (q̈, pivots of M, diagonal of M) of Lagrange's equations on the graph of L.
+fn accelerations_outputs(r: &mut Recorded, forced: bool) -> Vec<Id> {
+    let n = r.q.len();
+    let g: &mut Graph = &mut r.rec.graph;
+    let vars: Vec<Id> = r.q.iter().chain(&r.v).copied().collect();
+    let grad = gradient(g, r.value, &vars);
+    let (gq, p) = grad.split_at(n);
+    let one = g.constant(1.0);
+    let seeds: Vec<(Id, Id)> = std::iter::once((r.t, one))
+        .chain(r.q.iter().zip(&r.v).map(|(&q, &v)| (q, v)))
+        .collect();
+    let mixed = directional(g, p, &seeds);
+    let m: Vec<Vec<Id>> = (0..n).map(|i| gradient(g, p[i], &r.v[..=i])).collect();
+    let b: Vec<Id> = (0..n)
+        .map(|i| {
+            let bi = g.sub(gq[i], mixed[i]);
+            if forced {
+                let qi = g.input((1 + 2 * n + i) as u32);
+                g.add(bi, qi)
+            } else {
+                bi
+            }
+        })
+        .collect();
+    let (x, d) = ldlt::solve(g, &m, &b);
+    let diagonal = (0..n).map(|i| m[i][i]);
+    x.into_iter().chain(d).chain(diagonal).collect()
+}
+
+/// The output h = p·q̇ − L.
+fn energy_output(r: &mut Recorded) -> Id {
+    let g = &mut r.rec.graph;
+    let p = gradient(g, r.value, &r.v);
+    let pv: Vec<Id> = p.iter().zip(&r.v).map(|(&p, &v)| g.mul(p, v)).collect();
+    let s = g.sum(pv);
+    g.sub(s, r.value)
+}
+
+/// `true` when every guard holds: the outputs from `offset` on have the signs recorded.
+pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool {
+    signs
+        .iter()
+        .enumerate()
+        .all(|(k, &s)| sign(o.get(offset + k)) == s)
+}
+
+impl<L: Lagrangian> CompiledEulerLagrange<L> {
+    /// Compiles `system`, recording L at a point chosen only for the branches L takes there (t = 0,
+    /// q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
+    pub fn new(system: EulerLagrange<L>) -> Result<Self> {
+        let n = system.dof();
+        let q: Vec<f64> = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
+        let v: Vec<f64> = (0..n).map(|i| 0.2 + 0.01 * i as f64).collect();
+        Self::at(system, 0.0, &q, &v)
+    }
+
+    /// Compiles `system`, recording L at (t, q, q̇): where L branches (compares values), the compiled
+    /// code follows the branches taken there and falls back to dual numbers elsewhere.
+    pub fn at(system: EulerLagrange<L>, t: f64, q: &[f64], v: &[f64]) -> Result<Self> {
+        let n = system.dof();
+        check_phase_point(n, t, q, v, "q̇")?;
+        let forced = system.lagrangian().has_generalized_force();
+        let model = system.lagrangian();
+        let mut r = Recorded::new(t, q, v, |t, q, v| model.lagrangian(t, q, v))?;
+        let recorded = r.rec.graph.len();
+        let guards: Vec<Guard> = r.rec.guards.clone();
+        let mut outputs = accelerations_outputs(&mut r, forced);
+        outputs.extend(guards.iter().map(|g| g.node));
+        let h = energy_output(&mut r);
+        let mut energy_outputs = vec![h];
+        energy_outputs.extend(guards.iter().map(|g| g.node));
+        let inputs = 1 + 2 * n + if forced { n } else { 0 };
+        let accelerations = Program::new(&r.rec.graph, inputs, &outputs);
+        let energy = Program::new(&r.rec.graph, 1 + 2 * n, &energy_outputs);
+        let operations = Operations {
+            recorded,
+            requested: r.rec.graph.requested(),
+            graph: r.rec.graph.len(),
+            accelerations: accelerations.operations(),
+            energy: energy.operations(),
+        };
+        Ok(CompiledEulerLagrange {
+            dual: system,
+            graph: r.rec.graph,
+            outputs,
+            accelerations,
+            energy,
+            guards: guards.iter().map(|g| g.sign).collect(),
+            forced,
+            operations,
+        })
+    }
+
+    /// The dual-number system it was compiled from (and falls back to).
+    pub fn dual(&self) -> &EulerLagrange<L> {
+        &self.dual
+    }
+
+    /// The operation counts.
+    pub fn operations(&self) -> Operations {
+        self.operations
+    }
+
+    /// The accelerations as Rust source, `pub fn <name>(x: &[f64; I]) -> [f64; O]` (see
+    /// [`show`](crate::show)): x = (t, q, q̇, and Q when L has generalized forces), the outputs
+    /// (q̈, the pivots d of M = LDLᵀ, the diagonal of M, then one value per guard). The compiled
+    /// q̈ is valid where every pivot is positive (and their ratio above
+    /// [`SINGULAR_PIVOT`](noether_core::linalg::SINGULAR_PIVOT)) and every guard has the sign
+    /// recorded ([`guard_signs`](Self::guard_signs)).
+    pub fn rust_source(&self, name: &str) -> String {
+        let n = self.dual.dof();
+        let inputs = 1 + 2 * n + if self.forced { n } else { 0 };
+        let layout =
+            format!(
+            "x = (t, q[{n}], q̇[{n}]{}); out = (q̈[{n}], pivots of M[{n}], diagonal of M[{n}], guards[{}]).",
+            if self.forced { format!(", Q[{n}]") } else { String::new() },
+            self.guards.len()
+        );
+        let doc = [
+            "Lagrange's equations, generated by noether-compile from the recorded Lagrangian.",
+            layout.as_str(),
+        ];
+        crate::show::rust_function(&self.graph, inputs, &self.outputs, name, &doc)
+    }
+
+    /// The sign each guard had when L was recorded (the compiled code holds where each has it).
+    pub fn guard_signs(&self) -> &[f64] {
+        &self.guards
+    }
+
+    /// The number of comparisons in L that the compiled code checks at every call.
+    pub fn guards(&self) -> usize {
+        self.guards.len()
+    }
+
+    /// q̈ from the program, when it is usable (guards hold, M positive definite and regular, q̈
+    /// finite): `false` otherwise, with `a` unspecified.
+    fn compiled_accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> bool {
+        let n = q.len();
+        let mut force = Vec::new();
+        if self.forced {
+            force.resize(n, 0.0);
+            self.dual.lagrangian().generalized_force(t, q, v, &mut force);
+        }
+        let run = self.accelerations.run_with(&[&[t], q, v, &force], |o| {
+            if !guards_hold(&o, 3 * n, &self.guards) {
+                return false;
+            }
+            let (lo, hi) = pivot_range((n..2 * n).map(|j| o.get(j)));
+            let norm = (2 * n..3 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
+            let positive = (n..2 * n).all(|j| o.get(j) > 0.0);
+            if !positive || is_singular(pivot_ratio(lo, hi, norm)) {
+                return false;
+            }
+            for (i, ai) in a.iter_mut().enumerate() {
+                *ai = o.get(i);
+            }
+            a.iter().all(|x| x.is_finite())
+        });
+        run.unwrap_or(false)
+    }
+
+    /// q̈ = M⁻¹ b (see the [module docs](self)), written into `a`: from the compiled program, or
+    /// from the dual-number path where the program's result is not usable.
+    pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> noether_core::Result<()> {
+        let n = self.dual.dof();
+        check_phase_point(n, t, q, v, "q̇")?;
+        noether_core::error::check_len("q̈ (output)", a, n)?;
+        if self.compiled_accelerations(t, q, v, a) {
+            return Ok(());
+        }
+        self.dual.accelerations(t, q, v, a)
+    }
+
+    /// The energy h = p·q̇ − L.
+    pub fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
+        check_phase_point(self.dual.dof(), t, q, v, "q̇")?;
+        let compiled = self.energy.run_with(&[&[t], q, v], |o| {
+            (guards_hold(&o, 1, &self.guards) && o.get(0).is_finite()).then(|| o.get(0))
+        })?;
+        match compiled {
+            Some(h) => Ok(h),
+            None => self.dual.energy(t, q, v),
+        }
+    }
+}
+
+impl<L: Lagrangian> Compile for EulerLagrange<L> {
+    type Compiled = CompiledEulerLagrange<L>;
+    fn compile(self) -> Result<CompiledEulerLagrange<L>> {
+        CompiledEulerLagrange::new(self)
+    }
+}
+
+impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
+    type Partner = Velocities;
+    fn dof(&self) -> usize {
+        self.dual.dof()
+    }
+    fn rates(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        dq: &mut [f64],
+        dv: &mut [f64],
+    ) -> noether_core::Result<()> {
+        noether_core::error::check_len("q̇ (output)", dq, self.dual.dof())?;
+        self.accelerations(t, q, v, dv)?;
+        dq.copy_from_slice(v);
+        Ok(())
+    }
+    fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
+        CompiledEulerLagrange::energy(self, t, q, v)
+    }
+    fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
+        noether_core::error::check_len("q̇", v, self.dual.dof())?;
+        noether_core::error::check_len("q̇ (output)", dq, self.dual.dof())?;
+        dq.copy_from_slice(v);
+        Ok(())
+    }
+}

@@ -1,0 +1,287 @@
+//! The interpreter: the nodes that the outputs need (dead code eliminated), in order, as a flat
+//! program over a file of f64 registers, with registers reused once a value is dead.
+//!
+//! Running it is one pass over the instructions — no dual parts, no allocation (the register file is
+//! a per-thread scratch buffer). The inputs occupy the first registers; each instruction reads its
+//! arguments before it writes its result, so a result may take the register of an argument that dies
+//! with it.
+
+use crate::graph::{Binary, Graph, Id, Node, Unary};
+use noether_core::error::check_len;
+use noether_core::{Error, Result};
+use std::cell::RefCell;
+
+/// One instruction: `d` is the register written, `a`, `b` the registers read.
+#[derive(Clone, Copy, Debug)]
+enum Instr {
+    Const { d: u32, c: f64 },
+    Add { d: u32, a: u32, b: u32 },
+    Sub { d: u32, a: u32, b: u32 },
+    Mul { d: u32, a: u32, b: u32 },
+    Div { d: u32, a: u32, b: u32 },
+    Neg { d: u32, a: u32 },
+    Atan2 { d: u32, a: u32, b: u32 },
+    Unary { f: Unary, d: u32, a: u32 },
+    Powi { d: u32, a: u32, n: i32 },
+    Powf { d: u32, a: u32, e: f64 },
+}
+
+/// A compiled list of outputs of a graph: the instructions, the number of inputs and registers, and
+/// the register of each output.
+#[derive(Clone, Debug)]
+pub struct Program {
+    instrs: Vec<Instr>,
+    inputs: usize,
+    registers: usize,
+    outputs: Vec<u32>,
+}
+
+thread_local! {
+    static REGISTERS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+}
+
+impl Program {
+    /// The program that computes `outputs` of `graph` from its first `inputs` inputs (every
+    /// [`Node::Input`] k of the graph must have k < `inputs`).
+    pub fn new(graph: &Graph, inputs: usize, outputs: &[Id]) -> Self {
+        let Some(&last) = outputs.iter().max() else {
+            return Program {
+                instrs: Vec::new(),
+                inputs,
+                registers: inputs,
+                outputs: Vec::new(),
+            };
+        };
+        let n = last as usize + 1;
+        // Liveness: which nodes are needed, and the last node that reads each.
+        let mut needed = vec![false; n];
+        let mut last_use = vec![0 as Id; n];
+        let mut is_output = vec![false; n];
+        for &y in outputs {
+            needed[y as usize] = true;
+            is_output[y as usize] = true;
+        }
+        for v in (0..=last).rev() {
+            if !needed[v as usize] {
+                continue;
+            }
+            let (a, b) = graph.node(v).args();
+            for x in [a, b].into_iter().flatten() {
+                needed[x as usize] = true;
+                last_use[x as usize] = last_use[x as usize].max(v);
+            }
+        }
+        let mut reg: Vec<u32> = vec![u32::MAX; n];
+        let mut free: Vec<u32> = Vec::new();
+        let mut registers = inputs;
+        let mut instrs = Vec::new();
+        for v in 0..=last {
+            if !needed[v as usize] {
+                continue;
+            }
+            let node = graph.node(v);
+            if let Node::Input(k) = node {
+                reg[v as usize] = k;
+                continue;
+            }
+            // Free the registers of arguments that die here (never an input's or an output's).
+            let (a, b) = node.args();
+            for x in [a, b].into_iter().flatten() {
+                let dies = last_use[x as usize] == v && !is_output[x as usize];
+                if dies && !matches!(graph.node(x), Node::Input(_)) && !free.contains(&reg[x as usize]) {
+                    free.push(reg[x as usize]);
+                }
+            }
+            let d = free.pop().unwrap_or_else(|| {
+                registers += 1;
+                (registers - 1) as u32
+            });
+            reg[v as usize] = d;
+            let r = |x: Id| reg[x as usize];
+            instrs.push(match node {
+                Node::Input(_) => unreachable!("inputs take no instruction"),
+                Node::Const(bits) => Instr::Const {
+                    d,
+                    c: f64::from_bits(bits),
+                },
+                Node::Binary(op, a, b) => {
+                    let (a, b) = (r(a), r(b));
+                    match op {
+                        Binary::Add => Instr::Add { d, a, b },
+                        Binary::Sub => Instr::Sub { d, a, b },
+                        Binary::Mul => Instr::Mul { d, a, b },
+                        Binary::Div => Instr::Div { d, a, b },
+                        Binary::Atan2 => Instr::Atan2 { d, a, b },
+                    }
+                }
+                Node::Unary(Unary::Neg, a) => Instr::Neg { d, a: r(a) },
+                Node::Unary(f, a) => Instr::Unary { f, d, a: r(a) },
+                Node::Powi(a, n) => Instr::Powi { d, a: r(a), n },
+                Node::Powf(a, e) => Instr::Powf {
+                    d,
+                    a: r(a),
+                    e: f64::from_bits(e),
+                },
+            });
+        }
+        Program {
+            instrs,
+            inputs,
+            registers,
+            outputs: outputs.iter().map(|&y| reg[y as usize]).collect(),
+        }
+    }
+
+    /// The number of instructions (constants included).
+    pub fn len(&self) -> usize {
+        self.instrs.len()
+    }
+
+    /// `true` for a program with no instruction.
+    pub fn is_empty(&self) -> bool {
+        self.instrs.is_empty()
+    }
+
+    /// The number of arithmetic operations and function calls (the instructions that are not
+    /// constants).
+    pub fn operations(&self) -> usize {
+        self.instrs
+            .iter()
+            .filter(|i| !matches!(i, Instr::Const { .. }))
+            .count()
+    }
+
+    /// The number of inputs.
+    pub fn inputs(&self) -> usize {
+        self.inputs
+    }
+
+    /// The number of outputs.
+    pub fn outputs(&self) -> usize {
+        self.outputs.len()
+    }
+
+    /// The size of the register file.
+    pub fn registers(&self) -> usize {
+        self.registers
+    }
+
+    /// Runs the program on the inputs given as consecutive `parts` (together exactly
+    /// [`inputs`](Self::inputs) values) and hands the outputs to `f`.
+    pub fn run_with<R>(&self, parts: &[&[f64]], f: impl FnOnce(Outputs<'_>) -> R) -> Result<R> {
+        let given: usize = parts.iter().map(|p| p.len()).sum();
+        if given != self.inputs {
+            return Err(Error::Dimension {
+                what: "inputs of a compiled program",
+                expected: self.inputs,
+                got: given,
+            });
+        }
+        // The thread's register file, or a fresh one when it is in use (`f` running a program).
+        REGISTERS.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut r) => Ok(self.execute(&mut r, parts, f)),
+            Err(_) => Ok(self.execute(&mut Vec::new(), parts, f)),
+        })
+    }
+
+    fn execute<R>(&self, r: &mut Vec<f64>, parts: &[&[f64]], f: impl FnOnce(Outputs<'_>) -> R) -> R {
+        if r.len() < self.registers {
+            r.resize(self.registers, 0.0);
+        }
+        let mut at = 0;
+        for p in parts {
+            r[at..at + p.len()].copy_from_slice(p);
+            at += p.len();
+        }
+        execute(&self.instrs, r);
+        f(Outputs {
+            registers: r,
+            map: &self.outputs,
+        })
+    }
+
+    /// Runs the program: `inputs` in, the outputs written into `out` (both of the program's lengths,
+    /// else [`Error::Dimension`]).
+    pub fn run(&self, inputs: &[f64], out: &mut [f64]) -> Result<()> {
+        check_len("outputs of a compiled program", out, self.outputs.len())?;
+        self.run_with(&[inputs], |o| {
+            for (i, x) in out.iter_mut().enumerate() {
+                *x = o.get(i);
+            }
+        })
+    }
+}
+
+/// The outputs of one run of a [`Program`], read in place from its registers.
+#[derive(Clone, Copy)]
+pub struct Outputs<'a> {
+    registers: &'a [f64],
+    map: &'a [u32],
+}
+
+impl Outputs<'_> {
+    /// Output i.
+    #[inline]
+    pub fn get(&self, i: usize) -> f64 {
+        self.registers[self.map[i] as usize]
+    }
+
+    /// The number of outputs.
+    pub fn len(&self) -> usize {
+        self.map.len()
+    }
+
+    /// `true` when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+}
+
+/// The instruction loop.
+#[inline(never)]
+fn execute(instrs: &[Instr], r: &mut [f64]) {
+    for ins in instrs {
+        match *ins {
+            Instr::Const { d, c } => r[d as usize] = c,
+            Instr::Add { d, a, b } => r[d as usize] = r[a as usize] + r[b as usize],
+            Instr::Sub { d, a, b } => r[d as usize] = r[a as usize] - r[b as usize],
+            Instr::Mul { d, a, b } => r[d as usize] = r[a as usize] * r[b as usize],
+            Instr::Div { d, a, b } => r[d as usize] = r[a as usize] / r[b as usize],
+            Instr::Neg { d, a } => r[d as usize] = -r[a as usize],
+            Instr::Atan2 { d, a, b } => r[d as usize] = r[a as usize].atan2(r[b as usize]),
+            Instr::Unary { f, d, a } => r[d as usize] = f.apply(r[a as usize]),
+            Instr::Powi { d, a, n } => r[d as usize] = r[a as usize].powi(n),
+            Instr::Powf { d, a, e } => r[d as usize] = r[a as usize].powf(e),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The program gives the graph's own evaluation bit for bit, and reuses registers.
+    #[test]
+    fn matches_the_graph_and_reuses_registers() {
+        let mut g = Graph::new();
+        let (x, y) = (g.input(0), g.input(1));
+        let mut acc = x;
+        for k in 0..20 {
+            let s = g.unary(Unary::Sin, acc);
+            let c = g.scale(1.0 + f64::from(k), y);
+            acc = g.add(s, c);
+        }
+        let outputs = [acc, g.mul(acc, x)];
+        let p = Program::new(&g, 2, &outputs);
+        let mut out = [0.0; 2];
+        p.run(&[0.3, -0.8], &mut out).unwrap();
+        let v = g.evaluate(&[0.3, -0.8], outputs[1]);
+        assert_eq!(out[0].to_bits(), v[outputs[0] as usize].to_bits());
+        assert_eq!(out[1].to_bits(), v[outputs[1] as usize].to_bits());
+        assert!(
+            p.registers() < 8,
+            "{} registers for a chain of 80 nodes",
+            p.registers()
+        );
+    }
+}
