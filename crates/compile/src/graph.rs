@@ -443,6 +443,25 @@ impl Graph {
         acc.unwrap_or_else(|| self.constant(0.0))
     }
 
+    /// Which nodes `outputs` need (themselves and everything they are computed from), indexed by id
+    /// up to the largest output (empty for no output).
+    pub fn needed(&self, outputs: &[Id]) -> Vec<bool> {
+        let Some(&last) = outputs.iter().max() else {
+            return Vec::new();
+        };
+        let mut needed = vec![false; last as usize + 1];
+        outputs.iter().for_each(|&y| needed[y as usize] = true);
+        for v in (0..=last).rev() {
+            if needed[v as usize] {
+                let (a, b) = self.node(v).args();
+                for x in [a, b].into_iter().flatten() {
+                    needed[x as usize] = true;
+                }
+            }
+        }
+        needed
+    }
+
     /// The value of every node up to and including `last`, given the inputs: the reference
     /// evaluation (the [`Program`](crate::Program) computes the same, faster).
     pub fn evaluate(&self, inputs: &[f64], last: Id) -> Vec<f64> {

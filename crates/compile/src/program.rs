@@ -44,41 +44,14 @@ impl Program {
     /// The program that computes `outputs` of `graph` from its first `inputs` inputs (every
     /// [`Node::Input`] k of the graph must have k < `inputs`).
     pub fn new(graph: &Graph, inputs: usize, outputs: &[Id]) -> Self {
-        let Some(&last) = outputs.iter().max() else {
-            return Program {
-                instrs: Vec::new(),
-                inputs,
-                registers: inputs,
-                outputs: Vec::new(),
-            };
-        };
-        let n = last as usize + 1;
-        // Liveness: which nodes are needed, and the last node that reads each.
-        let mut needed = vec![false; n];
-        let mut last_use = vec![0 as Id; n];
-        let mut is_output = vec![false; n];
-        for &y in outputs {
-            needed[y as usize] = true;
-            is_output[y as usize] = true;
-        }
-        for v in (0..=last).rev() {
-            if !needed[v as usize] {
-                continue;
-            }
-            let (a, b) = graph.node(v).args();
-            for x in [a, b].into_iter().flatten() {
-                needed[x as usize] = true;
-                last_use[x as usize] = last_use[x as usize].max(v);
-            }
-        }
-        let mut reg: Vec<u32> = vec![u32::MAX; n];
+        let (needed, last_use) = liveness(graph, outputs);
+        let mut is_output = vec![false; needed.len()];
+        outputs.iter().for_each(|&y| is_output[y as usize] = true);
+        let mut reg: Vec<u32> = vec![u32::MAX; needed.len()];
         let mut free: Vec<u32> = Vec::new();
         let mut registers = inputs;
         let mut instrs = Vec::new();
-        for v in 0..=last {
-            if !needed[v as usize] {
-                continue;
-            }
+        for v in (0..needed.len() as Id).filter(|&v| needed[v as usize]) {
             let node = graph.node(v);
             if let Node::Input(k) = node {
                 reg[v as usize] = k;
@@ -97,32 +70,7 @@ impl Program {
                 (registers - 1) as u32
             });
             reg[v as usize] = d;
-            let r = |x: Id| reg[x as usize];
-            instrs.push(match node {
-                Node::Input(_) => unreachable!("inputs take no instruction"),
-                Node::Const(bits) => Instr::Const {
-                    d,
-                    c: f64::from_bits(bits),
-                },
-                Node::Binary(op, a, b) => {
-                    let (a, b) = (r(a), r(b));
-                    match op {
-                        Binary::Add => Instr::Add { d, a, b },
-                        Binary::Sub => Instr::Sub { d, a, b },
-                        Binary::Mul => Instr::Mul { d, a, b },
-                        Binary::Div => Instr::Div { d, a, b },
-                        Binary::Atan2 => Instr::Atan2 { d, a, b },
-                    }
-                }
-                Node::Unary(Unary::Neg, a) => Instr::Neg { d, a: r(a) },
-                Node::Unary(f, a) => Instr::Unary { f, d, a: r(a) },
-                Node::Powi(a, n) => Instr::Powi { d, a: r(a), n },
-                Node::Powf(a, e) => Instr::Powf {
-                    d,
-                    a: r(a),
-                    e: f64::from_bits(e),
-                },
-            });
+            instrs.push(lower(node, d, &reg));
         }
         Program {
             instrs,
@@ -234,6 +182,49 @@ impl Outputs<'_> {
     /// `true` when there are none.
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()
+    }
+}
+
+/// The nodes the outputs need, and for each the last node that reads it (0 for none).
+fn liveness(graph: &Graph, outputs: &[Id]) -> (Vec<bool>, Vec<Id>) {
+    let needed = graph.needed(outputs);
+    let mut last_use = vec![0 as Id; needed.len()];
+    for v in (0..needed.len() as Id).filter(|&v| needed[v as usize]) {
+        let (a, b) = graph.node(v).args();
+        for x in [a, b].into_iter().flatten() {
+            last_use[x as usize] = last_use[x as usize].max(v);
+        }
+    }
+    (needed, last_use)
+}
+
+/// The instruction that computes `node` into register `d`, its arguments in the registers `reg`.
+fn lower(node: Node, d: u32, reg: &[u32]) -> Instr {
+    let r = |x: Id| reg[x as usize];
+    match node {
+        Node::Input(_) => unreachable!("inputs take no instruction"),
+        Node::Const(bits) => Instr::Const {
+            d,
+            c: f64::from_bits(bits),
+        },
+        Node::Binary(op, a, b) => {
+            let (a, b) = (r(a), r(b));
+            match op {
+                Binary::Add => Instr::Add { d, a, b },
+                Binary::Sub => Instr::Sub { d, a, b },
+                Binary::Mul => Instr::Mul { d, a, b },
+                Binary::Div => Instr::Div { d, a, b },
+                Binary::Atan2 => Instr::Atan2 { d, a, b },
+            }
+        }
+        Node::Unary(Unary::Neg, a) => Instr::Neg { d, a: r(a) },
+        Node::Unary(f, a) => Instr::Unary { f, d, a: r(a) },
+        Node::Powi(a, n) => Instr::Powi { d, a: r(a), n },
+        Node::Powf(a, e) => Instr::Powf {
+            d,
+            a: r(a),
+            e: f64::from_bits(e),
+        },
     }
 }
 

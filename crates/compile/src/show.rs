@@ -24,26 +24,13 @@ pub fn rust_function(graph: &Graph, inputs: usize, outputs: &[Id], name: &str, d
         "pub fn {name}(x: &[f64; {inputs}]) -> [f64; {}] {{",
         outputs.len()
     );
-    let Some(&last) = outputs.iter().max() else {
+    if outputs.is_empty() {
         let _ = writeln!(s, "    let _ = x;\n    []\n}}");
         return s;
-    };
-    let mut needed = vec![false; last as usize + 1];
-    for &y in outputs {
-        needed[y as usize] = true;
     }
-    for v in (0..=last).rev() {
-        if needed[v as usize] {
-            let (a, b) = graph.node(v).args();
-            for x in [a, b].into_iter().flatten() {
-                needed[x as usize] = true;
-            }
-        }
-    }
-    for v in 0..=last {
-        if needed[v as usize] {
-            let _ = writeln!(s, "    let v{v}: f64 = {};", expression(graph.node(v)));
-        }
+    let needed = graph.needed(outputs);
+    for v in (0..needed.len() as Id).filter(|&v| needed[v as usize]) {
+        let _ = writeln!(s, "    let v{v}: f64 = {};", expression(graph.node(v)));
     }
     let list: Vec<String> = outputs.iter().map(|y| format!("v{y}")).collect();
     let _ = writeln!(s, "    [{}]\n}}", list.join(", "));
