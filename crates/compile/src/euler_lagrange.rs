@@ -17,9 +17,12 @@ use crate::graph::{sign, Graph, Id};
 use crate::program::{Outputs, Program};
 use crate::trace::{Guard, Recorded};
 use crate::{ldlt, Compile, Result};
+use nalgebra::DMatrix;
 use noether_core::error::check_phase_point;
 use noether_core::linalg::{is_singular, pivot_range, pivot_ratio};
+use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, EulerLagrange, Lagrangian, Velocities};
+use std::sync::OnceLock;
 
 /// Operation counts of a compiled system: what the model recorded, how many operations its
 /// derivation asked for (before folding, identities and sharing), and what runs.
@@ -55,6 +58,7 @@ pub struct CompiledEulerLagrange<L> {
     guards: Vec<f64>,
     forced: bool,
     operations: Operations,
+    jacobian: OnceLock<Program>,
 }
 
 /// The outputs (q̈, pivots of M, diagonal of M) of Lagrange's equations on the graph of L.
@@ -103,6 +107,15 @@ pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool
         .all(|(k, &s)| sign(o.get(offset + k)) == s)
 }
 
+/// `true` when the n pivots of M = LDLᵀ at outputs `at..at + n` (the diagonal of M after them) are
+/// positive and regular by [`linalg`](noether_core::linalg)'s criterion (the pivot ratio against the
+/// largest pivot or diagonal entry, which bounds every entry of a positive definite M).
+fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
+    let (lo, hi) = pivot_range((at..at + n).map(|j| o.get(j)));
+    let norm = (at + n..at + 2 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
+    (at..at + n).all(|j| o.get(j) > 0.0) && !is_singular(pivot_ratio(lo, hi, norm))
+}
+
 impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// Compiles `system`, recording L at a point chosen only for the branches L takes there (t = 0,
     /// q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
@@ -147,6 +160,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             guards: guards.iter().map(|g| g.sign).collect(),
             forced,
             operations,
+            jacobian: OnceLock::new(),
         })
     }
 
@@ -202,13 +216,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             self.dual.lagrangian().generalized_force(t, q, v, &mut force);
         }
         let run = self.accelerations.run_with(&[&[t], q, v, &force], |o| {
-            if !guards_hold(&o, 3 * n, &self.guards) {
-                return false;
-            }
-            let (lo, hi) = pivot_range((n..2 * n).map(|j| o.get(j)));
-            let norm = (2 * n..3 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
-            let positive = (n..2 * n).all(|j| o.get(j) > 0.0);
-            if !positive || is_singular(pivot_ratio(lo, hi, norm)) {
+            if !guards_hold(&o, 3 * n, &self.guards) || !mass_usable(&o, n, n) {
                 return false;
             }
             for (i, ai) in a.iter_mut().enumerate() {
@@ -229,6 +237,45 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             return Ok(());
         }
         self.dual.accelerations(t, q, v, a)
+    }
+
+    /// The program of the Jacobian's lower half, built on first use: column j is the derivative of q̈
+    /// (the unrolled solve included) along input j of (q, q̇) by forward accumulation; then the
+    /// pivots, the diagonal of M and the guards as in the accelerations' program.
+    fn jacobian_program(&self) -> &Program {
+        self.jacobian.get_or_init(|| {
+            let n = self.dual.dof();
+            let mut g = self.graph.clone();
+            let one = g.constant(1.0);
+            let mut outputs = Vec::with_capacity(2 * n * n + self.outputs.len());
+            for j in 0..2 * n {
+                let y = g.input(1 + j as u32);
+                outputs.extend(directional(&mut g, &self.outputs[..n], &[(y, one)]));
+            }
+            outputs.extend(&self.outputs[n..]);
+            Program::new(&g, 1 + 2 * n, &outputs)
+        })
+    }
+
+    /// J = ∂(q̇, q̈)/∂(q, q̇) from the program, when it is usable (see
+    /// [`compiled_accelerations`](Self::compiled_accelerations)).
+    fn compiled_jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> bool {
+        let n = q.len();
+        let m = 2 * n * n;
+        let run = self.jacobian_program().run_with(&[&[t], q, v], |o| {
+            if !guards_hold(&o, m + 2 * n, &self.guards) || !mass_usable(&o, m, n) {
+                return false;
+            }
+            out.fill(0.0);
+            for i in 0..n {
+                out[(i, n + i)] = 1.0;
+                for j in 0..2 * n {
+                    out[(n + i, j)] = o.get(j * n + i);
+                }
+            }
+            out.iter().all(|x| x.is_finite())
+        });
+        run.unwrap_or(false)
     }
 
     /// The energy h = p·q̇ − L.
@@ -277,5 +324,22 @@ impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
         noether_core::error::check_len("q̇ (output)", dq, self.dual.dof())?;
         dq.copy_from_slice(v);
         Ok(())
+    }
+}
+
+/// The exact Jacobian of Lagrange's equations from the compiled graph (any number of degrees of
+/// freedom; see [`jacobian_program`](CompiledEulerLagrange::jacobian_program)), or the dual-number
+/// path's where the program's result is not usable — and always for a model with generalized forces,
+/// which the dual-number path refuses ([`Error::Unsupported`](noether_core::Error::Unsupported)): Q is
+/// a plain function that neither path can differentiate.
+impl<L: Lagrangian> LinearizedDynamics for CompiledEulerLagrange<L> {
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> noether_core::Result<()> {
+        let n = self.dual.dof();
+        check_phase_point(n, t, q, v, "q̇")?;
+        let shaped = out.nrows() == 2 * n && out.ncols() == 2 * n;
+        if shaped && !self.forced && self.compiled_jacobian(t, q, v, out) {
+            return Ok(());
+        }
+        self.dual.jacobian(t, q, v, out)
     }
 }

@@ -222,3 +222,58 @@ fn errors_are_those_of_the_dual_path() {
         Err(noether_core::Error::Dimension { .. })
     ));
 }
+
+/// ‖J_compiled − J_dual‖_max / ‖J_dual‖_max at (q, q̇).
+fn jacobian_difference<L: Lagrangian>(
+    (compiled, dual): (&CompiledEulerLagrange<L>, &EulerLagrange<L>),
+    q: &[f64],
+    v: &[f64],
+) -> f64 {
+    use nalgebra::DMatrix;
+    use noether_core::system::LinearizedDynamics;
+    let n = q.len();
+    let (mut a, mut b) = (DMatrix::zeros(2 * n, 2 * n), DMatrix::zeros(2 * n, 2 * n));
+    compiled.jacobian(0.0, q, v, &mut a).unwrap();
+    dual.jacobian(0.0, q, v, &mut b).unwrap();
+    (a - &b).amax() / b.amax()
+}
+
+/// The Jacobian of the compiled equations (forward accumulation through the unrolled solve) against
+/// the dual-number path's (third derivatives of L by a jet over dual numbers), at 100 states each.
+/// Measured largest difference: 6.9e-16 (double pendulum), 4.8e-15 (top), 2.7e-14 (10-link chain,
+/// its M worse conditioned, as for q̈). Bounds: AGREE and AGREE_CHAIN.
+#[test]
+fn jacobians_agree() {
+    let mut s: u64 = 99;
+    let mut rnd = |lo: f64, hi: f64| {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let (dp, top, chain) = (
+        (
+            EulerLagrange::new(DoublePendulum::default()).compile().unwrap(),
+            EulerLagrange::new(DoublePendulum::default()),
+        ),
+        (
+            EulerLagrange::new(HeavyTop::default()).compile().unwrap(),
+            EulerLagrange::new(HeavyTop::default()),
+        ),
+        (
+            EulerLagrange::new(Chain::<10>::default()).compile().unwrap(),
+            EulerLagrange::new(Chain::<10>::default()),
+        ),
+    );
+    let (mut e_dp, mut e_top, mut e_chain) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for _ in 0..100 {
+        let q: [f64; 10] = std::array::from_fn(|_| rnd(-1.0, 1.0));
+        let v: [f64; 10] = std::array::from_fn(|_| rnd(-1.0, 1.0));
+        e_dp = e_dp.max(jacobian_difference((&dp.0, &dp.1), &q[..2], &v[..2]));
+        let top_q = [rnd(0.3, 2.8), q[1], q[2]];
+        e_top = e_top.max(jacobian_difference((&top.0, &top.1), &top_q, &v[..3]));
+        e_chain = e_chain.max(jacobian_difference((&chain.0, &chain.1), &q, &v));
+    }
+    println!("Jacobians: double pendulum {e_dp:e}, top {e_top:e}, 10-link chain {e_chain:e}");
+    assert!(e_dp <= AGREE && e_top <= AGREE && e_chain <= AGREE_CHAIN);
+}
