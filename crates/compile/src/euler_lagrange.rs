@@ -19,7 +19,7 @@ use crate::trace::{Guard, Recorded};
 use crate::{ldlt, Compile, Result};
 use nalgebra::DMatrix;
 use noether_core::error::check_phase_point;
-use noether_core::linalg::{is_singular, pivot_range, pivot_ratio};
+use noether_core::linalg::{factor_positive_mass, is_singular, pivot_range, pivot_ratio};
 use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, EulerLagrange, Lagrangian, Velocities};
 use std::sync::OnceLock;
@@ -58,11 +58,17 @@ pub struct CompiledEulerLagrange<L> {
     guards: Vec<f64>,
     forced: bool,
     operations: Operations,
+    terms: (Vec<Id>, Vec<Vec<Id>>),
     jacobian: OnceLock<Program>,
 }
 
-/// The outputs (q̈, pivots of M, diagonal of M) of Lagrange's equations on the graph of L.
-fn accelerations_outputs(r: &mut Recorded, forced: bool) -> Vec<Id> {
+/// The largest number of degrees of freedom whose solve M q̈ = b is unrolled into the graph (n³/6
+/// multiply-adds as instructions); above it the program gives b and M and one dense factorisation of
+/// [`linalg`](noether_core::linalg) solves (as core's dual-number path does above its jet range).
+pub const UNROLL_MAX: usize = 12;
+
+/// Lagrange's equations M q̈ = b on the graph of L: b, and M by its lower triangle.
+fn lagrange_terms(r: &mut Recorded, forced: bool) -> (Vec<Id>, Vec<Vec<Id>>) {
     let n = r.q.len();
     let g: &mut Graph = &mut r.rec.graph;
     let vars: Vec<Id> = r.q.iter().chain(&r.v).copied().collect();
@@ -85,8 +91,17 @@ fn accelerations_outputs(r: &mut Recorded, forced: bool) -> Vec<Id> {
             }
         })
         .collect();
-    let (x, d) = ldlt::solve(g, &m, &b);
-    let diagonal = (0..n).map(|i| m[i][i]);
+    (b, m)
+}
+
+/// The outputs of the accelerations' program: (q̈, the pivots of M, the diagonal of M) with the solve
+/// unrolled, or (b, M's lower triangle by rows) above [`UNROLL_MAX`].
+fn accelerations_outputs(g: &mut Graph, (b, m): (&[Id], &[Vec<Id>])) -> Vec<Id> {
+    if b.len() > UNROLL_MAX {
+        return b.iter().chain(m.iter().flatten()).copied().collect();
+    }
+    let (x, d) = ldlt::solve(g, m, b);
+    let diagonal = (0..b.len()).map(|i| m[i][i]);
     x.into_iter().chain(d).chain(diagonal).collect()
 }
 
@@ -116,6 +131,27 @@ fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
     (at..at + n).all(|j| o.get(j) > 0.0) && !is_singular(pivot_ratio(lo, hi, norm))
 }
 
+/// q̈ = M⁻¹ b from the outputs (b, M's lower triangle by rows) by
+/// [`linalg::factor_positive_mass`](noether_core::linalg::factor_positive_mass): `false` when M is not
+/// usable (the dual-number path then reports why) or q̈ is not finite.
+fn dense_solve(o: &Outputs<'_>, n: usize, t: f64, a: &mut [f64]) -> bool {
+    let mut m = DMatrix::zeros(n, n);
+    let mut k = n;
+    for i in 0..n {
+        for j in 0..=i {
+            m[(i, j)] = o.get(k);
+            m[(j, i)] = o.get(k);
+            k += 1;
+        }
+        a[i] = o.get(i);
+    }
+    let Ok(factor) = factor_positive_mass(m, t) else {
+        return false;
+    };
+    factor.solve_in_place(a);
+    a.iter().all(|x| x.is_finite())
+}
+
 impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// Compiles `system`, recording L at a point chosen only for the branches L takes there (t = 0,
     /// q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
@@ -136,7 +172,8 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
         let mut r = Recorded::new(t, q, v, |t, q, v| model.lagrangian(t, q, v))?;
         let recorded = r.rec.graph.len();
         let guards: Vec<Guard> = r.rec.guards.clone();
-        let mut outputs = accelerations_outputs(&mut r, forced);
+        let terms = lagrange_terms(&mut r, forced);
+        let mut outputs = accelerations_outputs(&mut r.rec.graph, (&terms.0, &terms.1));
         outputs.extend(guards.iter().map(|g| g.node));
         let h = energy_output(&mut r);
         let mut energy_outputs = vec![h];
@@ -160,6 +197,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             guards: guards.iter().map(|g| g.sign).collect(),
             forced,
             operations,
+            terms,
             jacobian: OnceLock::new(),
         })
     }
@@ -176,7 +214,8 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
 
     /// The accelerations as Rust source, `pub fn <name>(x: &[f64; I]) -> [f64; O]` (see
     /// [`show`](crate::show)): x = (t, q, q̇, and Q when L has generalized forces), the outputs
-    /// (q̈, the pivots d of M = LDLᵀ, the diagonal of M, then one value per guard). The compiled
+    /// (q̈, the pivots d of M = LDLᵀ, the diagonal of M, then one value per guard; above
+    /// [`UNROLL_MAX`] degrees of freedom b and M's lower triangle instead of q̈ and M's pivots). The compiled
     /// q̈ is valid where every pivot is positive (and their ratio above
     /// [`SINGULAR_PIVOT`](noether_core::linalg::SINGULAR_PIVOT)) and every guard has the sign
     /// recorded ([`guard_signs`](Self::guard_signs)).
@@ -215,8 +254,15 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             force.resize(n, 0.0);
             self.dual.lagrangian().generalized_force(t, q, v, &mut force);
         }
+        let guards_at = self.outputs.len() - self.guards.len();
         let run = self.accelerations.run_with(&[&[t], q, v, &force], |o| {
-            if !guards_hold(&o, 3 * n, &self.guards) || !mass_usable(&o, n, n) {
+            if !guards_hold(&o, guards_at, &self.guards) {
+                return false;
+            }
+            if n > UNROLL_MAX {
+                return dense_solve(&o, n, t, a);
+            }
+            if !mass_usable(&o, n, n) {
                 return false;
             }
             for (i, ai) in a.iter_mut().enumerate() {
@@ -240,19 +286,22 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     }
 
     /// The program of the Jacobian's lower half, built on first use: column j is the derivative of q̈
-    /// (the unrolled solve included) along input j of (q, q̇) by forward accumulation; then the
-    /// pivots, the diagonal of M and the guards as in the accelerations' program.
+    /// (the solve unrolled, whatever the number of degrees of freedom) along input j of (q, q̇) by
+    /// forward accumulation; then the pivots, the diagonal of M and the guards.
     fn jacobian_program(&self) -> &Program {
         self.jacobian.get_or_init(|| {
             let n = self.dual.dof();
             let mut g = self.graph.clone();
+            let (b, m) = &self.terms;
+            let (x, d) = ldlt::solve(&mut g, m, b);
             let one = g.constant(1.0);
-            let mut outputs = Vec::with_capacity(2 * n * n + self.outputs.len());
+            let mut outputs = Vec::with_capacity(2 * n * n + 3 * n + self.guards.len());
             for j in 0..2 * n {
                 let y = g.input(1 + j as u32);
-                outputs.extend(directional(&mut g, &self.outputs[..n], &[(y, one)]));
+                outputs.extend(directional(&mut g, &x, &[(y, one)]));
             }
-            outputs.extend(&self.outputs[n..]);
+            outputs.extend(d.into_iter().chain((0..n).map(|i| m[i][i])));
+            outputs.extend(&self.outputs[self.outputs.len() - self.guards.len()..]);
             Program::new(&g, 1 + 2 * n, &outputs)
         })
     }

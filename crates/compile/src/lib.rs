@@ -44,7 +44,7 @@ pub mod show;
 mod trace;
 
 pub use error::{Error, Result};
-pub use euler_lagrange::{CompiledEulerLagrange, Operations};
+pub use euler_lagrange::{CompiledEulerLagrange, Operations, UNROLL_MAX};
 pub use graph::Graph;
 pub use hamilton_equations::CompiledHamiltonEquations;
 pub use program::{Outputs, Program};
