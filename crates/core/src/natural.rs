@@ -349,11 +349,12 @@ impl<P: Potential> Natural<P> {
         // The value too: where V itself is infinite there is no force to return.
         if !check.is_finite() {
             check_finite("q", q)?;
-            // A natural system does not depend on t: no time to name.
+            // A natural system does not depend on t: no time to name. The component when a force is
+            // not finite (None when only V is).
             return Err(Error::NonFiniteResult {
                 what: "potential forces",
                 t: f64::NAN,
-                component: None,
+                component: out.iter().position(|x| !x.is_finite()),
             });
         }
         Ok(())

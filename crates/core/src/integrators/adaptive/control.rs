@@ -373,3 +373,31 @@ pub(in crate::integrators) fn initial_step_size(
     };
     Ok((100.0 * h).min(h1))
 }
+
+/// The accelerations f(q) of a split system at the start of a step or a run, where no smaller step
+/// helps: `Ok` when f(q) is finite; otherwise [`Error::NonFiniteResult`] for "accelerations" at t, with
+/// the component the model named or the first component of f(q) that is not finite (issue 30: the
+/// Nyström pairs and IAS15 named none). Other errors of the model pass through.
+pub(in crate::integrators) fn start_accelerations<S: crate::system::SplitDynamics>(
+    system: &S,
+    evaluations: &mut usize,
+    t: f64,
+    q: &[f64],
+    out: &mut [f64],
+) -> Result<()> {
+    *evaluations += 1;
+    let component = match system.kick_rate(q, out) {
+        Ok(()) => match out.iter().position(|x| !x.is_finite()) {
+            None => return Ok(()),
+            first => first,
+        },
+        Err(Error::NonFiniteResult { component, .. }) => component,
+        Err(Error::NonFinite { .. }) => None,
+        Err(e) => return Err(e),
+    };
+    Err(Error::NonFiniteResult {
+        what: "accelerations",
+        t,
+        component,
+    })
+}

@@ -37,7 +37,7 @@ mod stages;
 use control::rates_error;
 pub(super) use control::{
     check_tolerances, checked_error, error_scale, finite_stage, initial_step_size, settings_methods,
-    until_accepted, Settings,
+    start_accelerations, until_accepted, Settings,
 };
 pub use control::{Controller, RTOL_FLOOR};
 pub use stages::Stages;

@@ -562,12 +562,14 @@ impl<S: SplitDynamics> Ias15<S> {
         self.v0.copy_from_slice(v);
         if self.have_cached && self.cached_q == q {
             self.a0.copy_from_slice(&self.cached_a);
-        } else if !Self::accelerations(&self.system, q, &mut self.a0, &mut self.evaluations)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
+        } else {
+            super::adaptive::start_accelerations(
+                &self.system,
+                &mut self.evaluations,
+                state.t,
+                q,
+                &mut self.a0,
+            )?;
         }
         self.have_cached = false;
         Ok(())

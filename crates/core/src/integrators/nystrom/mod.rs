@@ -66,7 +66,8 @@ pub use tableaux::{Dprkn12, Dprkn6, Dprkn8, Rkn12, Rkn6, Rkn8};
 
 use super::adaptive::{
     check_tolerances, checked_error, combine_stages, error_scale, finite_stage, initial_step_size,
-    settings_methods, stage_sum, until_accepted, Controller, Settings, StageArgument, Stages,
+    settings_methods, stage_sum, start_accelerations, until_accepted, Controller, Settings, StageArgument,
+    Stages,
 };
 use super::SplitDynamics;
 use crate::dense::horner_eval;
@@ -501,12 +502,14 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         self.fsal = false;
         self.h_last = 0.0;
         self.load(state);
-        if !reuse && !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
+        if !reuse {
+            start_accelerations(
+                &self.system,
+                &mut self.evaluations,
+                state.t,
+                &self.q0,
+                &mut self.a1,
+            )?;
         }
         self.k[..n].copy_from_slice(&self.a1);
         Ok(())
@@ -596,13 +599,13 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
         let n = self.n;
         self.fsal = false;
         self.load(state);
-        if !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
-        }
+        start_accelerations(
+            &self.system,
+            &mut self.evaluations,
+            state.t,
+            &self.q0,
+            &mut self.a1,
+        )?;
         self.h_last = 0.0;
         let mut y0 = vec![0.0; 2 * n];
         y0[..n].copy_from_slice(&self.q0);
