@@ -205,26 +205,21 @@ impl<P: Potential> Natural<P> {
                 reason: "the mass matrix must be symmetric",
             });
         }
-        let factor = crate::linalg::factor_mass(mass.clone(), 0.0)?;
-        match factor.cholesky() {
-            Some(chol) => {
-                let inv = chol.inverse();
-                Ok(Natural {
-                    forces: force_kernel::<P>(n),
-                    potential,
-                    mass: Mass::Dense {
-                        m: mass,
-                        chol: chol.clone(),
-                        inv,
-                    },
-                })
-            }
-            None => Err(Error::InvalidParameter {
-                name: "mass matrix",
-                value: f64::NAN,
-                reason: "the mass matrix must be positive definite",
-            }),
-        }
+        let factor = crate::linalg::factor_positive_parameter(mass.clone(), "mass matrix")?;
+        // A Cholesky factor by construction (checked once more rather than assumed).
+        let chol = factor.cholesky().ok_or(Error::SingularMassMatrix {
+            t: 0.0,
+            pivot_ratio: f64::NAN,
+        })?;
+        Ok(Natural {
+            forces: force_kernel::<P>(n),
+            potential,
+            mass: Mass::Dense {
+                m: mass,
+                chol: chol.clone(),
+                inv: chol.inverse(),
+            },
+        })
     }
 
     /// The potential.
