@@ -55,6 +55,7 @@
 use crate::action_angle::gauss_legendre;
 use crate::{Error, Result};
 use nalgebra::DMatrix;
+use noether_core::linalg::DenseFactor;
 use noether_core::newton::{solve_dense, DenseProblem, Newton};
 use noether_core::{EulerLagrange, Lagrangian, Partner, Scalar, Solution};
 use num_dual::Dual;
@@ -221,11 +222,9 @@ impl<L: Lagrangian> Routh<L> {
         let (q, v) = self.assemble(r, dr, &u);
         let mass = self.equations.mass_matrix(t, &q, &v)?;
         let block = DMatrix::from_fn(m, m, |i, j| mass[(self.cyclic[i], self.cyclic[j])]);
-        let inverse = block.try_inverse().ok_or(noether_core::Error::SingularMatrix {
-            what: "cyclic mass block ∂²L/∂q̇_c²",
-            pivot_ratio: f64::NAN,
-        })?;
-        Ok((u, inverse))
+        // Symmetric: Cholesky (LU when indefinite) with linalg's pivot test.
+        let factor = DenseFactor::symmetric(block).map_err(|e| e.in_matrix("cyclic mass block ∂²L/∂q̇_c²"))?;
+        Ok((u, factor.solve_matrix(&DMatrix::identity(m, m))))
     }
 
     /// The cyclic coordinates at the sorted `times` along a reduced solution, from `q_cyclic0` at the

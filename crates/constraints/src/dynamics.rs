@@ -33,8 +33,10 @@ use noether_core::linalg::DenseFactor;
 use noether_core::{Dynamics, Error as CoreError, EulerLagrange, Lagrangian, Scalar, State};
 use std::sync::OnceLock;
 
-/// Singular values of A below this fraction of the largest count as zero in the rank diagnosis.
-pub const RANK_TOLERANCE: f64 = 1e-10;
+/// Singular values of A at or below this fraction of the largest count as zero in the rank diagnosis:
+/// linalg's one criterion for a singular matrix,
+/// [`SINGULAR_PIVOT`](noether_core::linalg::SINGULAR_PIVOT) (1e-10 before it was shared).
+pub const RANK_TOLERANCE: f64 = noether_core::linalg::SINGULAR_PIVOT;
 
 /// A Lagrangian seen as core's AD field f(t, x = q, y = q̇).
 pub(crate) struct LagrangianField<'a, L: ?Sized>(pub &'a L);
@@ -78,23 +80,11 @@ impl<L: Lagrangian, C: Nonholonomic> Constrained<L, NonholonomicSet<C>> {
     }
 }
 
-/// The numerical rank of a matrix A and its smallest singular value relative to the largest.
+/// The numerical rank of a matrix A and its smallest singular value relative to the largest
+/// ([`linalg::rank`](noether_core::linalg::rank): singular values by SVD, counted by linalg's one
+/// singularity criterion).
 pub fn rank(a: &DMatrix<f64>) -> (usize, f64) {
-    if a.nrows() == 0 {
-        return (0, 1.0);
-    }
-    // Singular values of A (m ≤ n): those of A Aᵀ would square the condition number.
-    let s = a.clone().svd(false, false).singular_values;
-    let hi = s.iter().fold(0.0_f64, |m, v| m.max(*v));
-    let mut rank = s.iter().filter(|v| **v > RANK_TOLERANCE * hi).count();
-    // More constraints than coordinates: at most n independent ones.
-    rank = rank.min(a.ncols());
-    let lo = if a.nrows() > a.ncols() {
-        0.0
-    } else {
-        s.iter().fold(f64::INFINITY, |m, v| m.min(*v))
-    };
-    (rank, if hi > 0.0 { lo / hi } else { 0.0 })
+    noether_core::linalg::rank(a)
 }
 
 /// The error for a singular constraint matrix at time `t`: rank deficiency when A has lower rank than

@@ -51,18 +51,13 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
     }
 }
 
-/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack: nalgebra's Cholesky of the
-/// static matrix (no heap allocation) with the relative-pivot test of [`linalg`] (pivots d_j = L_jj²,
-/// scale max(d_max, max |m_ij|)). An indefinite, singular or non-finite M goes through
-/// [`linalg::factor_positive_mass`] for the error it reports.
+/// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack
+/// ([`linalg::solve_positive_fixed`]: Cholesky with linalg's pivot test). An indefinite, singular or
+/// non-finite M goes through [`linalg::factor_positive_mass`] for the error it reports.
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
-    if let Some(ch) = m.cholesky() {
-        let (lo, hi) = linalg::pivot_range(ch.l_dirty().diagonal().iter().map(|l| l * l));
-        if !linalg::is_singular(linalg::pivot_ratio(lo, hi, m.amax())) {
-            ch.solve_mut(b);
-            return Ok(());
-        }
+    if linalg::solve_positive_fixed(m, b) {
+        return Ok(());
     }
     linalg::factor_positive_mass(DMatrix::from_column_slice(N, N, m.as_slice()), t)
         .map(|f| f.solve_in_place(b.as_mut_slice()))

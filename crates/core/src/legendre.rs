@@ -332,8 +332,10 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 }
 
 /// [`LegendreTransform::start`] for n ≤ W: one `Dual2Vec<W>` evaluation at q̇ = 0 for ∂L/∂q̇ and M,
-/// and M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)) by a Cholesky factorization on the stack (M padded to W × W
-/// with the identity); `None` where M(t, q, 0) is not positive definite.
+/// and M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)) by a Cholesky factorization on the stack
+/// ([`linalg::solve_positive_fixed`](crate::linalg::solve_positive_fixed), M padded to W × W with
+/// max |m_ij| on the diagonal, so that the padding leaves the pivot test's ratio that of M); `None`
+/// where M(t, q, 0) is not positive definite or singular by that test.
 fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -> Option<Vec<f64>> {
     type D2<const W: usize> = Dual2Vec<f64, f64, Const<W>>;
     let n = p.len();
@@ -341,17 +343,16 @@ fn start_w<L: Lagrangian, const W: usize>(l: &L, t: f64, q: &[f64], p: &[f64]) -
     let r = l.lagrangian(D2::<W>::from_re(t), &qs, &vs);
     let g = r.v1.unwrap_generic(U1, Const::<W>);
     let mut m = r.v2.unwrap_generic(Const::<W>, Const::<W>);
+    let scale = m.amax();
     let mut b = SVector::<f64, W>::zeros();
     for i in 0..W {
         if i < n {
             b[i] = p[i] - g[i];
         } else {
-            m[(i, i)] = 1.0;
+            m[(i, i)] = scale;
         }
     }
-    let chol = m.cholesky()?;
-    chol.solve_mut(&mut b);
-    Some(b.as_slice()[..n].to_vec())
+    crate::linalg::solve_positive_fixed(m, &mut b).then(|| b.as_slice()[..n].to_vec())
 }
 
 /// The entries of `x` lifted to nested duals `Dual<D>` (constants); generic in D only.

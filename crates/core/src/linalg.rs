@@ -5,11 +5,17 @@
 //!   mass matrix ∂²L/∂q̇², a Gram matrix) and falls back to LU with partial pivoting when the matrix is
 //!   not positive definite; [`DenseFactor::lu`] goes to LU directly (an unsymmetric Newton Jacobian).
 //! - [`Banded`] and [`BandedLu`]: a banded matrix and its LU with partial pivoting, O(n) for a chain.
+//! - [`solve_positive_fixed`]: Cholesky of a small matrix on the stack (the hot path of Lagrange's
+//!   accelerations); [`factor_positive_parameter`]: a constant positive definite matrix given as a
+//!   parameter (a dense mass matrix); [`rank`]: the numerical rank of a rectangular matrix by its
+//!   singular values (the diagnosis of redundant constraints).
 //! - Singular means: the smallest pivot is at most [`SINGULAR_PIVOT`] times the scale of the matrix,
 //!   the larger of its largest pivot and its largest entry ([`pivot_ratio`]). Every factorization
 //!   reports that ratio ([`FactorInfo`]), and a rejected one carries it in its error
 //!   ([`FactorError`], turned into core's [`Error`] with the caller's context by
-//!   [`FactorError::in_matrix`] or [`FactorError::in_mass_matrix`]).
+//!   [`FactorError::in_matrix`] or [`FactorError::in_mass_matrix`]). The singular values of
+//!   [`rank`] are pivots in the same sense (σ_min/σ_max = 1/cond(A) exactly): one criterion for every
+//!   factorization of the workspace, which goes through this module.
 //!
 //! ```
 //! use nalgebra::DMatrix;
@@ -28,7 +34,7 @@
 //! ```
 
 use crate::Error;
-use nalgebra::{DMatrix, DVectorViewMut, Dyn};
+use nalgebra::{DMatrix, DVectorViewMut, Dyn, SMatrix, SVector};
 use thiserror::Error as ThisError;
 
 /// Relative pivot at or below which a matrix is reported as singular:
@@ -310,6 +316,63 @@ pub fn factor_positive_mass(m: DMatrix<f64>, t: f64) -> crate::Result<DenseFacto
             })
         }
     }
+}
+
+/// Factors a constant matrix given as a parameter that must be positive definite (a dense mass matrix
+/// of a natural system or a discrete mechanical one): its Cholesky factor by [`factor_mass`] (so
+/// [`Error::SingularMassMatrix`] at t = 0 by the pivot test), or [`Error::InvalidParameter`] named
+/// `name` ("must be positive definite") when it is regular but indefinite.
+pub fn factor_positive_parameter(m: DMatrix<f64>, name: &'static str) -> crate::Result<DenseFactor> {
+    let f = factor_mass(m, 0.0)?;
+    match f.kind {
+        Kind::Cholesky(_) => Ok(f),
+        Kind::Lu(_) => Err(Error::InvalidParameter {
+            name,
+            value: f64::NAN,
+            reason: "must be positive definite",
+        }),
+    }
+}
+
+/// Overwrites `b` with M⁻¹ b for a small symmetric matrix M held on the stack (no heap allocation):
+/// nalgebra's Cholesky M = L Lᵀ of the static matrix, accepted by the pivot test of this module
+/// (pivots d_j = L_jj², scale max(d_max, max |m_ij|)). `false`, with `b` untouched, when M is not
+/// positive definite or the test says singular (the caller then reports why, e.g. by
+/// [`factor_positive_mass`]).
+#[inline]
+pub fn solve_positive_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>) -> bool {
+    let norm = m.amax();
+    match m.cholesky() {
+        Some(ch) => {
+            let (lo, hi) = pivot_range(ch.l_dirty().diagonal().iter().map(|l| l * l));
+            if is_singular(pivot_ratio(lo, hi, norm)) {
+                return false;
+            }
+            ch.solve_mut(b);
+            true
+        }
+        None => false,
+    }
+}
+
+/// The numerical rank of an m × n matrix A and its smallest singular value relative to the largest,
+/// σ_min/σ_max (0 when there are more rows than columns, or for A = 0; 1 without rows), by the
+/// singular value decomposition: σ_i counts when σ_i/σ_max is not singular by [`is_singular`] (above
+/// [`SINGULAR_PIVOT`]), the criterion of every factorization here; at most min(m, n). Singular values
+/// rather than the eigenvalues of A Aᵀ, which would square the condition number.
+pub fn rank(a: &DMatrix<f64>) -> (usize, f64) {
+    if a.nrows() == 0 {
+        return (0, 1.0);
+    }
+    let s = a.clone().svd(false, false).singular_values;
+    let hi = s.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let rank = s.iter().filter(|v| !is_singular(**v / hi)).count();
+    let lo = if a.nrows() > a.ncols() {
+        0.0
+    } else {
+        s.iter().fold(f64::INFINITY, |m, v| m.min(*v))
+    };
+    (rank.min(a.ncols()), if hi > 0.0 { lo / hi } else { 0.0 })
 }
 
 /// The Cholesky factor of a mass matrix that must be positive definite (the Legendre transform, normal

@@ -205,26 +205,21 @@ impl<P: Potential> Natural<P> {
                 reason: "the mass matrix must be symmetric",
             });
         }
-        let factor = crate::linalg::factor_mass(mass.clone(), 0.0)?;
-        match factor.cholesky() {
-            Some(chol) => {
-                let inv = chol.inverse();
-                Ok(Natural {
-                    forces: force_kernel::<P>(n),
-                    potential,
-                    mass: Mass::Dense {
-                        m: mass,
-                        chol: chol.clone(),
-                        inv,
-                    },
-                })
-            }
-            None => Err(Error::InvalidParameter {
-                name: "mass matrix",
-                value: f64::NAN,
-                reason: "the mass matrix must be positive definite",
-            }),
-        }
+        let factor = crate::linalg::factor_positive_parameter(mass.clone(), "mass matrix")?;
+        // A Cholesky factor by construction (checked once more rather than assumed).
+        let chol = factor.cholesky().ok_or(Error::SingularMassMatrix {
+            t: 0.0,
+            pivot_ratio: f64::NAN,
+        })?;
+        Ok(Natural {
+            forces: force_kernel::<P>(n),
+            potential,
+            mass: Mass::Dense {
+                m: mass,
+                chol: chol.clone(),
+                inv: chol.inverse(),
+            },
+        })
     }
 
     /// The potential.
@@ -349,11 +344,12 @@ impl<P: Potential> Natural<P> {
         // The value too: where V itself is infinite there is no force to return.
         if !check.is_finite() {
             check_finite("q", q)?;
-            // A natural system does not depend on t: no time to name.
+            // A natural system does not depend on t: no time to name. The component when a force is
+            // not finite (None when only V is).
             return Err(Error::NonFiniteResult {
                 what: "potential forces",
                 t: f64::NAN,
-                component: None,
+                component: out.iter().position(|x| !x.is_finite()),
             });
         }
         Ok(())

@@ -151,15 +151,7 @@ fn factor_checked(mass: &Mass, n: usize) -> Result<Option<DenseFactor>> {
                     reason: "M = ∂²L/∂q̇² must be symmetric",
                 });
             }
-            let f = linalg::factor_mass(m.clone(), 0.0)?;
-            if f.cholesky().is_none() {
-                return Err(Error::InvalidParameter {
-                    name: "mass matrix",
-                    value: f64::NAN,
-                    reason: "must be positive definite",
-                });
-            }
-            Ok(Some(f))
+            linalg::factor_positive_parameter(m.clone(), "mass matrix").map(Some)
         }
     }
 }

@@ -111,30 +111,29 @@ pub enum Error {
     Plot(plot::Error),
 }
 
-impl From<core::Error> for Error {
-    /// Core's error, or a crate's own failure when it comes back through core's interfaces as
-    /// [`core::Error::Model`](noether_core::Error::Model).
-    fn from(e: core::Error) -> Self {
-        if !matches!(e, core::Error::Model(_)) {
-            return Error::Core(e);
-        }
-        macro_rules! own {
-            ($($crate_:ident => $variant:ident),*) => {
+/// The conversions of the crates whose errors wrap core's (each with a `Core` variant), from one list
+/// of `crate => variant`:
+/// - `From<core::Error>`: core's error as `Error::Core`, except a crate's own failure that came back
+///   through core's interfaces as [`core::Error::Model`](noether_core::Error::Model), which is taken out
+///   again (by `downcast_ref` to each listed crate's error) into that crate's variant;
+/// - `From<crate::Error>` for each listed crate: its `Core` variant goes the way of core's error, the
+///   rest to the crate's variant.
+macro_rules! from_crates {
+    ($($crate_:ident => $variant:ident),*) => {
+        impl From<core::Error> for Error {
+            /// Core's error, or a crate's own failure when it comes back through core's interfaces as
+            /// [`core::Error::Model`](noether_core::Error::Model).
+            fn from(e: core::Error) -> Self {
+                if !matches!(e, core::Error::Model(_)) {
+                    return Error::Core(e);
+                }
                 $(if let Some(own) = e.downcast_ref::<$crate_::Error>() {
                     return Error::$variant(own.clone());
                 })*
-            };
+                Error::Core(e)
+            }
         }
-        own!(discrete => Discrete, constraints => Constraints, particles => Particles,
-             analysis => Analysis, canonical => Canonical, rigid => Rigid);
-        Error::Core(e)
-    }
-}
 
-/// `From` a crate's error: its `Core` variant goes the way of core's error, the rest to the crate's
-/// variant.
-macro_rules! from_crate {
-    ($($crate_:ident => $variant:ident),*) => {
         $(impl From<$crate_::Error> for Error {
             /// This crate's own failure, or core's (as `Error::Core`, or its own crate's variant if
             /// it came through core's interfaces).
@@ -148,8 +147,8 @@ macro_rules! from_crate {
     };
 }
 
-from_crate!(discrete => Discrete, constraints => Constraints, particles => Particles,
-            analysis => Analysis, canonical => Canonical, rigid => Rigid);
+from_crates!(discrete => Discrete, constraints => Constraints, particles => Particles,
+             analysis => Analysis, canonical => Canonical, rigid => Rigid);
 
 #[cfg(feature = "ensemble")]
 impl From<ensemble::Error> for Error {

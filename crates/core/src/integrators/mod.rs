@@ -19,6 +19,7 @@ pub mod explicit;
 pub mod gauss;
 pub mod ias15;
 pub mod nystrom;
+mod step_control;
 pub mod symplectic;
 
 pub use crate::system::{LinearizedDynamics, SplitDynamics};

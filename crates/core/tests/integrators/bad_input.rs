@@ -660,3 +660,63 @@ fn bad_input_nan_parameter_names_quantity_component_and_hint() {
         );
     }
 }
+
+/// V = ½q₀² + f(q₁), f(q₁) = ½k q₁²: a spring on q₁ alone whose stiffness k is a parameter.
+///
+/// The bad parameter must reach one force only. A NaN k cannot: forward-mode AD carries ∂/∂q₀ of
+/// f as 0 · k, and 0 · NaN = NaN, so both forces come out NaN (the reason the first version of this
+/// test, expecting component 1, was reverted). A finite k = 10³⁰⁸ does: ∂f/∂q₀ = 0 · k = 0 stays
+/// finite while ∂f/∂q₁ = k q₁ overflows to ∞ for q₁ = 10, so −∇V = (−q₀, −∞).
+struct StiffSpring {
+    k: f64,
+}
+
+impl Potential for StiffSpring {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        q[0] * q[0] * 0.5 + q[1] * q[1] * self.k * 0.5
+    }
+}
+
+#[test]
+fn bad_input_overflowing_parameter_nystrom_and_ias15_name_the_component() {
+    // Issue 30: the Nyström pairs and IAS15 reported "accelerations" without a component. With
+    // k = 10³⁰⁸ and q₁ = 10 the force −k q₁ overflows in component 1 alone: the model's own error names
+    // the first non-finite force, so component 1 there says component 0 stayed finite (checked first,
+    // so that the integrators' component is not 1 by accident). At the start of a step no
+    // smaller step helps, so the error comes at once, naming t, the quantity and the component, the
+    // state kept.
+    let model = || Natural::unit(StiffSpring { k: 1e308 });
+    let start = State::new(0.0, [1.0, 10.0], [0.0, 0.0]);
+    let mut a = [0.0; 2];
+    // (t is NaN, no time to name, so a match rather than ==.)
+    let err = model().accelerations(start.q.as_slice(), &mut a).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            Error::NonFiniteResult {
+                what: "potential forces",
+                component: Some(1),
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    let expected = Error::NonFiniteResult {
+        what: "accelerations",
+        t: 0.0,
+        component: Some(1),
+    };
+    for mut s in [
+        Box::new(Dprkn6::new(model()).unwrap()) as Box<dyn Stepper<Partner = Velocities>>,
+        Box::new(Dprkn8::new(model()).unwrap()),
+        Box::new(Dprkn12::new(model()).unwrap()),
+        Box::new(Ias15::new(model()).unwrap()),
+    ] {
+        let mut state = start.clone();
+        assert_eq!(s.step(&mut state, 0.1).unwrap_err(), expected, "{}", s.name());
+        assert_eq!(state, start, "{}", s.name());
+    }
+}

@@ -9,7 +9,7 @@ use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block};
 use noether_core::error::{check_finite, check_len};
-use noether_core::linalg::{Banded, BandedLu};
+use noether_core::linalg::{Banded, BandedLu, DenseFactor};
 use noether_core::{Error, NewtonInfo, NewtonSystem, Result};
 
 impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
@@ -308,9 +308,9 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
         for k in 1..steps {
             let mut dk = a[k].clone();
             if let Some(prev) = &d {
-                match prev.clone().lu().solve(&b[k - 1]) {
-                    Some(y) => dk -= b[k - 1].transpose() * y,
-                    None => {
+                match DenseFactor::lu(prev.clone()) {
+                    Ok(f) => dk -= b[k - 1].transpose() * f.solve_matrix(&b[k - 1]),
+                    Err(_) => {
                         morse = None;
                         break;
                     }
@@ -328,7 +328,7 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
         let mut end_root = None;
         for k in 1..steps {
             let rhs = -(&a[k] * &j + b[k - 1].transpose() * &jm);
-            let Some(next) = b[k].clone().lu().solve(&rhs) else {
+            let Ok(next) = DenseFactor::lu(b[k].clone()).map(|f| f.solve_matrix(&rhs)) else {
                 break;
             };
             let (dk, dn) = (j.determinant(), next.determinant());

@@ -31,21 +31,18 @@
 //! samples output times and locates events. It is built only when the driver needs it (DOP853 spends
 //! three more evaluations of the vector field per step on it).
 
-mod control;
 mod stages;
 
-use control::rates_error;
-pub(super) use control::{
-    check_tolerances, checked_error, error_scale, finite_stage, initial_step_size, settings_methods,
-    until_accepted, Settings,
+use super::step_control::{
+    check_start, check_tolerances, checked_error, controlled_stepper, error_scale, finite_stage,
+    initial_step_size, rates_error, settings_methods, until_accepted_pi, Settings, Tolerances,
 };
-pub use control::{Controller, RTOL_FLOOR};
+pub use super::step_control::{Controller, RTOL_FLOOR};
 pub use stages::Stages;
 pub(super) use stages::{combine_stages, stage_sum, StageArgument};
 use stages::{join_halves, split_halves};
 
 use crate::dense::DenseEval;
-use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Dynamics, Error, Result, State, StepInfo, Stepper};
 
 /// The coefficients and formulas of an embedded pair with dense output.
@@ -103,7 +100,7 @@ pub trait EmbeddedPair {
 /// ```
 pub struct Adaptive<S: Dynamics, M> {
     system: S,
-    settings: Settings,
+    settings: Settings<Tolerances>,
     n: usize,
     /// The stages one after the other (see [`Stages`]): k[j·2n + x] is component x of stage j, for
     /// the main stages, F(t + h, y₁) and the dense stages.
@@ -125,7 +122,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         let stages = M::C.len() + 1 + M::DENSE_STAGES.len();
         Adaptive {
             system,
-            settings: Settings::new(M::CONTROLLER),
+            settings: Settings::new(Tolerances::new(M::CONTROLLER)),
             n,
             k: vec![0.0; 2 * n * stages],
             y0: vec![0.0; 2 * n],
@@ -139,10 +136,11 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         }
     }
 
-    settings_methods!("the vector field");
+    settings_methods!(tolerances, "the vector field");
 
     fn check_parameters(&self) -> Result<()> {
-        check_tolerances(self.settings.atol, self.settings.rtol, self.settings.h_min)
+        let c = self.settings.control;
+        check_tolerances(c.atol, c.rtol, self.settings.h_min)
     }
 
     /// Why the rates at the start of a step (t, y₀) are not finite: no smaller step can help there,
@@ -234,7 +232,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         if self.settings.fixed {
             return Ok(0.0);
         }
-        let (atol, rtol) = (self.settings.atol, self.settings.rtol);
+        let (atol, rtol) = (self.settings.control.atol, self.settings.control.rtol);
         let mut sums = [0.0; 2];
         for (sum, row) in sums.iter_mut().zip(M::ERROR) {
             let e = stage_sum::<W>(&self.k, row);
@@ -290,7 +288,11 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         if self.settings.fixed {
             return Ok(0.0);
         }
-        let (atol, rtol, k) = (self.settings.atol, self.settings.rtol, self.stages());
+        let (atol, rtol, k) = (
+            self.settings.control.atol,
+            self.settings.control.rtol,
+            self.stages(),
+        );
         let mut sums = [0.0; 2];
         for x in 0..self.y0.len() {
             let sk = error_scale(atol, rtol, self.y0[x], self.y1[x]);
@@ -351,16 +353,17 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
         }
         let y0 = self.y0.clone();
         let k0 = self.stage(0).to_vec();
-        let mut f1 = vec![0.0; n2];
         let last = M::C.len() + M::DENSE_STAGES.len();
-        let (atol, rtol) = (self.settings.atol, self.settings.rtol);
-        let h = initial_step_size(M::ORDER, atol, rtol, &y0, &k0, &mut f1, |h, f1| {
+        let tolerances = (self.settings.control.atol, self.settings.control.rtol);
+        let h = initial_step_size(M::ORDER, tolerances, &y0, &k0, |h, d| {
             self.tmp
                 .iter_mut()
                 .enumerate()
                 .for_each(|(i, y)| *y = y0[i] + h * k0[i]);
             let ok = self.eval(last, state.t + h, true)?;
-            f1.copy_from_slice(self.stage(last));
+            for ((d, f1), f0) in d.iter_mut().zip(self.stage(last)).zip(&k0) {
+                *d = f1 - f0;
+            }
             Ok(ok)
         })?;
         // F(t, y₀) is the first stage of the first step (as in Hairer's codes, which evaluate it
@@ -393,7 +396,7 @@ impl<S: Dynamics, M: EmbeddedPair> Adaptive<S, M> {
     /// Accepts the trial of size h from t: its dense output when the driver wants one, then
     /// `state` = (t + h, y₁), whose F is the first stage of the next step.
     fn accept(&mut self, state: &mut State<S::Partner>, t: f64, h: f64) -> Result<()> {
-        if self.settings.dense_allowed && self.settings.dense_requested {
+        if self.settings.dense() {
             self.build_dense(t, h)?;
         } else {
             self.dense = None;
@@ -417,53 +420,19 @@ impl<S: Dynamics, M: EmbeddedPair> Stepper for Adaptive<S, M> {
     /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
     /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
-        check_step(h)?;
-        state.validate(self.n)?;
-        check_time_resolution(state.t, h)?;
-        self.system
-            .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
+        check_start(&self.system, self.n, state, h)?;
         let evaluations = self.evaluations;
         let t = state.t;
         self.start(state)?;
         let settings = self.settings;
-        let trial = until_accepted(&settings, M::CONTROL_ORDER, (t, h), "rates", |h| {
+        let trial = until_accepted_pi(&settings, M::CONTROL_ORDER, (t, h), "rates", |h| {
             self.attempt(t, h)
         })?;
         let h_next = trial.next_step(&settings, &mut self.err_prev);
         self.accept(state, t, trial.h)?;
-        Ok(StepInfo::fixed(trial.h)
-            .with_control(trial.rejected, h_next)
-            .with_evaluations(self.evaluations - evaluations))
+        Ok(trial.info(h_next, self.evaluations - evaluations))
     }
-    fn dof(&self) -> usize {
-        self.n
-    }
-    fn order(&self) -> u32 {
-        M::ORDER
-    }
-    fn name(&self) -> &'static str {
-        M::NAME
-    }
-    fn is_adaptive(&self) -> bool {
-        !self.settings.fixed
-    }
-    /// Hairer's `hinit`: h such that the explicit Euler step and the second-derivative estimate give a
-    /// local error ≈ 0.01 in the scaled norm.
-    fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
-        self.hinit(state).map(Some)
-    }
-    fn request_dense_output(&mut self, on: bool) {
-        self.settings.dense_requested = on;
-    }
-    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
-        self.dense.as_ref()
-    }
-    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(
-            self.system
-                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
-        )
-    }
+    controlled_stepper!(order: M::ORDER, name: M::NAME);
 }
 
 /// Ψ of the accepted step with its step size h frozen (the derivative of y₀ ↦ y₁ at the h taken, after

@@ -2,13 +2,14 @@
 //! step, by either criterion of [`Ias15Control`], and the initial step size.
 
 use super::{Ias15, Ias15Control, SAFETY};
+use crate::integrators::step_control::{initial_step_size, stage_accelerations, start_accelerations};
 use crate::integrators::SplitDynamics;
-use crate::{Error, Result, State};
+use crate::{Result, State};
 
 impl<S: SplitDynamics> Ias15<S> {
     /// The step size the control proposes after a converged step of size h.
     pub(super) fn proposal(&self, h: f64) -> f64 {
-        match self.control {
+        match self.settings.control.criterion {
             Ias15Control::Prs23 => self.prs23_proposal(h),
             Ias15Control::Global => self.global_proposal(h),
         }
@@ -19,7 +20,7 @@ impl<S: SplitDynamics> Ias15<S> {
         if self.n == 0 {
             0
         } else {
-            self.n / self.block
+            self.n / self.settings.control.block
         }
     }
 
@@ -28,7 +29,7 @@ impl<S: SplitDynamics> Ias15<S> {
     /// h_new = h √(min over blocks of 2y₂/(y₃ + √(y₄y₂))) (5040 ε)^{1/7}; h/[`SAFETY`] when no block
     /// gives a timescale.
     fn prs23_proposal(&self, h: f64) -> f64 {
-        let d = self.block;
+        let d = self.settings.control.block;
         let mut min_t2 = f64::INFINITY;
         for blk in 0..self.blocks() {
             let (mut a0i, mut y2, mut y3, mut y4) = (0.0, 0.0, 0.0, 0.0);
@@ -52,7 +53,7 @@ impl<S: SplitDynamics> Ias15<S> {
             }
         }
         if min_t2.is_normal() {
-            min_t2.sqrt() * h * (5040.0 * self.epsilon).powf(1.0 / 7.0)
+            min_t2.sqrt() * h * (5040.0 * self.settings.control.epsilon).powf(1.0 / 7.0)
         } else {
             h / SAFETY
         }
@@ -61,7 +62,7 @@ impl<S: SplitDynamics> Ias15<S> {
     /// Rein & Spiegel's global criterion: h_new = h (ε max|a| / max|b₆|)^{1/7} over the coordinates
     /// of the blocks that move (v²h²/q² ≥ 1e-16); h/[`SAFETY`] when that ratio is not a normal number.
     fn global_proposal(&self, h: f64) -> f64 {
-        let d = self.block;
+        let d = self.settings.control.block;
         let (mut max_a, mut max_b6) = (0.0_f64, 0.0_f64);
         for blk in 0..self.blocks() {
             let range = blk * d..(blk + 1) * d;
@@ -83,57 +84,47 @@ impl<S: SplitDynamics> Ias15<S> {
         }
         let error = max_b6 / max_a;
         if error.is_normal() {
-            h * (self.epsilon / error).powf(1.0 / 7.0)
+            h * (self.settings.control.epsilon / error).powf(1.0 / 7.0)
         } else {
             h / SAFETY
         }
     }
 
-    /// An initial step size at `state` by Hairer's rule (as [`Adaptive`](crate::integrators::Adaptive) chooses it)
-    /// with order 15 and atol = rtol = ε; f(q₀) is kept for the first step.
+    /// An initial step size at `state` by Hairer's rule ([`initial_step_size`], as the embedded pairs
+    /// choose it) with order 15 and atol = rtol = ε, on y = (q, v), F = (v, f(q)): F₁ − F₀ at the
+    /// explicit Euler step is (h₀ f(q₀), f(q₀ + h₀v₀) − f(q₀)). f(q₀) is kept for the first step.
     pub(super) fn hinit(&mut self, state: &State<S::Partner>) -> Result<f64> {
         state.validate(self.n)?;
+        let n = self.n;
         let (q, v) = (state.q.as_slice(), state.v.as_slice());
         self.have_cached = false;
         self.cached_q.copy_from_slice(q);
-        if !Self::accelerations(&self.system, q, &mut self.cached_a, &mut self.evaluations)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
-        }
+        start_accelerations(
+            &self.system,
+            &mut self.evaluations,
+            state.t,
+            q,
+            &mut self.cached_a,
+        )?;
         self.have_cached = true;
-        let eps = self.epsilon;
-        let sk = |y: f64| eps + eps * y.abs();
-        let norm = |x: &mut dyn Iterator<Item = f64>| x.map(|x| x * x).sum::<f64>().sqrt();
         let a = &self.cached_a;
-        let d0 = norm(&mut q.iter().chain(v).map(|y| y / sk(*y)));
-        let d1 = norm(&mut v.iter().zip(q).chain(a.iter().zip(v)).map(|(f, y)| f / sk(*y)));
-        let h0 = if d0 <= 1e-5 || d1 <= 1e-5 {
-            1e-6
-        } else {
-            0.01 * d0 / d1
-        };
-        // The explicit Euler step (q + h₀v, v + h₀a) and f there.
-        for k in 0..self.n {
-            self.xs[k] = q[k] + h0 * v[k];
-        }
-        if !Self::accelerations(&self.system, &self.xs, &mut self.at, &mut self.evaluations)? {
-            return Ok(h0 * 1e-3);
-        }
-        let a = &self.cached_a;
-        let d2 = norm(
-            &mut (0..self.n)
-                .map(|k| h0 * a[k] / sk(q[k]))
-                .chain((0..self.n).map(|k| (self.at[k] - a[k]) / sk(v[k]))),
-        ) / h0;
-        let der12 = d1.max(d2);
-        let h1 = if der12 <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / der12).powf(1.0 / 15.0)
-        };
-        Ok((100.0 * h0).min(h1))
+        let y0: Vec<f64> = q.iter().chain(v).copied().collect();
+        let f0: Vec<f64> = v.iter().chain(a).copied().collect();
+        let eps = self.settings.control.epsilon;
+        let (system, evaluations) = (&self.system, &mut self.evaluations);
+        let (xs, at) = (&mut self.xs, &mut self.at);
+        initial_step_size(15, (eps, eps), &y0, &f0, |h0, d| {
+            for k in 0..n {
+                xs[k] = q[k] + h0 * v[k];
+            }
+            if !stage_accelerations(system, evaluations, xs, at)? {
+                return Ok(false);
+            }
+            for k in 0..n {
+                d[k] = h0 * a[k];
+                d[n + k] = at[k] - a[k];
+            }
+            Ok(true)
+        })
     }
 }

@@ -50,9 +50,10 @@
 //! by at most a factor 4. The first step of a run (or after the state was changed between steps),
 //! whose size is only a guess, is redone as soon as h_new < h. Accelerations that are not finite reject the step and retry with h/4; an
 //! iteration that has not converged after 12 rounds rejects it and retries with h/2. Below
-//! [`h_min`](Ias15::h_min) (or 10 ulps of t) the step fails with [`Error::StepSizeUnderflow`], the
-//! state untouched. In fixed-step mode ([`fixed_step`](Ias15::fixed_step)) every step takes the size
-//! asked for; accelerations that are not finite end it with [`Error::NonFiniteResult`], an iteration
+//! [`h_min`](Ias15::h_min) (or 10 ulps of t, or what t + h resolves) the step fails with
+//! [`Error::StepSizeUnderflow`], the state untouched: the loop of trials and that test are the step
+//! control the embedded pairs use. In fixed-step mode ([`fixed_step`](Ias15::fixed_step)) every step
+//! takes the size asked for, the predictor-corrector still iterating to convergence; accelerations that are not finite end it with [`Error::NonFiniteResult`], an iteration
 //! that does not converge with [`Error::NewtonDiverged`] (12 iterations, the last relative correction
 //! of b₆, tolerance 1e-16).
 //!
@@ -78,9 +79,12 @@
 mod coefficients;
 mod control;
 
+use super::step_control::{
+    check_start, controlled_stepper, settings_methods, stage_accelerations, start_accelerations,
+    until_accepted, Accepted, Settings, Verdict,
+};
 use super::SplitDynamics;
 use crate::dense::{horner_eval, DenseEval};
-use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 #[cfg(test)]
 use coefficients::RR;
@@ -111,14 +115,22 @@ pub enum Ias15Control {
     Global,
 }
 
-/// A trial step the control accepted ([`Ias15::converge`]).
-struct Trial {
-    /// Its size.
-    h: f64,
+/// IAS15's own step-size control, the `control` of its [`Settings`].
+#[derive(Debug, Clone, Copy)]
+struct Accuracy {
+    /// ε ([`Ias15::epsilon`]).
+    epsilon: f64,
+    /// The step-size criterion ([`Ias15::control`]).
+    criterion: Ias15Control,
+    /// Coordinates per block of the criterion ([`Ias15::block_size`]).
+    block: usize,
+}
+
+/// What IAS15 keeps of a trial step the control accepted ([`Ias15::converge`]).
+#[derive(Debug, Clone, Copy)]
+struct Converged {
     /// The control's proposal for the next step.
     h_next: f64,
-    /// The trials rejected before it.
-    rejected: usize,
     /// The rounds of the predictor-corrector of all trials.
     iterations: usize,
     /// Whether its b started from a prediction.
@@ -165,13 +177,7 @@ fn add_cs(p: &mut f64, cs: &mut f64, x: f64) {
 /// ```
 pub struct Ias15<S: SplitDynamics> {
     system: S,
-    epsilon: f64,
-    h_min: f64,
-    control: Ias15Control,
-    block: usize,
-    fixed: bool,
-    dense_allowed: bool,
-    dense_requested: bool,
+    settings: Settings<Accuracy>,
     n: usize,
     /// Start of the step: positions, velocities, accelerations.
     x0: Vec<f64>,
@@ -225,13 +231,11 @@ impl<S: SplitDynamics> Ias15<S> {
         let z7 = vec![[0.0; 7]; n];
         Ok(Ias15 {
             system,
-            epsilon: 1e-9,
-            h_min: 1e-14,
-            control: Ias15Control::Prs23,
-            block: n.max(1),
-            fixed: false,
-            dense_allowed: true,
-            dense_requested: true,
+            settings: Settings::new(Accuracy {
+                epsilon: 1e-9,
+                criterion: Ias15Control::Prs23,
+                block: n.max(1),
+            }),
             n,
             x0: z.clone(),
             v0: z.clone(),
@@ -274,26 +278,13 @@ impl<S: SplitDynamics> Ias15<S> {
                 reason: "must be finite and positive (for fixed steps use fixed_step(true))",
             });
         }
-        self.epsilon = epsilon;
-        Ok(self)
-    }
-
-    /// Sets the smallest step size before [`Error::StepSizeUnderflow`] (default 1e-14; finite, ≥ 0).
-    pub fn h_min(mut self, h_min: f64) -> Result<Self> {
-        if !(h_min.is_finite() && h_min >= 0.0) {
-            return Err(Error::InvalidParameter {
-                name: "h_min",
-                value: h_min,
-                reason: "must be finite and non-negative",
-            });
-        }
-        self.h_min = h_min;
+        self.settings.control.epsilon = epsilon;
         Ok(self)
     }
 
     /// Sets the step-size criterion (default [`Ias15Control::Prs23`]).
     pub fn control(mut self, control: Ias15Control) -> Self {
-        self.control = control;
+        self.settings.control.criterion = control;
         self
     }
 
@@ -308,44 +299,11 @@ impl<S: SplitDynamics> Ias15<S> {
                 reason: "must be positive and divide the number of coordinates",
             });
         }
-        self.block = size;
+        self.settings.control.block = size;
         Ok(self)
     }
 
-    /// Fixed steps: every step takes the size asked for, with no step-size control (for convergence
-    /// studies); the predictor-corrector still iterates to convergence.
-    pub fn fixed_step(mut self, fixed: bool) -> Self {
-        self.fixed = fixed;
-        self
-    }
-
-    /// Allows (default) or forbids the dense output; without it the driver interpolates output times
-    /// and events by cubic Hermite (order 3).
-    pub fn with_dense_output(mut self, on: bool) -> Self {
-        self.dense_allowed = on;
-        self
-    }
-
-    /// The system stepped.
-    pub fn system(&self) -> &S {
-        &self.system
-    }
-
-    /// Evaluations of f since construction.
-    pub fn evaluations(&self) -> usize {
-        self.evaluations
-    }
-
-    /// f(q) into `a`: Ok(false) when it is not finite (an error of the model that says so, or a
-    /// value that is not); other errors of the model pass through.
-    fn accelerations(system: &S, q: &[f64], a: &mut [f64], evaluations: &mut usize) -> Result<bool> {
-        *evaluations += 1;
-        match system.kick_rate(q, a) {
-            Ok(()) => Ok(a.iter().fold(true, |ok, x| ok & x.is_finite())),
-            Err(Error::NonFiniteResult { .. }) | Err(Error::NonFinite { .. }) => Ok(false),
-            Err(e) => Err(e),
-        }
-    }
+    settings_methods!("f");
 
     /// The first guess of b (and the prediction e it came from) for a step of size h; `false` when
     /// there is nothing to predict from (b = e = 0).
@@ -403,11 +361,23 @@ impl<S: SplitDynamics> Ias15<S> {
         }
     }
 
-    /// New g_J (J = node − 1) from the accelerations `at` at node J + 1, and the b it changes.
+    /// New g_J (J = node − 1) from the accelerations `at` at node J + 1, and the b it changes: with
+    /// r the node differences ([`RR_INV`] their inverses) and c the Newton-to-power conversion ([`C`]),
+    ///
+    /// ```text
+    /// g_J = ((…((at − a₀)/r_J0 − g₀)/r_J1 − …) − g_{J−1})/r_J,J−1,   Δg = g_J − g_J,old,
+    /// b_m += c_Jm Δg (m < J),   b_J += Δg        (Kahan-compensated).
+    /// ```
+    ///
+    /// At the last node (J = 6) it returns the correction of b₆ relative to the accelerations,
+    /// max |Δb₆| / max |a| (over the components where each is a normal number; 0 when no Δb₆ is), the
+    /// convergence measure of the predictor-corrector; 0 at the other nodes, where the comparisons are
+    /// compiled away (J is a constant).
     #[inline(always)]
-    fn update_node<const J: usize>(&mut self) {
+    fn update_node<const J: usize>(&mut self) -> f64 {
         let r0 = J * (J + 1) / 2;
         let c0 = if J == 0 { 0 } else { (J - 1) * J / 2 };
+        let (mut max_a, mut max_db) = (0.0_f64, 0.0_f64);
         let (at, a0) = (&self.at[..], &self.a0[..]);
         for ((((g, b), cs), at), a0) in self
             .g
@@ -427,6 +397,20 @@ impl<S: SplitDynamics> Ias15<S> {
                 add_cs(&mut b[m], &mut cs[m], dg * C[c0 + m]);
             }
             add_cs(&mut b[J], &mut cs[J], dg);
+            if J == 6 {
+                let (a, d) = (at.abs(), dg.abs());
+                if a.is_normal() && a > max_a {
+                    max_a = a;
+                }
+                if d.is_normal() && d > max_db {
+                    max_db = d;
+                }
+            }
+        }
+        if max_db == 0.0 {
+            0.0
+        } else {
+            max_db / max_a
         }
     }
 
@@ -483,60 +467,22 @@ impl<S: SplitDynamics> Ias15<S> {
                         + v0;
                     *xs = (poly * s - csx) + x0;
                 }
-                if !Self::accelerations(&self.system, &self.xs, &mut self.at, &mut self.evaluations)? {
+                if !stage_accelerations(&self.system, &mut self.evaluations, &self.xs, &mut self.at)? {
                     return Ok(Attempt::NonFinite(iterations));
                 }
-                match node {
+                let correction = match node {
                     1 => self.update_node::<0>(),
                     2 => self.update_node::<1>(),
                     3 => self.update_node::<2>(),
                     4 => self.update_node::<3>(),
                     5 => self.update_node::<4>(),
                     6 => self.update_node::<5>(),
-                    _ => pc_err = self.update_last_node(),
+                    _ => self.update_node::<6>(),
+                };
+                if node == 7 {
+                    pc_err = correction;
                 }
             }
-        }
-    }
-
-    /// [`update_node`](Self::update_node) for the last node; returns the correction of b₆ relative
-    /// to the accelerations, max |Δb₆| / max |a| (over the components where each is a normal number).
-    fn update_last_node(&mut self) -> f64 {
-        const J: usize = 6;
-        const R0: usize = J * (J + 1) / 2;
-        const C0: usize = (J - 1) * J / 2;
-        let (mut max_a, mut max_db) = (0.0_f64, 0.0_f64);
-        let (at, a0) = (&self.at[..], &self.a0[..]);
-        for ((((g, b), cs), at), a0) in self
-            .g
-            .iter_mut()
-            .zip(&mut self.b)
-            .zip(&mut self.csb)
-            .zip(at)
-            .zip(a0)
-        {
-            let mut val = (at - a0) * RR_INV[R0];
-            for m in 0..J {
-                val = (val - g[m]) * RR_INV[R0 + 1 + m];
-            }
-            let dg = val - g[J];
-            g[J] = val;
-            for m in 0..J {
-                add_cs(&mut b[m], &mut cs[m], dg * C[C0 + m]);
-            }
-            add_cs(&mut b[J], &mut cs[J], dg);
-            let (a, d) = (at.abs(), dg.abs());
-            if a.is_normal() && a > max_a {
-                max_a = a;
-            }
-            if d.is_normal() && d > max_db {
-                max_db = d;
-            }
-        }
-        if max_db == 0.0 {
-            0.0
-        } else {
-            max_db / max_a
         }
     }
 }
@@ -562,68 +508,54 @@ impl<S: SplitDynamics> Ias15<S> {
         self.v0.copy_from_slice(v);
         if self.have_cached && self.cached_q == q {
             self.a0.copy_from_slice(&self.cached_a);
-        } else if !Self::accelerations(&self.system, q, &mut self.a0, &mut self.evaluations)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
+        } else {
+            start_accelerations(&self.system, &mut self.evaluations, state.t, q, &mut self.a0)?;
         }
         self.have_cached = false;
         Ok(())
     }
 
     /// Trial steps from t, trying h first, until the predictor-corrector converges on a step the
-    /// control accepts. A trial whose accelerations are not finite is retried with h·[`SAFETY`], one
-    /// whose iteration does not converge with h/2 (in fixed-step mode both are errors), and a
-    /// converged one is redone with the control's proposal when that is far smaller (< h/4), or
-    /// smaller at all on the first trial of a run (its size is a guess, and a step 4× too large has a
-    /// local error 4¹⁶ times the control's). [`Error::StepSizeUnderflow`] when h falls below `h_min`
-    /// or 10 ulps of t.
-    fn converge(&mut self, t: f64, h: f64) -> Result<Trial> {
-        let (mut h, mut rejected, mut iterations, mut last_err) = (h, 0, 0, f64::NAN);
-        loop {
-            if !self.fixed && (h < self.h_min || h <= 10.0 * f64::EPSILON * t.abs()) {
-                return Err(Error::StepSizeUnderflow {
-                    t,
-                    h,
-                    error: last_err,
-                });
-            }
+    /// control accepts ([`until_accepted`], IAS15's policy). A trial whose accelerations are not finite
+    /// is retried with h·[`SAFETY`], one whose iteration does not converge with h/2 (in fixed-step mode
+    /// both are errors), and a converged one is redone with the control's proposal when that is far
+    /// smaller (< h/4), or smaller at all on the first trial of a run (its size is a guess, and a step
+    /// 4× too large has a local error 4¹⁶ times the control's). [`Error::StepSizeUnderflow`] when h
+    /// falls below `h_min` or what t resolves, with the error of the last rejection: ∞ after
+    /// non-finite accelerations, the last correction of b₆ after a diverging iteration, h/h_new after
+    /// the control's.
+    fn converge(&mut self, t: f64, h: f64) -> Result<Accepted<Converged>> {
+        let mut iterations = 0;
+        until_accepted(self.settings.h_min, (t, h), |h, rejected| {
             let predicted = self.predict(h);
             let attempt = self.iterate(h)?;
             iterations += match attempt {
                 Attempt::Converged(it) | Attempt::NonFinite(it) => it,
                 Attempt::NotConverged(_) => MAX_ITERATIONS,
             };
-            if let Some((factor, err)) = self.retry(t, attempt)? {
-                rejected += 1;
-                last_err = err;
-                h *= factor;
-                continue;
+            if let Some((factor, error)) = self.retry(t, attempt)? {
+                return Ok(Verdict::Retry { h: h * factor, error });
             }
-            let h_next = if self.fixed {
+            let h_next = if self.settings.fixed {
                 h
             } else {
                 let proposal = self.proposal(h);
                 let fresh = self.h_prev == 0.0 && rejected == 0;
                 if proposal < SAFETY * h || (fresh && proposal < h) {
                     // Smaller than the step just done allows: redo it with the proposal.
-                    rejected += 1;
-                    last_err = h / proposal;
-                    h = proposal;
-                    continue;
+                    return Ok(Verdict::Retry {
+                        h: proposal,
+                        error: h / proposal,
+                    });
                 }
                 proposal.min(h / SAFETY)
             };
-            return Ok(Trial {
-                h,
+            Ok(Verdict::Accept(Converged {
                 h_next,
-                rejected,
                 iterations,
                 predicted,
-            });
-        }
+            }))
+        })
     }
 
     /// How a trial that did not converge is retried: the factor of its step size ([`SAFETY`] after
@@ -634,13 +566,13 @@ impl<S: SplitDynamics> Ias15<S> {
     fn retry(&self, t: f64, attempt: Attempt) -> Result<Option<(f64, f64)>> {
         match attempt {
             Attempt::Converged(_) => Ok(None),
-            Attempt::NonFinite(_) if self.fixed => Err(Error::NonFiniteResult {
+            Attempt::NonFinite(_) if self.settings.fixed => Err(Error::NonFiniteResult {
                 what: "accelerations",
                 t,
                 component: None,
             }),
             Attempt::NonFinite(_) => Ok(Some((SAFETY, f64::INFINITY))),
-            Attempt::NotConverged(err) if self.fixed => Err(Error::NewtonDiverged {
+            Attempt::NotConverged(err) if self.settings.fixed => Err(Error::NewtonDiverged {
                 iterations: MAX_ITERATIONS,
                 residual: err,
                 tolerance: PC_TOLERANCE,
@@ -744,12 +676,8 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
     /// control (∞ after accelerations that were not finite, the relative correction of b₆ after an
     /// iteration that did not converge).
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
-        check_step(h)?;
-        state.validate(self.n)?;
-        check_time_resolution(state.t, h)?;
+        check_start(&self.system, self.n, state, h)?;
         let t = state.t;
-        self.system
-            .admissible(t, state.q.as_slice(), state.v.as_slice())?;
         let evaluations = self.evaluations;
         self.start(state)?;
         let trial = self.converge(t, h)?;
@@ -767,46 +695,18 @@ impl<S: SplitDynamics> Stepper for Ias15<S> {
                 component: None,
             });
         }
-        if self.dense_allowed && self.dense_requested {
+        if self.settings.dense() {
             self.build_dense(t, h);
         } else {
             self.dense = None;
         }
-        self.commit(state, t, h, trial.predicted);
-        Ok(StepInfo::fixed(h)
-            .with_control(trial.rejected, trial.h_next)
-            .with_evaluations(self.evaluations - evaluations)
-            .with_newton(trial.iterations, 0))
+        let c = trial.outcome;
+        self.commit(state, t, h, c.predicted);
+        Ok(trial
+            .info(c.h_next, self.evaluations - evaluations)
+            .with_newton(c.iterations, 0))
     }
-    fn dof(&self) -> usize {
-        self.n
-    }
-    fn order(&self) -> u32 {
-        15
-    }
-    fn name(&self) -> &'static str {
-        "IAS15"
-    }
-    fn is_adaptive(&self) -> bool {
-        !self.fixed
-    }
-    /// Hairer's rule with order 15 and atol = rtol = ε (two evaluations, the first reused by the
-    /// first step).
-    fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
-        self.hinit(state).map(Some)
-    }
-    fn request_dense_output(&mut self, on: bool) {
-        self.dense_requested = on;
-    }
-    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
-        self.dense.as_ref()
-    }
-    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(
-            self.system
-                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
-        )
-    }
+    controlled_stepper!(order: 15, name: "IAS15");
 }
 
 #[cfg(test)]

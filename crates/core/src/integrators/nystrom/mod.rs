@@ -64,13 +64,13 @@ mod tableaux;
 
 pub use tableaux::{Dprkn12, Dprkn6, Dprkn8, Rkn12, Rkn6, Rkn8};
 
-use super::adaptive::{
-    check_tolerances, checked_error, combine_stages, error_scale, finite_stage, initial_step_size,
-    settings_methods, stage_sum, until_accepted, Controller, Settings, StageArgument, Stages,
+use super::adaptive::{combine_stages, stage_sum, Controller, StageArgument, Stages};
+use super::step_control::{
+    check_start, check_tolerances, checked_error, controlled_stepper, error_scale, initial_step_size,
+    settings_methods, stage_accelerations, start_accelerations, until_accepted_pi, Settings, Tolerances,
 };
 use super::SplitDynamics;
 use crate::dense::horner_eval;
-use crate::error::{check_step, check_time_resolution};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
 
 /// The coefficients of an embedded Runge-Kutta-Nyström pair for q̈ = f(q) (see the [module](self)
@@ -177,7 +177,7 @@ pub trait NystromPair {
 /// ```
 pub struct Nystrom<S: SplitDynamics, M> {
     system: S,
-    settings: Settings,
+    settings: Settings<Tolerances>,
     n: usize,
     /// The s stage accelerations one after the other: k[j·n + x] is component x of stage j.
     k: Vec<f64>,
@@ -220,7 +220,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         let s = M::C.len();
         Ok(Nystrom {
             system,
-            settings: Settings::new(M::CONTROLLER),
+            settings: Settings::new(Tolerances::new(M::CONTROLLER)),
             n,
             k: vec![0.0; s * n],
             q0: vec![0.0; n],
@@ -244,14 +244,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         })
     }
 
-    settings_methods!("f");
-
-    /// f(q) into `out`; Ok(false) when not finite.
-    #[inline]
-    fn accel(system: &S, evaluations: &mut usize, q: &[f64], out: &mut [f64]) -> Result<bool> {
-        *evaluations += 1;
-        finite_stage(system.kick_rate(q, out), out)
-    }
+    settings_methods!(tolerances, "f");
 
     /// One trial step of size h from (q₀, v₀) with k₁ = f(q₀) in place: fills q₁, v₁ and returns the
     /// error norm (∞ for non-finite stages or results, 0 in fixed-step mode). Up to 6 degrees of
@@ -302,7 +295,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             self.k[i * N..(i + 1) * N].copy_from_slice(&ki);
         }
         let [b, bp, be, bpe] = [M::B, M::BP, M::B_ERR, M::BP_ERR].map(|w| stage_sum::<N>(&self.k, w));
-        let (atol, rtol, h2) = (self.settings.atol, self.settings.rtol, h * h);
+        let (atol, rtol, h2) = (self.settings.control.atol, self.settings.control.rtol, h * h);
         let (mut q1, mut v1, mut sq) = ([0.0; N], [0.0; N], 0.0);
         for x in 0..N {
             // FSAL: the last stage was evaluated at q₀ + h(q̇₀ + h Σ b_j k_j) = q₁, computed so.
@@ -350,11 +343,11 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             };
             combine_stages(&self.k, a, arg, &mut self.qs);
             let ki = &mut self.k[i * n..(i + 1) * n];
-            if !Self::accel(&self.system, &mut self.evaluations, &self.qs, ki)? {
+            if !stage_accelerations(&self.system, &mut self.evaluations, &self.qs, ki)? {
                 return Ok(f64::INFINITY);
             }
         }
-        let (atol, rtol, h2) = (self.settings.atol, self.settings.rtol, h * h);
+        let (atol, rtol, h2) = (self.settings.control.atol, self.settings.control.rtol, h * h);
         let mut sq = 0.0;
         for x in 0..n {
             // The four sums of the solution and the estimate in one pass over the stages.
@@ -489,8 +482,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         self.prev = M::HERMITE
             && reuse
             && self.h_last > 0.0
-            && self.settings.dense_allowed
-            && self.settings.dense_requested
+            && self.settings.dense()
             && self.v1 == *state.v.as_slice();
         if self.prev {
             self.qp.copy_from_slice(&self.q0);
@@ -501,15 +493,17 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         self.fsal = false;
         self.h_last = 0.0;
         self.load(state);
-        if !reuse && !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
+        if !reuse {
+            self.start_acceleration(state.t)?;
         }
         self.k[..n].copy_from_slice(&self.a1);
         Ok(())
+    }
+
+    /// a₁ = f(q₀) at the start of a step or a run at t ([`start_accelerations`]: no smaller step
+    /// helps, so a non-finite value is an error naming its component).
+    fn start_acceleration(&mut self, t: f64) -> Result<()> {
+        start_accelerations(&self.system, &mut self.evaluations, t, &self.q0, &mut self.a1)
     }
 
     /// a₁ = f(q₁) after the accepted trial of size h from t: the last stage of an FSAL pair, else
@@ -520,7 +514,7 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
             self.a1.copy_from_slice(&self.k[(s - 1) * n..s * n]);
             self.fsal = true;
         } else if dense {
-            if !Self::accel(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
+            if !stage_accelerations(&self.system, &mut self.evaluations, &self.q1, &mut self.a1)? {
                 return Err(Error::NonFiniteResult {
                     what: "accelerations",
                     t: t + h,
@@ -544,6 +538,41 @@ impl<S: SplitDynamics, M: NystromPair> Nystrom<S, M> {
         state.t = t + h;
     }
 
+    /// Hairer's `hinit` on y = (q, q̇), y' = (q̇, f(q)) (see [`Adaptive`](super::Adaptive)); f(q₀) is
+    /// kept as the first stage of the first step.
+    fn hinit(&mut self, state: &State<S::Partner>) -> Result<f64> {
+        let c = self.settings.control;
+        check_tolerances(c.atol, c.rtol, self.settings.h_min)?;
+        state.validate(self.n)?;
+        let n = self.n;
+        self.fsal = false;
+        self.load(state);
+        self.start_acceleration(state.t)?;
+        self.h_last = 0.0;
+        let mut y0 = vec![0.0; 2 * n];
+        y0[..n].copy_from_slice(&self.q0);
+        y0[n..].copy_from_slice(&self.v0);
+        let mut f0 = vec![0.0; 2 * n];
+        f0[..n].copy_from_slice(&self.v0);
+        f0[n..].copy_from_slice(&self.a1);
+        let (system, evaluations, qs) = (&self.system, &mut self.evaluations, &mut self.qs);
+        let h = initial_step_size(M::ORDER, (c.atol, c.rtol), &y0, &f0, |h, d| {
+            // F(y₀ + hF₀) − F₀ = (q̇₀ + h f(q₀) − q̇₀, f(q₀ + h q̇₀) − f(q₀)).
+            for x in 0..n {
+                qs[x] = y0[x] + h * f0[x];
+                d[x] = (f0[n + x] * h + y0[n + x]) - f0[x];
+            }
+            let ok = stage_accelerations(system, evaluations, qs, &mut d[n..])?;
+            for (d, f0) in d[n..].iter_mut().zip(&f0[n..]) {
+                *d -= f0;
+            }
+            Ok(ok)
+        })?;
+        self.q1.copy_from_slice(&self.q0);
+        self.fsal = true;
+        Ok(h)
+    }
+
     fn load<K: crate::Partner>(&mut self, state: &State<K>) {
         self.q0.copy_from_slice(state.q.as_slice());
         self.v0.copy_from_slice(state.v.as_slice());
@@ -555,95 +584,22 @@ impl<S: SplitDynamics, M: NystromPair> Stepper for Nystrom<S, M> {
     /// One accepted step, trying `h` first (shrinking it after rejections). `StepInfo::h` is the
     /// step taken, `h_next` the controller's proposal, `rejected` the rejected trials.
     fn step(&mut self, state: &mut State<S::Partner>, h: f64) -> Result<StepInfo> {
-        check_step(h)?;
-        state.validate(self.n)?;
-        check_time_resolution(state.t, h)?;
-        self.system
-            .admissible(state.t, state.q.as_slice(), state.v.as_slice())?;
+        check_start(&self.system, self.n, state, h)?;
         let evaluations = self.evaluations;
         let t = state.t;
         self.start(state)?;
         let settings = self.settings;
-        let trial = until_accepted(&settings, M::CONTROL_ORDER, (t, h), "accelerations", |h| {
+        let trial = until_accepted_pi(&settings, M::CONTROL_ORDER, (t, h), "accelerations", |h| {
             self.attempt(h)
         })?;
-        let dense = settings.dense_allowed && settings.dense_requested;
+        let dense = settings.dense();
         self.end_acceleration(t, trial.h, dense)?;
         let h_next = trial.next_step(&settings, &mut self.err_prev);
         self.h_last = trial.h;
         self.accept(state, t, trial.h, dense);
-        Ok(StepInfo::fixed(trial.h)
-            .with_control(trial.rejected, h_next)
-            .with_evaluations(self.evaluations - evaluations))
+        Ok(trial.info(h_next, self.evaluations - evaluations))
     }
-    fn dof(&self) -> usize {
-        self.n
-    }
-    fn order(&self) -> u32 {
-        M::ORDER
-    }
-    fn name(&self) -> &'static str {
-        M::NAME
-    }
-    fn is_adaptive(&self) -> bool {
-        !self.settings.fixed
-    }
-    /// Hairer's `hinit` on y = (q, q̇), y' = (q̇, f(q)) (see [`Adaptive`](super::Adaptive)); f(q₀) is
-    /// kept as the first stage of the first step.
-    fn initial_step(&mut self, state: &State<S::Partner>) -> Result<Option<f64>> {
-        check_tolerances(self.settings.atol, self.settings.rtol, self.settings.h_min)?;
-        state.validate(self.n)?;
-        let n = self.n;
-        self.fsal = false;
-        self.load(state);
-        if !Self::accel(&self.system, &mut self.evaluations, &self.q0, &mut self.a1)? {
-            return Err(Error::NonFiniteResult {
-                what: "accelerations",
-                t: state.t,
-                component: None,
-            });
-        }
-        self.h_last = 0.0;
-        let mut y0 = vec![0.0; 2 * n];
-        y0[..n].copy_from_slice(&self.q0);
-        y0[n..].copy_from_slice(&self.v0);
-        let mut f0 = vec![0.0; 2 * n];
-        f0[..n].copy_from_slice(&self.v0);
-        f0[n..].copy_from_slice(&self.a1);
-        let mut f1 = vec![0.0; 2 * n];
-        let (system, evaluations, qs) = (&self.system, &mut self.evaluations, &mut self.qs);
-        let h = initial_step_size(
-            M::ORDER,
-            self.settings.atol,
-            self.settings.rtol,
-            &y0,
-            &f0,
-            &mut f1,
-            |h, f1| {
-                // F(y₀ + hF₀) = (q̇₀ + h f(q₀), f(q₀ + h q̇₀)).
-                for x in 0..n {
-                    qs[x] = y0[x] + h * f0[x];
-                    f1[x] = f0[n + x] * h + y0[n + x];
-                }
-                Self::accel(system, evaluations, qs, &mut f1[n..])
-            },
-        )?;
-        self.q1.copy_from_slice(&self.q0);
-        self.fsal = true;
-        Ok(Some(h))
-    }
-    fn request_dense_output(&mut self, on: bool) {
-        self.settings.dense_requested = on;
-    }
-    fn dense_output(&self) -> Option<&DenseOutput<S::Partner>> {
-        self.dense.as_ref()
-    }
-    fn rates(&self, state: &State<S::Partner>, dq: &mut [f64], dv: &mut [f64]) -> Option<Result<()>> {
-        Some(
-            self.system
-                .rates(state.t, state.q.as_slice(), state.v.as_slice(), dq, dv),
-        )
-    }
+    controlled_stepper!(order: M::ORDER, name: M::NAME);
 }
 
 /// Ψ of the accepted Nyström step with its step size h frozen (as for [`Adaptive`](super::Adaptive)):
