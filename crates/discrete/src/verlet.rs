@@ -11,10 +11,12 @@
 //! i.e. velocity Verlet (exactly, when C = 0). One linear solve with a factor of M + (h/2)C computed once
 //! per step size, and one gradient per step (∇V(q_{k+1}) is reused by the next step).
 
-use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow};
+use crate::flow::signed_step;
 use crate::mechanical::{LocalPotential, Mass, Mechanical};
+use noether_core::integrators::composition::step_forward;
+use noether_core::integrators::SignedStepper;
 use noether_core::linalg::{self, DenseFactor};
-use noether_core::{Error, Result};
+use noether_core::{Error, Momenta, Result, State, StepInfo, Stepper};
 
 /// Störmer-Verlet as the trapezoidal variational integrator of a [`Mechanical`] system.
 pub struct Verlet<P> {
@@ -85,23 +87,31 @@ impl<P: LocalPotential> Verlet<P> {
     }
 }
 
-impl<P: LocalPotential> DiscreteFlow for Verlet<P> {
+impl<P: LocalPotential> Stepper for Verlet<P> {
+    type Partner = Momenta;
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        step_forward(self, state, h)
+    }
     fn dof(&self) -> usize {
         self.sys.dof()
     }
     fn order(&self) -> u32 {
         2
     }
-    fn rates(&self, _t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn rates(&self, state: &State<Momenta>, dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        let (q, p) = (state.q.as_slice(), state.v.as_slice());
         self.sys.hamilton_rates(q, p, dq, dp);
         Some(Ok(()))
     }
     fn name(&self) -> &'static str {
         "Störmer-Verlet (trapezoidal variational)"
     }
+}
 
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
-        check_flow_args(self.sys.dof(), t, h, q, p)?;
+impl<P: LocalPotential> Verlet<P> {
+    /// The update (q, p) ← (q', p') from time `t` over the signed step `h` (arguments checked by the
+    /// caller); on error `q` and `p` are left as they were. Returns the Newton iterations spent.
+    fn advance(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
         if self.cached_q.as_slice() != q {
             self.sys.gradient(q, &mut self.cached_grad);
             self.cached_q.clear();
@@ -144,4 +154,8 @@ impl<P: LocalPotential> DiscreteFlow for Verlet<P> {
     }
 }
 
-stepper_via_flow!(Verlet<P: LocalPotential>);
+impl<P: LocalPotential> SignedStepper for Verlet<P> {
+    fn step_signed(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        signed_step(self.dof(), state, h, |t, q, p| self.advance(t, h, q, p))
+    }
+}
