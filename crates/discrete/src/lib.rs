@@ -30,7 +30,9 @@
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
 //!   [`MechanicalMidpoint`] (Newton with a banded or dense Jacobian assembled term by term, O(N) for
-//!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton).
+//!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton; without damping it is core's
+//!   [`StormerVerlet`](noether_core::integrators::StormerVerlet), `Mechanical` being a core
+//!   [`SplitDynamics`](noether_core::integrators::SplitDynamics) in (q, p)).
 //!
 //! ```
 //! use noether_core::prelude::*;

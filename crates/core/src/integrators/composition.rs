@@ -8,9 +8,9 @@
 //! symplectic (a variational integrator, Störmer-Verlet) so is Ψ. Some weights are negative, so the
 //! base must step backward too: a [`SignedStepper`]. [`Composition`] composes any of them:
 //! - core's kick-drift-kick [`StormerVerlet`](super::StormerVerlet) on a
-//!   [`SplitDynamics`](crate::SplitDynamics) system ([`Composition::kahan_li8`] and the other named
-//!   constructors), which fuses adjacent half kicks
-//!   ([`SignedStepper::step_composed`] overridden);
+//!   [`SplitDynamics`](crate::system::SplitDynamics) system ([`Composition::kahan_li8`] and the
+//!   other named constructors), which fuses adjacent half kicks ([`SignedStepper::step_composed`]
+//!   overridden);
 //! - the variational integrators of noether-discrete, substep after substep (the default
 //!   [`SignedStepper::step_composed`]), with Ψ by the chain rule Ψ = Ψ_s ⋯ Ψ₁
 //!   ([`SignedTangentStepper::step_composed_tangent`]).
