@@ -264,7 +264,8 @@ fn hh_hand(steps: usize, gammas: &[f64]) -> f64 {
 
 fn henon_heiles_table() {
     let gammas = Composition::kahan_li8(Natural::unit(HenonHeiles))
-        .coefficients()
+        .weights()
+        .as_slice()
         .to_vec();
     let steps = 1_000_000;
     let [(ms_h, err_h), (ms_n, err_n)] =

@@ -17,8 +17,7 @@
 
 use noether::constraints::HolonomicSet;
 use noether::constraints::{Constrained, Holonomic, Projected, Rattle};
-use noether::core::integrators::{Dopri5, Euler, EulerCromer, Rk4, SymplecticEuler};
-use noether::discrete::Composition as DiscreteComposition;
+use noether::core::integrators::{Dopri5, Euler, EulerCromer, Rk4, SymplecticEuler, Weights};
 use noether::discrete::{
     Galerkin, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Trapezoidal, Verlet,
 };
@@ -217,7 +216,10 @@ fn closed_form_variational_methods_through_the_driver() {
     );
     let galerkin = Galerkin::order4(oscillator()).unwrap();
     assert_within("Galerkin 4", measure(galerkin, rest_p(), Some(0.05)), 2e-7, 2e-7);
-    let composed = DiscreteComposition::order4(VariationalIntegrator::new(Midpoint::new(oscillator())));
+    let composed = Composition::new(
+        VariationalIntegrator::new(Midpoint::new(oscillator())),
+        Weights::yoshida4(),
+    );
     assert_within(
         "composed midpoint 4",
         measure(composed, rest_p(), Some(0.05)),

@@ -185,7 +185,7 @@ fn composition_stage() {
     use noether_core::integrators::Composition;
     const STEPS: usize = 20_000;
     let mut kl8 = Composition::kahan_li8(Natural::unit(HenonHeiles));
-    let gammas = kl8.coefficients().to_vec();
+    let gammas = kl8.weights().as_slice().to_vec();
     let stages = (STEPS * gammas.len()) as f64;
     let mut kicks = vec![0.0; gammas.len() + 1];
     for (i, g) in gammas.iter().enumerate() {

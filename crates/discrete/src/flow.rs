@@ -1,51 +1,17 @@
-//! The one-step map of a variational integrator in position-momentum form, (q_k, p_k) ↦ (q_{k+1}, p_{k+1}),
-//! as a [`DiscreteFlow`]; every flow is also a core [`Stepper`](noether_core::Stepper) on a
-//! `State<Momenta>` (q, p).
+//! The one-step map of a variational integrator in position-momentum form, (q_k, p_k) ↦ (q_{k+1}, p_{k+1}):
+//! every integrator of this crate is a core [`Stepper`](noether_core::Stepper) on a `State<Momenta>`
+//! (q, p) and, since the map is defined for steps of either sign (a symmetric composition takes
+//! backward substeps), a [`SignedStepper`](noether_core::integrators::SignedStepper) — core's
+//! [`Composition`](noether_core::integrators::Composition) composes it with
+//! [`Weights`](noether_core::integrators::Weights). This module holds what the integrators share: the
+//! signed step around an integrator's update, the increment predictor and the one-correction rule.
 
-use noether_core::error::{check_phase_point, check_step, check_time_resolution};
+use noether_core::error::check_phase_point;
+use noether_core::integrators::composition::check_signed_step;
 use noether_core::{Error, Momenta, Result, State, StepInfo};
 
-/// A discrete flow (q, p) ↦ (q', p') over a step h, the discrete Hamiltonian map of a discrete Lagrangian.
-///
-/// Unlike [`Stepper::step`](noether_core::Stepper::step), `h` may be negative (symmetric compositions
-/// take backward substeps); it must be finite and non-zero.
-pub trait DiscreteFlow {
-    /// Number of coordinates.
-    fn dof(&self) -> usize;
-    /// Nominal order.
-    fn order(&self) -> u32;
-    /// Short name.
-    fn name(&self) -> &'static str;
-    /// Advances `(q, p)` from time `t` by the signed step `h`; on error `q` and `p` are left exactly as
-    /// they were. Returns the Newton iterations spent.
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize>;
-
-    /// Hamilton's vector field (q̇, ṗ) of the continuous system the flow discretizes, when it has one
-    /// (for the driver's Hermite interpolant between steps); `None` otherwise.
-    fn rates(&self, _t: f64, _q: &[f64], _p: &[f64], _dq: &mut [f64], _dp: &mut [f64]) -> Option<Result<()>> {
-        None
-    }
-}
-
-impl<F: DiscreteFlow + ?Sized> DiscreteFlow for &mut F {
-    fn dof(&self) -> usize {
-        (**self).dof()
-    }
-    fn order(&self) -> u32 {
-        (**self).order()
-    }
-    fn name(&self) -> &'static str {
-        (**self).name()
-    }
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
-        (**self).flow(t, h, q, p)
-    }
-    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
-        (**self).rates(t, q, p, dq, dp)
-    }
-}
-
-/// Checks the arguments of a flow call: lengths, finiteness, and a finite non-zero signed step.
+/// Checks the arguments of a map (q₀, p₀) at t over the signed step h given as slices: lengths,
+/// finiteness, and a finite non-zero `h`.
 pub(crate) fn check_flow_args(dof: usize, t: f64, h: f64, q: &[f64], p: &[f64]) -> Result<()> {
     if !h.is_finite() || h == 0.0 {
         return Err(Error::InvalidStep { h });
@@ -53,57 +19,24 @@ pub(crate) fn check_flow_args(dof: usize, t: f64, h: f64, q: &[f64], p: &[f64]) 
     check_phase_point(dof, t, q, p, "p")
 }
 
-/// One [`Stepper`](noether_core::Stepper) step of a flow: a positive step, the state left untouched on error.
-pub(crate) fn step_state<F: DiscreteFlow + ?Sized>(
-    flow: &mut F,
+/// [`SignedStepper::step_signed`](noether_core::integrators::SignedStepper::step_signed) around an
+/// integrator's update `advance(t, q, p)` (which leaves q and p as they were on error and returns its
+/// Newton iterations): the state and `h` checked, then t ← t + h. One residual evaluation per Newton
+/// iteration and one to check the start.
+pub(crate) fn signed_step(
+    dof: usize,
     state: &mut State<Momenta>,
     h: f64,
+    advance: impl FnOnce(f64, &mut [f64], &mut [f64]) -> Result<usize>,
 ) -> Result<StepInfo> {
-    check_step(h)?;
-    state.validate(flow.dof())?;
-    check_time_resolution(state.t, h)?;
+    check_signed_step(dof, state, h)?;
     let t = state.t;
-    let iterations = flow.flow(t, h, state.q.as_mut_slice(), state.v.as_mut_slice())?;
+    let iterations = advance(t, state.q.as_mut_slice(), state.v.as_mut_slice())?;
     state.t = t + h;
-    // One residual evaluation per Newton iteration and one to check the start.
     Ok(StepInfo::fixed(h)
         .with_newton(iterations, 0)
         .with_evaluations(iterations + 1))
 }
-
-/// Implements [`noether_core::Stepper`] for a type that implements [`DiscreteFlow`].
-macro_rules! stepper_via_flow {
-    ($ty:ident < $($g:ident : $b:path),* >) => {
-        impl<$($g: $b),*> noether_core::Stepper for $ty<$($g),*> {
-            type Partner = noether_core::Momenta;
-            fn step(
-                &mut self,
-                state: &mut noether_core::State<noether_core::Momenta>,
-                h: f64,
-            ) -> noether_core::Result<noether_core::StepInfo> {
-                $crate::flow::step_state(self, state, h)
-            }
-            fn rates(
-                &self,
-                state: &noether_core::State<noether_core::Momenta>,
-                dq: &mut [f64],
-                dp: &mut [f64],
-            ) -> Option<noether_core::Result<()>> {
-                $crate::DiscreteFlow::rates(self, state.t, state.q.as_slice(), state.v.as_slice(), dq, dp)
-            }
-            fn dof(&self) -> usize {
-                $crate::DiscreteFlow::dof(self)
-            }
-            fn order(&self) -> u32 {
-                $crate::DiscreteFlow::order(self)
-            }
-            fn name(&self) -> &'static str {
-                $crate::DiscreteFlow::name(self)
-            }
-        }
-    };
-}
-pub(crate) use stepper_via_flow;
 
 /// Remembers the last step (end point and increment) to predict the next increment by linear
 /// extrapolation, q_{k+1} − q_k ≈ (h/h_prev)(q_k − q_{k−1}), when the next step starts where the last

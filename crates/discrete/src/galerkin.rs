@@ -16,7 +16,7 @@
 //! p_k + ∂S/∂q^0 = 0,     ∂S/∂q^ν = 0 (ν = 1 … s−1),     then p_{k+1} = ∂S/∂q^s,
 //! ```
 //!
-//! (the interior points are solved for together with q_{k+1}, so this is a [`DiscreteFlow`] rather than
+//! (the interior points are solved for together with q_{k+1}, so this is a stepper of its own rather than
 //! a [`DiscreteLagrangian`](crate::DiscreteLagrangian) value, whose L_d would need an inner solve)
 //! by the core Newton with the Jacobian from the dual-number Hessian of S (blocks ∂²S/∂q^0∂y and
 //! ∂²S/∂y²). With s = 2 (one interior point, 2 Gauss points) the method has order 4, with s = 3 order
@@ -44,14 +44,18 @@
 //! assert!((s.q[0] - 1f64.cos()).abs() < 1e-6); // fourth order: error O(h⁴)
 //! ```
 
-use crate::flow::{check_flow_args, stepper_via_flow, DiscreteFlow};
+use crate::flow::signed_step;
 use crate::integrator::{effective_newton, DEFAULT_TOL};
 use crate::lagrangian::Scratch;
 use crate::quadrature::FromLagrangian;
 use nalgebra::DMatrix;
 use noether_core::ad::{self, Block, Field};
+use noether_core::integrators::composition::step_forward;
+use noether_core::integrators::SignedStepper;
 use noether_core::newton::{Dense, DenseProblem};
-use noether_core::{Error, EulerLagrange, Lagrangian, Newton, NewtonInfo, Result, Scalar};
+use noether_core::{
+    Error, EulerLagrange, Lagrangian, Momenta, Newton, NewtonInfo, Result, Scalar, State, StepInfo, Stepper,
+};
 
 /// The Galerkin variational integrator (see the module docs). As a
 /// [`Stepper`](noether_core::Stepper) it advances states (t, q, p).
@@ -248,23 +252,31 @@ impl<L: Lagrangian> DenseProblem for StepProblem<'_, L> {
     }
 }
 
-impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
+impl<L: Lagrangian> Stepper for Galerkin<L> {
+    type Partner = Momenta;
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        step_forward(self, state, h)
+    }
     fn dof(&self) -> usize {
         self.el.dof()
     }
     fn order(&self) -> u32 {
         2 * self.s as u32
     }
-    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn rates(&self, state: &State<Momenta>, dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        let (t, q, p) = (state.t, state.q.as_slice(), state.v.as_slice());
         Some(self.hamilton_rates(t, q, p, dq, dp))
     }
     fn name(&self) -> &'static str {
         "Galerkin variational (Gauss quadrature)"
     }
+}
 
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+impl<L: Lagrangian> Galerkin<L> {
+    /// The update (q, p) ← (q', p') from time `t` over the signed step `h` (arguments checked by the
+    /// caller); on error `q` and `p` are left as they were. Returns the Newton iterations spent.
+    fn advance(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
         let n = self.el.dof();
-        check_flow_args(n, t, h, q, p)?;
         let s = self.s;
         // Initial guess: the straight path with the velocity of the inverse Legendre map.
         let v = self.el.velocities(t, q, p)?;
@@ -302,7 +314,11 @@ impl<L: Lagrangian> DiscreteFlow for Galerkin<L> {
     }
 }
 
-stepper_via_flow!(Galerkin<L: Lagrangian>);
+impl<L: Lagrangian> SignedStepper for Galerkin<L> {
+    fn step_signed(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        signed_step(self.dof(), state, h, |t, q, p| self.advance(t, h, q, p))
+    }
+}
 
 #[cfg(test)]
 mod tests {

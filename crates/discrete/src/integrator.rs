@@ -49,13 +49,15 @@
 //! assert!((end.q[0] - 1f64.cos()).abs() < 1e-4);
 //! ```
 
-use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow, Predictor};
+use crate::flow::{check_flow_args, correct_once, signed_step, Predictor};
 use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::{check_finite, check_len};
+use noether_core::integrators::composition::step_forward;
+use noether_core::integrators::SignedStepper;
 use noether_core::linalg::{solve_with, DenseFactor};
-use noether_core::{Error, Momenta, Newton, NewtonInfo, NewtonSystem, Result, State};
+use noether_core::{Error, Momenta, Newton, NewtonInfo, NewtonSystem, Result, State, StepInfo, Stepper};
 
 /// Default absolute Newton tolerance on the momentum residual.
 pub(crate) const DEFAULT_TOL: f64 = 1e-16;
@@ -274,23 +276,31 @@ impl<Ld: DiscreteLagrangian + FromLagrangian> VariationalIntegrator<Ld> {
     }
 }
 
-impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
+impl<Ld: DiscreteLagrangian> Stepper for VariationalIntegrator<Ld> {
+    type Partner = Momenta;
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        step_forward(self, state, h)
+    }
     fn dof(&self) -> usize {
         self.ld.dof()
     }
     fn order(&self) -> u32 {
         self.ld.order()
     }
-    fn rates(&self, t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn rates(&self, state: &State<Momenta>, dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        let (t, q, p) = (state.t, state.q.as_slice(), state.v.as_slice());
         self.ld.continuous_rates(t, q, p, dq, dp)
     }
     fn name(&self) -> &'static str {
         "variational (position-momentum)"
     }
+}
 
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
+    /// The update (q, p) ← (q', p') from time `t` over the signed step `h` (arguments checked by the
+    /// caller); on error `q` and `p` are left as they were. Returns the Newton iterations spent.
+    fn advance(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
         let n = self.ld.dof();
-        check_flow_args(n, t, h, q, p)?;
         check_len("q₁ (workspace)", &self.q1, n)?;
         let continues = self.end.len() == 2 * n && self.end[..n] == *q && self.end[n..] == *p;
         if !continues {
@@ -350,4 +360,8 @@ impl<Ld: DiscreteLagrangian> DiscreteFlow for VariationalIntegrator<Ld> {
     }
 }
 
-stepper_via_flow!(VariationalIntegrator<Ld: DiscreteLagrangian>);
+impl<Ld: DiscreteLagrangian> SignedStepper for VariationalIntegrator<Ld> {
+    fn step_signed(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        signed_step(self.dof(), state, h, |t, q, p| self.advance(t, h, q, p))
+    }
+}

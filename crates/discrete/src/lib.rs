@@ -13,11 +13,16 @@
 //!
 //! - [`DiscreteLagrangian`]: the user's (or a rule's) L_d; [`DiscreteDerivatives`]: D₁L_d, D₂L_d, D₁₂L_d.
 //! - [`Midpoint`], [`Trapezoidal`]: second-order discrete Lagrangians of a continuous L.
-//! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Composition`]: orders 4 and 6 by
-//!   symmetric composition; [`Galerkin`]: orders 4 and 6 by a polynomial path and Gauss quadrature.
+//! - [`VariationalIntegrator`]: the general stepper (dense Newton); [`Galerkin`]: orders 4 and 6 by a
+//!   polynomial path and Gauss quadrature. Every integrator here is a core
+//!   [`SignedStepper`](noether_core::integrators::SignedStepper) (steps of either sign), so core's
+//!   [`Composition`](noether_core::integrators::Composition) raises a symmetric one to order 4, 6 or 8
+//!   with validated [`Weights`](noether_core::integrators::Weights):
+//!   `Composition::new(VariationalIntegrator::new(Midpoint::new(l)), Weights::yoshida4())`.
 //! - [`momentum`]: discrete Noether momenta p·ξ(q).
 //! - [`tangent`]: the exact Jacobian Ψ = ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k) of a step
-//!   ([`DiscreteTangentFlow`], core's [`TangentStepper`](noether_core::TangentStepper)) by the
+//!   (core's [`SignedTangentStepper`](noether_core::integrators::SignedTangentStepper) and
+//!   [`TangentStepper`](noether_core::TangentStepper)) by the
 //!   implicit-function theorem at the converged solution.
 //! - [`boundary`]: boundary-value problems q(t₀) = a, q(t₁) = b by the discrete Hamilton principle
 //!   ([`BoundaryValue`]), with the conjugate points of the discrete Jacobi operator ([`ConjugatePoint`]).
@@ -25,7 +30,9 @@
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
 //!   [`MechanicalMidpoint`] (Newton with a banded or dense Jacobian assembled term by term, O(N) for
-//!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton).
+//!   chains) and [`Verlet`] (the trapezoidal rule: explicit, no Newton; without damping it is core's
+//!   [`StormerVerlet`](noether_core::integrators::StormerVerlet), `Mechanical` being a core
+//!   [`SplitDynamics`](noether_core::integrators::SplitDynamics) in (q, p)).
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -53,9 +60,8 @@
 
 pub mod boundary;
 pub mod chains;
-pub mod composition;
 mod error;
-pub mod flow;
+mod flow;
 pub mod galerkin;
 pub mod integrator;
 pub mod lagrangian;
@@ -68,9 +74,7 @@ pub mod tangent;
 pub mod verlet;
 
 pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, NotMinimum, PathConstraint};
-pub use composition::Composition;
 pub use error::{Error, Result};
-pub use flow::DiscreteFlow;
 pub use galerkin::Galerkin;
 pub use integrator::VariationalIntegrator;
 pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
@@ -79,15 +83,13 @@ pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};
 pub use primary::OffPrimaryConstraint;
 pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
-pub use tangent::DiscreteTangentFlow;
 pub use verlet::Verlet;
 
 /// Everything needed to build and step a discrete model, in one import.
 pub mod prelude {
     pub use crate::momentum::{noether_momentum, PlanarRotation, Symmetry, Translation};
     pub use crate::{
-        Composition, DiscreteDerivatives, DiscreteFlow, DiscreteLagrangian, DiscreteTangentFlow,
-        FromLagrangian, Galerkin, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint,
-        Trapezoidal, VariationalIntegrator, Verlet,
+        DiscreteDerivatives, DiscreteLagrangian, FromLagrangian, Galerkin, LocalPotential, Mass, Mechanical,
+        MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator, Verlet,
     };
 }

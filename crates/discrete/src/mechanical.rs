@@ -477,3 +477,42 @@ impl<P: LocalPotential> Lagrangian for Mechanical<P> {
         }
     }
 }
+
+/// Hamilton's equations of a [`Mechanical`] system in position-momentum form,
+/// q̇ = M⁻¹p, ṗ = −∇V(q) − diag(c) M⁻¹p ([`Mechanical::hamilton_rates`]): every core integrator
+/// steps a `State<Momenta>` of it.
+impl<P: LocalPotential> noether_core::Dynamics for Mechanical<P> {
+    type Partner = noether_core::Momenta;
+    fn dof(&self) -> usize {
+        Mechanical::dof(self)
+    }
+    fn rates(&self, _t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Result<()> {
+        self.hamilton_rates(q, p, dq, dp);
+        Ok(())
+    }
+    fn energy(&self, _t: f64, q: &[f64], p: &[f64]) -> Result<f64> {
+        Ok(Mechanical::energy(self, q, p))
+    }
+}
+
+/// Without damping, the split q̇ = D(p) = M⁻¹p, ṗ = K(q) = −∇V(q) of core's explicit symplectic
+/// methods: [`Verlet`](crate::Verlet) of an undamped system is core's
+/// [`StormerVerlet`](noether_core::integrators::StormerVerlet) on it. A damped system has no such
+/// split (its force depends on p): the kick refuses it.
+impl<P: LocalPotential> noether_core::integrators::SplitDynamics for Mechanical<P> {
+    fn drift_rate(&self, p: &[f64], dq: &mut [f64]) -> Result<()> {
+        dq.copy_from_slice(p);
+        self.mass_solve(dq);
+        Ok(())
+    }
+    fn kick_rate(&self, q: &[f64], dp: &mut [f64]) -> Result<()> {
+        if self.damping().is_some() {
+            return Err(Error::Unsupported(
+                "a split (kick-drift) method on a damped Mechanical system: the damping force depends on p; use Verlet or MechanicalMidpoint",
+            ));
+        }
+        self.gradient(q, dp);
+        dp.iter_mut().for_each(|g| *g = -*g);
+        Ok(())
+    }
+}

@@ -22,12 +22,14 @@
 //! J is stored banded (LU with partial pivoting, O(N) for a chain) when the half-bandwidth of M + ∇²V is
 //! small against N, dense (LU) otherwise.
 
-use crate::flow::{check_flow_args, correct_once, stepper_via_flow, DiscreteFlow, Predictor};
+use crate::flow::{correct_once, signed_step, Predictor};
 use crate::integrator::{default_newton, effective_newton};
 use crate::mechanical::{LocalPotential, Mechanical};
 use nalgebra::DMatrix;
+use noether_core::integrators::composition::step_forward;
+use noether_core::integrators::SignedStepper;
 use noether_core::linalg::{solve_with, Banded, BandedLu, DenseFactor};
-use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result};
+use noether_core::{Error, Momenta, Newton, NewtonInfo, NewtonSystem, Result, State, StepInfo, Stepper};
 
 /// Storage of the Newton Jacobian.
 enum Jacobian {
@@ -205,24 +207,32 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
     }
 }
 
-impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
+impl<P: LocalPotential> Stepper for MechanicalMidpoint<P> {
+    type Partner = Momenta;
+    fn step(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        step_forward(self, state, h)
+    }
     fn dof(&self) -> usize {
         self.sys.dof()
     }
     fn order(&self) -> u32 {
         2
     }
-    fn rates(&self, _t: f64, q: &[f64], p: &[f64], dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+    fn rates(&self, state: &State<Momenta>, dq: &mut [f64], dp: &mut [f64]) -> Option<Result<()>> {
+        let (q, p) = (state.q.as_slice(), state.v.as_slice());
         self.sys.hamilton_rates(q, p, dq, dp);
         Some(Ok(()))
     }
     fn name(&self) -> &'static str {
         "variational midpoint (mechanical)"
     }
+}
 
-    fn flow(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
+impl<P: LocalPotential> MechanicalMidpoint<P> {
+    /// The update (q, p) ← (q', p') from time `t` over the signed step `h` (arguments checked by the
+    /// caller); on error `q` and `p` are left as they were. Returns the Newton iterations spent.
+    fn advance(&mut self, t: f64, h: f64, q: &mut [f64], p: &mut [f64]) -> Result<usize> {
         let n = self.sys.dof();
-        check_flow_args(n, t, h, q, p)?;
         self.predictor.guess_increment(q, h, &mut self.d);
         let newton = effective_newton(&self.newton, p);
         let mut system = MidpointSystem {
@@ -271,4 +281,8 @@ impl<P: LocalPotential> DiscreteFlow for MechanicalMidpoint<P> {
     }
 }
 
-stepper_via_flow!(MechanicalMidpoint<P: LocalPotential>);
+impl<P: LocalPotential> SignedStepper for MechanicalMidpoint<P> {
+    fn step_signed(&mut self, state: &mut State<Momenta>, h: f64) -> Result<StepInfo> {
+        signed_step(self.dof(), state, h, |t, q, p| self.advance(t, h, q, p))
+    }
+}

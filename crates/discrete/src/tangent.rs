@@ -1,7 +1,7 @@
 //! The derivative of the variational integrators' maps: Ψ = ∂(q_{k+1}, p_{k+1})/∂(q_k, p_k), exact to
 //! rounding, by the implicit-function theorem at the converged Newton solution (not by differentiating
-//! Newton's iterations). Every [`DiscreteTangentFlow`] is a core
-//! [`TangentStepper`](noether_core::TangentStepper) on `State<Momenta>`.
+//! Newton's iterations). Every integrator here is a core [`SignedTangentStepper`] (steps of either
+//! sign) and so a [`TangentStepper`] on `State<Momenta>`.
 //!
 //! # The general integrator ([`VariationalIntegrator`])
 //!
@@ -37,8 +37,9 @@
 //! ∂p₁/∂· = (M − (h/2)C) ∂v/∂· − (h/2)H₁ ∂q₁/∂·.
 //! ```
 //!
-//! [`Composition`]: the chain rule over the substeps, Ψ = Ψ_s ⋯ Ψ_1 (substeps of negative size
-//! included).
+//! A [`Composition`](noether_core::integrators::Composition) of any of them: the chain rule over the
+//! substeps, Ψ = Ψ_s ⋯ Ψ_1 (substeps of negative size included; core's
+//! [`SignedTangentStepper::step_composed_tangent`]).
 //!
 //! ```
 //! use nalgebra::DMatrix;
@@ -61,44 +62,16 @@
 //! assert!((psi.determinant() - 1.0).abs() < 1e-14);
 //! ```
 
-use crate::composition::Composition;
-use crate::flow::DiscreteFlow;
 use crate::integrator::VariationalIntegrator;
 use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
 use crate::mechanical::{LocalPotential, Mechanical};
 use crate::mechanical_midpoint::MechanicalMidpoint;
 use crate::verlet::Verlet;
 use nalgebra::DMatrix;
+use noether_core::integrators::composition::{check_signed_step, step_forward_tangent};
+use noether_core::integrators::{SignedStepper, SignedTangentStepper};
 use noether_core::linalg::DenseFactor;
-use noether_core::{Error, Momenta, Result, State, StepInfo};
-
-/// A [`DiscreteFlow`] that also gives the Jacobian of its map.
-pub trait DiscreteTangentFlow: DiscreteFlow {
-    /// Advances `(q, p)` exactly as [`DiscreteFlow::flow`] (signed `h`) and writes
-    /// Ψ = ∂(q', p')/∂(q, p), 2n × 2n ordered (q, p), into `psi`. On error `q`, `p` and `psi` are left
-    /// exactly as they were. Returns the Newton iterations spent.
-    fn flow_tangent(
-        &mut self,
-        t: f64,
-        h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
-        psi: &mut DMatrix<f64>,
-    ) -> Result<usize>;
-}
-
-impl<F: DiscreteTangentFlow + ?Sized> DiscreteTangentFlow for &mut F {
-    fn flow_tangent(
-        &mut self,
-        t: f64,
-        h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
-        psi: &mut DMatrix<f64>,
-    ) -> Result<usize> {
-        (**self).flow_tangent(t, h, q, p, psi)
-    }
-}
+use noether_core::{Error, Momenta, Result, State, StepInfo, TangentStepper};
 
 /// `Dimension` unless `psi` is 2n × 2n.
 fn check_shape(psi: &DMatrix<f64>, n: usize) -> Result<()> {
@@ -116,75 +89,31 @@ fn check_shape(psi: &DMatrix<f64>, n: usize) -> Result<()> {
     Ok(())
 }
 
-/// One [`TangentStepper`](noether_core::TangentStepper) step of a tangent flow (a positive step; the
-/// state and Ψ left untouched on error).
-pub(crate) fn step_state_tangent<F: DiscreteTangentFlow + ?Sized>(
-    flow: &mut F,
+/// Takes the map's signed step, then Ψ from `jacobian(map, q₀, p₀, q₁)`; when that fails, the state
+/// is put back and `psi` is not written.
+fn step_then_jacobian<F: SignedStepper<Partner = Momenta>>(
+    map: &mut F,
     state: &mut State<Momenta>,
     h: f64,
     psi: &mut DMatrix<f64>,
-) -> Result<StepInfo> {
-    noether_core::error::check_step(h)?;
-    state.validate(flow.dof())?;
-    noether_core::error::check_time_resolution(state.t, h)?;
-    check_shape(psi, flow.dof())?;
-    let t = state.t;
-    let iterations = flow.flow_tangent(t, h, state.q.as_mut_slice(), state.v.as_mut_slice(), psi)?;
-    state.t = t + h;
-    Ok(StepInfo::fixed(h)
-        .with_newton(iterations, 0)
-        .with_evaluations(iterations + 1))
-}
-
-/// Implements [`noether_core::TangentStepper`] for a type that implements [`DiscreteTangentFlow`].
-macro_rules! tangent_via_flow {
-    ($ty:ident < $($g:ident : $b:path),* >) => {
-        impl<$($g: $b),*> noether_core::TangentStepper for $ty<$($g),*>
-        where
-            $ty<$($g),*>: $crate::tangent::DiscreteTangentFlow,
-        {
-            fn step_tangent(
-                &mut self,
-                state: &mut noether_core::State<noether_core::Momenta>,
-                h: f64,
-                psi: &mut nalgebra::DMatrix<f64>,
-            ) -> noether_core::Result<noether_core::StepInfo> {
-                $crate::tangent::step_state_tangent(self, state, h, psi)
-            }
-        }
-    };
-}
-
-tangent_via_flow!(VariationalIntegrator<Ld: DiscreteLagrangian>);
-tangent_via_flow!(MechanicalMidpoint<P: LocalPotential>);
-tangent_via_flow!(Verlet<P: LocalPotential>);
-tangent_via_flow!(Composition<F: DiscreteTangentFlow>);
-
-/// Takes the flow's step, then Ψ from `jacobian(q₀, p₀, q₁, p₁)`; when that fails, (q, p) are put
-/// back and `psi` is not written.
-fn step_then_jacobian<F: DiscreteFlow + ?Sized>(
-    flow: &mut F,
-    (t, h): (f64, f64),
-    q: &mut [f64],
-    p: &mut [f64],
-    psi: &mut DMatrix<f64>,
     jacobian: impl FnOnce(&F, &[f64], &[f64], &[f64]) -> Result<DMatrix<f64>>,
-) -> Result<usize> {
-    let n = flow.dof();
-    check_shape(psi, n)?;
-    let (q0, p0) = (q.to_vec(), p.to_vec());
-    let iterations = flow.flow(t, h, q, p)?;
-    match jacobian(flow, &q0, &p0, q).and_then(|m| {
+) -> Result<StepInfo> {
+    check_signed_step(map.dof(), state, h)?;
+    check_shape(psi, map.dof())?;
+    let (t, q0, p0) = (state.t, state.q.as_slice().to_vec(), state.v.as_slice().to_vec());
+    let info = map.step_signed(state, h)?;
+    match jacobian(map, &q0, &p0, state.q.as_slice()).and_then(|m| {
         noether_core::error::check_result("step Jacobian Ψ", t, m.as_slice())?;
         Ok(m)
     }) {
         Ok(m) => {
             psi.copy_from(&m);
-            Ok(iterations)
+            Ok(info)
         }
         Err(e) => {
-            q.copy_from_slice(&q0);
-            p.copy_from_slice(&p0);
+            state.q.as_mut_slice().copy_from_slice(&q0);
+            state.v.as_mut_slice().copy_from_slice(&p0);
+            state.t = t;
             Err(e)
         }
     }
@@ -201,21 +130,20 @@ fn blocks(qq: &DMatrix<f64>, qp: &DMatrix<f64>, pq: &DMatrix<f64>, pp: &DMatrix<
     psi
 }
 
-impl<Ld: DiscreteLagrangian> DiscreteTangentFlow for VariationalIntegrator<Ld> {
-    fn flow_tangent(
+impl<Ld: DiscreteLagrangian> SignedTangentStepper for VariationalIntegrator<Ld> {
+    fn step_signed_tangent(
         &mut self,
-        t: f64,
+        state: &mut State<Momenta>,
         h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
         psi: &mut DMatrix<f64>,
-    ) -> Result<usize> {
+    ) -> Result<StepInfo> {
         if self.discrete_lagrangian().has_discrete_force() {
             return Err(Error::Unsupported(
                 "step Jacobian of a forced variational integrator: the discrete forces f± come without derivatives",
             ));
         }
-        step_then_jacobian(self, (t, h), q, p, psi, |vi, q0, _p0, q1| {
+        let t = state.t;
+        step_then_jacobian(self, state, h, psi, |vi, q0, _p0, q1| {
             let ld = vi.discrete_lagrangian();
             let n = q0.len();
             let (mut a, mut d11, mut d22) =
@@ -243,16 +171,14 @@ fn damping_matrix<P: LocalPotential>(sys: &Mechanical<P>, s: f64) -> DMatrix<f64
     c
 }
 
-impl<P: LocalPotential> DiscreteTangentFlow for MechanicalMidpoint<P> {
-    fn flow_tangent(
+impl<P: LocalPotential> SignedTangentStepper for MechanicalMidpoint<P> {
+    fn step_signed_tangent(
         &mut self,
-        t: f64,
+        state: &mut State<Momenta>,
         h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
         psi: &mut DMatrix<f64>,
-    ) -> Result<usize> {
-        step_then_jacobian(self, (t, h), q, p, psi, |mm, q0, _p0, q1| {
+    ) -> Result<StepInfo> {
+        step_then_jacobian(self, state, h, psi, |mm, q0, _p0, q1| {
             let sys = mm.system();
             let n = q0.len();
             let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
@@ -276,16 +202,14 @@ impl<P: LocalPotential> DiscreteTangentFlow for MechanicalMidpoint<P> {
     }
 }
 
-impl<P: LocalPotential> DiscreteTangentFlow for Verlet<P> {
-    fn flow_tangent(
+impl<P: LocalPotential> SignedTangentStepper for Verlet<P> {
+    fn step_signed_tangent(
         &mut self,
-        t: f64,
+        state: &mut State<Momenta>,
         h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
         psi: &mut DMatrix<f64>,
-    ) -> Result<usize> {
-        step_then_jacobian(self, (t, h), q, p, psi, |v, q0, _p0, q1| {
+    ) -> Result<StepInfo> {
+        step_then_jacobian(self, state, h, psi, |v, q0, _p0, q1| {
             let sys = v.system();
             let n = q0.len();
             let mut m = DMatrix::zeros(n, n);
@@ -308,34 +232,19 @@ impl<P: LocalPotential> DiscreteTangentFlow for Verlet<P> {
     }
 }
 
-impl<F: DiscreteTangentFlow> DiscreteTangentFlow for Composition<F> {
-    fn flow_tangent(
-        &mut self,
-        t: f64,
-        h: f64,
-        q: &mut [f64],
-        p: &mut [f64],
-        psi: &mut DMatrix<f64>,
-    ) -> Result<usize> {
-        let n = DiscreteFlow::dof(self);
-        check_shape(psi, n)?;
-        crate::flow::check_flow_args(n, t, h, q, p)?;
-        let (mut qs, mut ps) = (q.to_vec(), p.to_vec());
-        let mut total = DMatrix::identity(2 * n, 2 * n);
-        let mut stage = DMatrix::zeros(2 * n, 2 * n);
-        let mut tau = t;
-        let mut iterations = 0;
-        let gammas = self.weights().to_vec();
-        for g in gammas {
-            iterations += self
-                .inner_mut()
-                .flow_tangent(tau, g * h, &mut qs, &mut ps, &mut stage)?;
-            total = &stage * total;
-            tau += g * h;
+/// [`TangentStepper`] of each map: the forward step of its [`SignedTangentStepper`].
+macro_rules! forward_tangent {
+    ($($ty:ident<$g:ident: $b:path>),*) => {$(
+        impl<$g: $b> TangentStepper for $ty<$g> {
+            fn step_tangent(
+                &mut self,
+                state: &mut State<Momenta>,
+                h: f64,
+                psi: &mut DMatrix<f64>,
+            ) -> Result<StepInfo> {
+                step_forward_tangent(self, state, h, psi)
+            }
         }
-        q.copy_from_slice(&qs);
-        p.copy_from_slice(&ps);
-        psi.copy_from(&total);
-        Ok(iterations)
-    }
+    )*};
 }
+forward_tangent!(VariationalIntegrator<Ld: DiscreteLagrangian>, MechanicalMidpoint<P: LocalPotential>, Verlet<P: LocalPotential>);

@@ -13,8 +13,9 @@
 //! - Short-range pairs with a cutoff use a cell list ([`ShortRange`]); large systems use rayon with
 //!   bit-identical results ([`Parallel`]).
 //! - A [`System`] is a core [`Lagrangian`](noether_core::Lagrangian) (every integrator applies) and a
-//!   core [`Dynamics`](noether_core::Dynamics) with term-by-term forces; it also has the seed's own state
-//!   updates ([`Method`]: Euler, Euler-Cromer, RK4, velocity Verlet, Yoshida 4) and an evolver.
+//!   core [`Dynamics`](noether_core::Dynamics) with term-by-term forces; it also has the seed's state
+//!   updates by name ([`Method`]: Euler, Euler-Cromer, RK4, velocity Verlet, Yoshida 4, each one of
+//!   core's steppers) and an evolver.
 //!
 //! ```
 //! use noether_particles::prelude::*;

@@ -1,13 +1,23 @@
-//! The seed's state updates on a particle system and its evolver, through core's integrators.
+//! The seed's state updates on a particle system and its evolver: a run-time name for each of core's
+//! steppers on a [`System`].
 //!
-//! With a = F(t, x, v)/m (forces term by term, [`System`]'s [`Dynamics`](noether_core::Dynamics)):
-//! - Euler: x' = x + h v, v' = v + h a(x, v);
-//! - Euler-Cromer (semi-implicit): v' = v + h a(x, v), x' = x + h v';
-//! - RK4: the classical Runge-Kutta method on (x, v);
-//! - velocity Verlet (Störmer-Verlet, kick-drift-kick): v½ = v + (h/2) a(x), x' = x + h v½,
-//!   v' = v½ + (h/2) a(x'); symplectic, order 2, one force evaluation per step;
-//! - Yoshida 4: the triple jump w₁, w₀, w₁ of Verlet steps, w₁ = 1/(2 − 2^{1/3}), w₀ = 1 − 2w₁;
-//!   symplectic, order 4.
+//! [`Method`] is a thin alias over core's types, not a method of its own: each variant builds one core
+//! stepper on the system (borrowed), with a = F(t, x, v)/m from the forces term by term ([`System`]'s
+//! [`Dynamics`](noether_core::Dynamics)):
+//!
+//! | variant | core stepper | update |
+//! |---|---|---|
+//! | [`Method::Euler`] | [`Euler`] | x' = x + h v, v' = v + h a(x, v) |
+//! | [`Method::EulerCromer`] | [`EulerCromer`] | v' = v + h a(x, v), x' = x + h v' |
+//! | [`Method::Rk4`] | [`Rk4`] | the classical Runge-Kutta method on (x, v) |
+//! | [`Method::VelocityVerlet`] | [`Composition::stormer_verlet`] | v½ = v + (h/2) a(x), x' = x + h v½, v' = v½ + (h/2) a(x') |
+//! | [`Method::Yoshida4`] | [`Composition::yoshida4`] | the triple jump of velocity Verlet, order 4 |
+//!
+//! It stays (rather than asking for the types) because it is a value: a test or a program loops over
+//! methods, or reads one from its input, and gets one stepper type ([`ParticleStepper`]) for all of
+//! them, without boxing. To use any other core method, pass the system (`&System`, a core
+//! [`Dynamics`](noether_core::Dynamics) and [`SplitDynamics`]) to it directly:
+//! `Composition::kahan_li8(&sys)`, `Dop853::new(&sys)`.
 //!
 //! The symplectic methods use the system's [`SplitDynamics`] (kicks from the potential forces only):
 //! they refuse systems with non-potential forces or time-dependent potentials. Every method leaves the
@@ -16,10 +26,11 @@
 use crate::error::{Error, Result};
 use crate::interaction::Interaction;
 use crate::system::System;
-use noether_core::integrators::{Composition, Euler, EulerCromer, Rk4, SplitDynamics};
+use noether_core::integrators::{Composition, Euler, EulerCromer, Rk4, SplitDynamics, StormerVerlet};
 use noether_core::{Driver, State, StepInfo, Stepper, Velocities};
 
-/// A state-update method for particle systems.
+/// A state-update method for particle systems: a run-time name for a core stepper (see the
+/// [module](self) table).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// Forward Euler (order 1).
@@ -49,7 +60,7 @@ enum Inner<'a, I> {
     Euler(Euler<&'a System<I>>),
     EulerCromer(EulerCromer<&'a System<I>>),
     Rk4(Rk4<&'a System<I>>),
-    Split(Composition<&'a System<I>>),
+    Split(Composition<StormerVerlet<&'a System<I>>>),
 }
 
 /// A [`Stepper`] for a particle system with one of the [`Method`]s (run it with core's [`Driver`]).

@@ -40,7 +40,7 @@
 //! # Ok::<(), noether_core::Error>(())
 //! ```
 
-use super::{Composition, Dop853, Gauss};
+use super::{Composition, Dop853, Gauss, StormerVerlet};
 use crate::{EulerLagrange, HamiltonEquations, Hamiltonian, Lagrangian, Natural, Potential, Separable};
 use crate::{SeparableHamiltonian, Stepper};
 
@@ -54,14 +54,14 @@ pub trait DefaultMethod: Sized {
 }
 
 impl<P: Potential> DefaultMethod for Natural<P> {
-    type Method = Composition<Natural<P>>;
+    type Method = Composition<StormerVerlet<Natural<P>>>;
     fn default_method(self) -> Self::Method {
         Composition::kahan_li8(self)
     }
 }
 
 impl<S: Separable> DefaultMethod for SeparableHamiltonian<S> {
-    type Method = Composition<SeparableHamiltonian<S>>;
+    type Method = Composition<StormerVerlet<SeparableHamiltonian<S>>>;
     fn default_method(self) -> Self::Method {
         Composition::kahan_li8(self)
     }
@@ -82,14 +82,14 @@ impl<L: Lagrangian> DefaultMethod for EulerLagrange<L> {
 }
 
 impl<'a, P: Potential> DefaultMethod for &'a Natural<P> {
-    type Method = Composition<&'a Natural<P>>;
+    type Method = Composition<StormerVerlet<&'a Natural<P>>>;
     fn default_method(self) -> Self::Method {
         Composition::kahan_li8(self)
     }
 }
 
 impl<'a, S: Separable> DefaultMethod for &'a SeparableHamiltonian<S> {
-    type Method = Composition<&'a SeparableHamiltonian<S>>;
+    type Method = Composition<StormerVerlet<&'a SeparableHamiltonian<S>>>;
     fn default_method(self) -> Self::Method {
         Composition::kahan_li8(self)
     }

@@ -9,9 +9,11 @@
 //! | Gauss-Radau | [`ias15`] | IAS15: 15th-order predictor-corrector, adaptive steps, dense output | q̈ = f(q): [`SplitDynamics`] with identity drift |
 //! | implicit symplectic | [`gauss`] | implicit midpoint, Gauss-Legendre 4 and 6 (Newton) | [`LinearizedDynamics`]: any H, any L |
 //! | default | [`default_method`] | the method chosen from what the system declares | every system type |
-//! | symplectic | [`symplectic`] | symplectic Euler, Störmer-Verlet, compositions of order 4, 6, 8 | [`SplitDynamics`]: separable H or natural L |
+//! | symplectic | [`symplectic`], [`stormer_verlet`] | symplectic Euler, Störmer-Verlet, compositions of order 4, 6, 8 | [`SplitDynamics`]: separable H or natural L |
+//! | composition | [`composition`], [`weights`] | Ψ_h = Φ_{γ_s h} ∘ … ∘ Φ_{γ₁ h} of any [`SignedStepper`] with validated [`Weights`] | Störmer-Verlet, the variational integrators of noether-discrete |
 
 pub mod adaptive;
+pub mod composition;
 pub mod default_method;
 pub mod dop853;
 pub mod dopri5;
@@ -20,10 +22,13 @@ pub mod gauss;
 pub mod ias15;
 pub mod nystrom;
 mod step_control;
+pub mod stormer_verlet;
 pub mod symplectic;
+pub mod weights;
 
 pub use crate::system::{LinearizedDynamics, SplitDynamics};
 pub use adaptive::{Adaptive, Controller, EmbeddedPair, Stages, RTOL_FLOOR};
+pub use composition::{Composition, SignedStepper, SignedTangentStepper};
 pub use default_method::DefaultMethod;
 pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
@@ -31,4 +36,6 @@ pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
 pub use gauss::Gauss;
 pub use ias15::{Ias15, Ias15Control};
 pub use nystrom::{Dprkn12, Dprkn6, Dprkn8, Nystrom, NystromPair, Rkn12, Rkn6, Rkn8};
-pub use symplectic::{Composition, SymplecticEuler};
+pub use stormer_verlet::StormerVerlet;
+pub use symplectic::SymplecticEuler;
+pub use weights::Weights;

@@ -206,15 +206,15 @@ fn bad_input_mass_matrix_and_coefficients() {
         Err(Error::Dimension { .. })
     ));
     let sys = Natural::unit(PendulumV);
-    assert!(Composition::with_coefficients(&sys, &[0.5, 0.5], 2).is_ok());
+    let custom = |w: &[f64]| Weights::custom(w, 2).map(|w| Composition::new(StormerVerlet::new(&sys), w));
+    assert!(custom(&[0.5, 0.5]).is_ok());
+    assert!(matches!(custom(&[0.5, 0.6]), Err(Error::InvalidParameter { .. })));
+    assert!(matches!(custom(&[0.3, 0.7]), Err(Error::InvalidParameter { .. })));
     assert!(matches!(
-        Composition::with_coefficients(&sys, &[0.5, 0.6], 2),
+        custom(&[0.5, 0.0, 0.5]),
         Err(Error::InvalidParameter { .. })
     ));
-    assert!(matches!(
-        Composition::with_coefficients(&sys, &[0.3, 0.7], 2),
-        Err(Error::InvalidParameter { .. })
-    ));
+    assert!(matches!(custom(&[]), Err(Error::InvalidParameter { .. })));
 }
 
 /// ẏ = y² (on q; v idle): y = 1/(1 − t) blows up at t = 1.

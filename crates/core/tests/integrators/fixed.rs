@@ -61,7 +61,7 @@ fn reference<S: SplitDynamics>(
 fn check_composition<S: SplitDynamics>(name: &str, sys: &S) {
     let (q0, v0, h, steps) = ([0.1, 0.0], [0.0, 0.5], 0.01, 200);
     let mut kl8 = Composition::kahan_li8(sys);
-    let gammas = kl8.coefficients().to_vec();
+    let gammas = kl8.weights().as_slice().to_vec();
     let mut s = State::<S::Partner>::from_parts(0.0, q0, v0);
     for _ in 0..steps {
         kl8.step(&mut s, h).unwrap();

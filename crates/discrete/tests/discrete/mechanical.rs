@@ -7,10 +7,11 @@ use noether_core::{Error, Stepper};
 
 /// Every state here is in position-momentum form (q, p).
 type State = noether_core::State<noether_core::Momenta>;
+use noether_core::integrators::{Composition, SignedStepper, Weights};
 use noether_discrete::chains::{CoupledChains, QuarticChain};
 use noether_discrete::{
-    Composition, DiscreteFlow, LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal,
-    VariationalIntegrator, Verlet,
+    LocalPotential, Mass, Mechanical, MechanicalMidpoint, Midpoint, Trapezoidal, VariationalIntegrator,
+    Verlet,
 };
 
 fn paper_state(chains: &CoupledChains, v0: f64) -> State {
@@ -136,13 +137,13 @@ fn conserves_pendulum_energy_bounded() {
         }
     }
     let mut vi = Verlet::new(unit_mass(Gravity));
-    let (mut q, mut p) = ([1.0], [0.0]);
-    let e0 = vi.system().energy(&q, &p);
+    let mut s = noether_core::State::with_momenta(0.0, [1.0], [0.0]);
+    let e0 = vi.system().energy(s.q.as_slice(), s.v.as_slice());
     let (mut first, mut last) = (0.0_f64, 0.0_f64);
     let steps = 1_000_000;
     for k in 0..steps {
-        vi.flow(0.0, 0.1, &mut q, &mut p).unwrap();
-        let e = (vi.system().energy(&q, &p) - e0).abs();
+        vi.step_signed(&mut s, 0.1).unwrap();
+        let e = (vi.system().energy(s.q.as_slice(), s.v.as_slice()) - e0).abs();
         if k < 100_000 {
             first = first.max(e);
         } else if k >= steps - 100_000 {
@@ -225,12 +226,18 @@ fn order_composition4_verlet_chain() {
         st
     };
     let reference = run(
-        Box::new(Composition::order6(Verlet::new(unit_mass(chain.clone())))),
+        Box::new(Composition::new(
+            Verlet::new(unit_mass(chain.clone())),
+            Weights::triple_jump6(),
+        )),
         800,
     );
     let err = |n| {
         let s = run(
-            Box::new(Composition::order4(Verlet::new(unit_mass(chain.clone())))),
+            Box::new(Composition::new(
+                Verlet::new(unit_mass(chain.clone())),
+                Weights::yoshida4(),
+            )),
             n,
         );
         (&s.q - &reference.q).amax().max((&s.v - &reference.v).amax())
