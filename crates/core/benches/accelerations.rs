@@ -27,10 +27,7 @@ use noether_core::{EulerLagrange, Lagrangian, Scalar};
 use std::hint::black_box;
 use std::time::Duration;
 
-#[allow(dead_code)]
-#[path = "../tests/ad/systems.rs"]
-mod systems;
-use systems::{Chain, DoublePendulum, HeavyTop};
+use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 
 struct AsField<L>(L);
 impl<L: Lagrangian> Field for AsField<L> {

@@ -3,32 +3,19 @@
 
 use noether_canonical::{Error, Routh};
 use noether_core::prelude::*;
+use noether_testkit::top::{HeavyTop, KeplerPolar};
 use std::f64::consts::PI;
-
-/// Kepler per unit mass in polar coordinates, L = (ṙ² + r² φ̇²)/2 + μ/r.
-#[derive(Clone, Copy)]
-struct Kepler {
-    mu: f64,
-}
-impl Lagrangian for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + q[0] * q[0] * v[1] * v[1]) * 0.5 + q[0].recip() * self.mu
-    }
-}
 
 #[test]
 fn closed_form_kepler_reduced_to_r() {
     let (mu, l) = (1.0, 0.8);
-    let routh = Routh::new(Kepler { mu }, &[1], &[l]).unwrap();
+    let routh = Routh::new(KeplerPolar { mu }, &[1], &[l]).unwrap();
     // φ is cyclic (checked by AD at sample points), r is not.
     let points: Vec<_> = (0..5)
         .map(|i| (0.0, vec![0.5 + 0.3 * i as f64, 0.7 * i as f64], vec![0.1, 0.4]))
         .collect();
     assert_eq!(routh.check_cyclic(&points, 0.0).unwrap(), 0.0);
-    let wrong = Routh::new(Kepler { mu }, &[0], &[l]).unwrap();
+    let wrong = Routh::new(KeplerPolar { mu }, &[0], &[l]).unwrap();
     assert!(matches!(
         wrong.check_cyclic(&points, 1e-12),
         Err(Error::NotCyclic { index: 0, .. })
@@ -84,26 +71,6 @@ fn closed_form_kepler_reduced_to_r() {
     // nothing visible.
     assert!(err_t < 5e-14, "{err_t:e}");
     assert!(err_phi < 5e-13, "{err_phi:e}");
-}
-
-/// The heavy symmetric top in Euler angles (θ, φ, ψ):
-/// L = ½ I₁ (θ̇² + φ̇² sin²θ) + ½ I₃ (ψ̇ + φ̇ cos θ)² − M g ℓ cos θ.
-#[derive(Clone, Copy)]
-struct HeavyTop {
-    i1: f64,
-    i3: f64,
-    mgl: f64,
-}
-impl Lagrangian for HeavyTop {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let (th, dth, dphi, dpsi) = (q[0], v[0], v[1], v[2]);
-        let (s, c) = (th.sin(), th.cos());
-        let w3 = dpsi + dphi * c;
-        (dth * dth + dphi * dphi * s * s) * (0.5 * self.i1) + w3 * w3 * (0.5 * self.i3) - c * self.mgl
-    }
 }
 
 #[test]
