@@ -19,12 +19,12 @@
 //!
 //! Run: `cargo run --release --features examples --example action_angle` (the picture J(E) goes to `gallery-out/`).
 
-use noether::canonical::{ActionAngle, Orbit, SeparatedActions};
+use noether::canonical::{ActionAngle, SeparatedActions};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_ke_complementary;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::canonical::KeplerSeparated;
+use noether_testkit::canonical::{kepler_orbits, KeplerSeparated};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
@@ -109,14 +109,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let mu = 1.0;
     let sep = SeparatedActions::new(KeplerSeparated { mu });
     for (e, l) in [(-0.5, 0.9), (-0.3, 0.6)] {
-        let orbits = [
-            Orbit::Libration { q_inside: l * l / mu },
-            Orbit::Rotation {
-                q0: 0.0,
-                period: 2.0 * PI,
-                p_guess: l,
-            },
-        ];
+        let orbits = kepler_orbits(mu, l);
         let res = sep.actions(&[e, l], &orbits)?;
         let a = -mu / (2.0 * e);
         let w = res.frequencies(&[1.0, 0.0])?;

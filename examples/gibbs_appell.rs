@@ -18,7 +18,6 @@
 //!
 //! Run: `cargo run --release --features examples --example gibbs_appell`.
 
-use noether::constraints::Constrained;
 use noether::constraints::{GibbsAppellEquations, QuasiVelocities};
 use noether::core::integrators::Rk4;
 use noether::nalgebra::Vector3;
@@ -68,11 +67,7 @@ fn euler(checks: &mut Vec<Check>) -> Result<(), BoxError> {
     ));
 
     // Torque-free (centre at the fixed point, no gravity): energy and |L| = |I_c ω| are constant.
-    let free = GibbsAppellEquations::new(BodyTop {
-        mass,
-        c: [0.0; 3],
-        i_c,
-    })?;
+    let free = GibbsAppellEquations::new(free_body())?;
     let w0 = [0.5, -1.0, 3.0];
     let energy = move |w: &[f64]| {
         0.5 * Vector3::from_column_slice(&w[..3]).dot(&(i_c * Vector3::from_column_slice(&w[..3])))
@@ -109,16 +104,9 @@ fn euler(checks: &mut Vec<Check>) -> Result<(), BoxError> {
 
 /// Check 2: the rolling disk, Gibbs-Appell against the multiplier form and the closed form.
 fn disk(checks: &mut Vec<Check>) -> Result<(), BoxError> {
-    let mult = Constrained::nonholonomic(DiskL, Rolling)?;
-    let ga = GibbsAppellEquations::new(DiskGA)?;
     let (q, u) = ([0.1_f64, -0.4, 0.3, 0.9], [6.0_f64, 0.8]);
-    let qdot = [R * u[0] * q[3].cos(), R * u[0] * q[3].sin(), u[0], u[1]];
-    let (mut dq, mut qdd) = ([0.0; 4], [0.0; 4]);
-    Dynamics::rates(&mult, 0.0, &q, &qdot, &mut dq, &mut qdd)?;
-    let mut ud = [0.0; 2];
-    ga.accelerations(0.0, &q, &u, &mut ud)?;
-    // q̈ = W u̇ + Ẇ u.
-    let from_ga = disk_qdd(&q, &u, &ud);
+    // q̈ with multipliers, and q̈ = W u̇ + Ẇ u from the Gibbs-Appell u̇.
+    let (qdd, from_ga) = disk_both_ways(&q, &u)?;
     let diff = qdd
         .iter()
         .zip(from_ga)

@@ -42,15 +42,9 @@ const NAME: &str = "heavy_top";
 // ---------------------------------------------------------------------------------------------------
 // The models.
 
-/// The heavy symmetric top in Euler angles q = (θ, φ, ψ) (shared with the crates' tests).
-pub use noether_testkit::top::HeavyTop;
-
-/// The top of the gallery's heavy-top examples: I₁ = 1, I₃ = 1/2, M g ℓ = 1.
-pub const GALLERY_TOP: HeavyTop = HeavyTop {
-    i1: 1.0,
-    i3: 0.5,
-    mgl: 1.0,
-};
+/// The heavy symmetric top in Euler angles q = (θ, φ, ψ), and the gallery's top (I₁ = 1, I₃ = 1/2,
+/// M g ℓ = 1): shared with the crates' tests.
+pub use noether_testkit::top::{HeavyTop, GALLERY_TOP};
 
 /// The Euler-angle integrator: RK4 guarded against the poles of the chart (sin θ < 10⁻²).
 pub fn euler_angle_stepper(top: HeavyTop) -> noether::core::Result<ChartGuard<Rk4<EulerLagrange<HeavyTop>>>> {

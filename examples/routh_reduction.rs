@@ -17,7 +17,7 @@ use noether::core::roots::bracketed_root;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::top::{HeavyTop, KeplerPolar};
+use noether_testkit::top::{top_samples, KeplerPolar, GALLERY_TOP};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
@@ -77,25 +77,13 @@ fn kepler(report: &mut Report) -> Result<(), BoxError> {
 }
 
 fn top(opts: &Options, report: &mut Report) -> Result<(), BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let (th0, dphi0, dpsi0) = (0.8, 0.5, 5.0);
     let full = EulerLagrange::new(top);
     let mut p = [0.0; 3];
     full.momenta(0.0, &[th0, 0.0, 0.0], &[0.0, dphi0, dpsi0], &mut p)?;
     let routh = Routh::new(top, &[1, 2], &[p[1], p[2]])?;
-    let samples: Vec<_> = (0..4)
-        .map(|i| {
-            (
-                0.0,
-                vec![0.3 + 0.5 * i as f64, 1.0 * i as f64, -2.0 * i as f64],
-                vec![0.2, 0.5, 5.0],
-            )
-        })
-        .collect();
+    let samples = top_samples();
     report.checks.push(Check::abs(
         NAME,
         "top: max |∂L/∂φ|, |∂L/∂ψ| at samples",

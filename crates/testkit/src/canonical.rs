@@ -9,8 +9,9 @@
 use noether_canonical::generating::{GeneratingFunction, Kind};
 use noether_canonical::poisson::PhaseFunction;
 use noether_canonical::transform::CanonicalMap;
-use noether_canonical::Separated;
+use noether_canonical::{Orbit, Separated};
 use noether_core::{Hamiltonian, Scalar};
+use std::f64::consts::PI;
 
 /// The oscillator H = p²/2m + ½ m ω² q².
 #[derive(Debug, Clone, Copy)]
@@ -261,4 +262,17 @@ impl Separated for KeplerSeparated {
             _ => p,
         }
     }
+}
+
+/// The orbits of [`KeplerSeparated`] at angular momentum `l`: r librates about the circular radius
+/// l²/μ, φ rotates with period 2π (p_φ = l).
+pub fn kepler_orbits(mu: f64, l: f64) -> [Orbit; 2] {
+    [
+        Orbit::Libration { q_inside: l * l / mu },
+        Orbit::Rotation {
+            q0: 0.0,
+            period: 2.0 * PI,
+            p_guess: l,
+        },
+    ]
 }

@@ -10,7 +10,7 @@ use noether_constraints::{
     Constrained, GibbsAppell, GibbsAppellEquations, Nonholonomic, Projected, QuasiVelocities, RigidPart,
 };
 use noether_core::integrators::Rk4;
-use noether_core::{Driver, Lagrangian, Scalar, Solution, State};
+use noether_core::{Driver, Dynamics, Lagrangian, Scalar, Solution, State};
 
 /// Quaternion (w, x, y, z) product a ⊗ b.
 pub fn qmul<D: Scalar>(a: &[D], b: &[D]) -> [D; 4] {
@@ -173,6 +173,18 @@ impl GibbsAppell for BodyTop {
     }
 }
 
+/// The four-particle top's body turning freely about its centre of mass (no torque): [`BodyTop`] with
+/// the centre at the fixed point and I_c from [`inertia`]; its energy ½ ω·I_c ω and Casimir |I_c ω| are
+/// constants of Euler's equations.
+pub fn free_body() -> BodyTop {
+    let (mass, _, _, i_c) = inertia();
+    BodyTop {
+        mass,
+        c: [0.0; 3],
+        i_c,
+    }
+}
+
 /// The rolling disk's radius R.
 pub const R: f64 = 0.3;
 /// The rolling disk's mass m.
@@ -261,6 +273,19 @@ pub fn disk_qdd(q: &[f64; 4], u: &[f64; 2], ud: &[f64; 2]) -> [f64; 4] {
         ud[0],
         ud[1],
     ]
+}
+
+/// The disk's q̈ at (q, u) both ways: with multipliers ([`DiskL`], [`Rolling`], at q̇ = W u) and from
+/// the Gibbs-Appell u̇ of [`DiskGA`] through [`disk_qdd`]; the two agree to rounding.
+pub fn disk_both_ways(q: &[f64; 4], u: &[f64; 2]) -> noether_constraints::Result<([f64; 4], [f64; 4])> {
+    let mult = Constrained::nonholonomic(DiskL, Rolling)?;
+    let ga = GibbsAppellEquations::new(DiskGA)?;
+    let qdot = [R * u[0] * q[3].cos(), R * u[0] * q[3].sin(), u[0], u[1]];
+    let (mut dq, mut qdd) = ([0.0; 4], [0.0; 4]);
+    Dynamics::rates(&mult, 0.0, q, &qdot, &mut dq, &mut qdd)?;
+    let mut ud = [0.0; 2];
+    ga.accelerations(0.0, q, u, &mut ud)?;
+    Ok((qdd, disk_qdd(q, u, &ud)))
 }
 
 /// The disk's closed form: θ̈ = −m g' R cos φ/(m R² + I) with φ = φ₀ + φ̇ t, so

@@ -18,6 +18,13 @@ pub struct HeavyTop {
     pub mgl: f64,
 }
 
+/// The top of the gallery's heavy-top examples and of the Routh tests: I₁ = 1, I₃ = 1/2, M g ℓ = 1.
+pub const GALLERY_TOP: HeavyTop = HeavyTop {
+    i1: 1.0,
+    i3: 0.5,
+    mgl: 1.0,
+};
+
 impl Lagrangian for HeavyTop {
     fn dof(&self) -> usize {
         3
@@ -44,4 +51,17 @@ impl Lagrangian for KeplerPolar {
     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
         (v[0] * v[0] + q[0] * q[0] * v[1] * v[1]) * 0.5 + q[0].recip() * self.mu
     }
+}
+
+/// Four sample points (t, q, q̇) of the heavy top, at which the cyclic angles φ and ψ are checked.
+pub fn top_samples() -> Vec<(f64, Vec<f64>, Vec<f64>)> {
+    (0..4)
+        .map(|i| {
+            (
+                0.0,
+                vec![0.3 + 0.5 * i as f64, 1.0 * i as f64, -2.0 * i as f64],
+                vec![0.2, 0.5, 5.0],
+            )
+        })
+        .collect()
 }

@@ -4,7 +4,7 @@
 
 use noether_canonical::{ActionAngle, Error, Orbit, Separated, SeparatedActions};
 use noether_core::prelude::*;
-use noether_testkit::canonical::{KeplerSeparated, Oscillator};
+use noether_testkit::canonical::{kepler_orbits, KeplerSeparated, Oscillator};
 use std::f64::consts::PI;
 
 /// Pendulum H = p²/(2 m l²) − m g l cos q.
@@ -279,14 +279,7 @@ fn closed_form_separated_kepler_actions_and_degenerate_frequencies() {
     let sep = SeparatedActions::new(KeplerSeparated { mu });
     let mut worst: f64 = 0.0;
     for (e, l) in [(-0.5, 0.9), (-0.2, 0.4), (-0.6, 1.1)] {
-        let orbits = [
-            Orbit::Libration { q_inside: l * l / mu },
-            Orbit::Rotation {
-                q0: 0.0,
-                period: 2.0 * PI,
-                p_guess: l,
-            },
-        ];
+        let orbits = kepler_orbits(mu, l);
         let res = sep.actions(&[e, l], &orbits).unwrap();
         let w = res.frequencies(&[1.0, 0.0]).unwrap();
         let a = -mu / (2.0 * e);

@@ -3,7 +3,7 @@
 
 use noether_canonical::{Error, Routh};
 use noether_core::prelude::*;
-use noether_testkit::top::{HeavyTop, KeplerPolar};
+use noether_testkit::top::{top_samples, KeplerPolar, GALLERY_TOP};
 use std::f64::consts::PI;
 
 #[test]
@@ -75,11 +75,7 @@ fn closed_form_kepler_reduced_to_r() {
 
 #[test]
 fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let (th0, dphi0, dpsi0) = (0.8, 0.5, 5.0);
     let full = EulerLagrange::new(top);
     let mut p = [0.0; 3];
@@ -87,15 +83,7 @@ fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
         .unwrap();
     let (p_phi, p_psi) = (p[1], p[2]);
     let routh = Routh::new(top, &[1, 2], &[p_phi, p_psi]).unwrap();
-    let samples: Vec<_> = (0..4)
-        .map(|i| {
-            (
-                0.0,
-                vec![0.3 + 0.5 * i as f64, 1.0 * i as f64, -2.0 * i as f64],
-                vec![0.2, 0.5, 5.0],
-            )
-        })
-        .collect();
+    let samples = top_samples();
     assert_eq!(routh.check_cyclic(&samples, 0.0).unwrap(), 0.0);
     // The turning points from the closed form: the roots of the cubic in u = cos θ,
     // f(u) = (1 − u²)(2E′ − 2Mgℓu)/I₁ − ((p_φ − p_ψ u)/I₁)², E′ = E − p_ψ²/(2I₃).
