@@ -11,7 +11,8 @@ use noether_testkit::closed_form::FreeTop;
 /// Not free_body.rs's (1, 2, 3): that body is a lamina (I₃ = I₁ + I₂), too flat for matrix coordinates
 /// (J_d singular, see `bad_input_flat_body`).
 const I: [f64; 3] = [1.0, 2.0, 2.5];
-/// Ω(0) = (1, 0, 1.2): L² = 10 > 2EI₂ = 9.2, the case the closed form of tests/common covers.
+/// Ω(0) = (1, 0, 1.2): L² = 10 > 2EI₂ = 9.2, the case the closed form of
+/// `noether_testkit::closed_form::FreeTop` covers.
 const OMEGA0: (f64, f64) = (1.0, 1.2);
 
 fn start() -> (RigidRattle<Free>, State<Momenta>) {
