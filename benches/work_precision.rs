@@ -32,12 +32,8 @@ use noether::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
 
-#[path = "../crates/core/benches/common/kepler.rs"]
-mod kepler;
-use kepler::{start as kepler_start, Kepler, KeplerRhs};
-#[path = "../crates/core/benches/common/peer.rs"]
-mod peer;
-use peer::ode_solvers_end;
+use noether_testkit::kepler::{start as kepler_start, Kepler};
+use noether_testkit::peer::{ode_solvers_end, KeplerRhs};
 
 /// Hénon-Heiles: V = ½(x² + y²) + x²y − y³/3.
 struct HenonHeiles;
@@ -487,10 +483,7 @@ fn solar_table() -> Vec<Curve> {
 
 // ---- A chain of 40 pendulum links ----
 
-#[allow(dead_code, clippy::all)]
-#[path = "../crates/core/tests/ad/systems.rs"]
-mod systems;
-use systems::Chain;
+use noether_testkit::systems::Chain;
 
 const LINKS: usize = 40;
 const CHAIN_T: f64 = 2.0;

@@ -19,11 +19,12 @@
 //!
 //! Run: `cargo run --release --features examples --example action_angle` (the picture J(E) goes to `gallery-out/`).
 
-use noether::canonical::{ActionAngle, Orbit, Separated, SeparatedActions};
+use noether::canonical::{ActionAngle, SeparatedActions};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_ke_complementary;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::canonical::{kepler_orbits, KeplerSeparated};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
@@ -42,26 +43,6 @@ impl Hamiltonian for Pendulum {
     }
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         p[0] * p[0] * 0.5 - q[0].cos() * self.g
-    }
-}
-
-/// Kepler per unit mass, separated in polar coordinates with α = (E, L):
-/// H_r = p_r²/2 + α₁²/(2r²) − μ/r = α₀ and H_φ = p_φ = α₁.
-#[derive(Debug, Clone, Copy)]
-pub struct KeplerPolar {
-    /// Gravitational parameter μ.
-    pub mu: f64,
-}
-
-impl Separated for KeplerPolar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn separated<D: Scalar>(&self, k: usize, alpha: &[D], q: D, p: D) -> D {
-        match k {
-            0 => p * p * 0.5 + alpha[1] * alpha[1] / (q * q * 2.0) - q.recip() * self.mu,
-            _ => p,
-        }
     }
 }
 
@@ -126,16 +107,9 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
 
     // Kepler: the radial action, Delaunay's, and the degenerate frequencies.
     let mu = 1.0;
-    let sep = SeparatedActions::new(KeplerPolar { mu });
+    let sep = SeparatedActions::new(KeplerSeparated { mu });
     for (e, l) in [(-0.5, 0.9), (-0.3, 0.6)] {
-        let orbits = [
-            Orbit::Libration { q_inside: l * l / mu },
-            Orbit::Rotation {
-                q0: 0.0,
-                period: 2.0 * PI,
-                p_guess: l,
-            },
-        ];
+        let orbits = kepler_orbits(mu, l);
         let res = sep.actions(&[e, l], &orbits)?;
         let a = -mu / (2.0 * e);
         let w = res.frequencies(&[1.0, 0.0])?;

@@ -18,126 +18,20 @@
 //!
 //! Run: `cargo run --release --features examples --example boundary_value` (pictures in `gallery-out/`).
 
-use noether::discrete::boundary::{straight_line, BoundaryValue, PathConstraint};
+use noether::discrete::boundary::{straight_line, BoundaryValue};
 use noether::discrete::{DiscreteDerivatives, Midpoint};
-use noether::nalgebra::{DMatrix, DVector, Rotation2, Vector2, Vector3};
+use noether::nalgebra::{DVector, Rotation2, Vector2, Vector3};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::boundary::{
+    figure_eight_family, oscillator_path, FreeParticle, Oscillator, Projectile, Sphere,
+};
+use noether_testkit::three_body::{ThreeBodyLagrangian, EIGHT_T, EIGHT_V3, EIGHT_X1};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
 const NAME: &str = "boundary_value";
-
-/// Projectile L = ½m|q̇|² − m g y.
-struct Projectile {
-    m: f64,
-    g: f64,
-}
-
-impl Lagrangian for Projectile {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m) - q[1] * (self.m * self.g)
-    }
-}
-
-/// Oscillator L = ½(q̇² − ω²q²).
-struct Oscillator {
-    w: f64,
-}
-
-impl Lagrangian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] - q[0] * q[0] * (self.w * self.w)) * 0.5
-    }
-}
-
-/// Free particle L = ½|q̇|² in space.
-struct FreeParticle;
-
-impl Lagrangian for FreeParticle {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * 0.5
-    }
-}
-
-/// The unit sphere |q|² = 1.
-struct Sphere;
-
-impl PathConstraint for Sphere {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn count(&self) -> usize {
-        1
-    }
-    fn constraints<D: Scalar>(&self, q: &[D], out: &mut [D]) {
-        out[0] = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] - 1.0;
-    }
-}
-
-/// Three equal masses in the plane, G = m = 1.
-struct ThreeBody;
-
-impl Lagrangian for ThreeBody {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let mut l = v.iter().fold(D::zero(), |a, x| a + *x * *x) * 0.5;
-        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-            let (dx, dy) = (q[2 * i] - q[2 * j], q[2 * i + 1] - q[2 * j + 1]);
-            l += (dx * dx + dy * dy).sqrt().recip();
-        }
-        l
-    }
-}
-
-/// q(t) = (a sin ω(T − t) + b sin ωt)/sin ωT.
-fn oscillator_path(w: f64, a: f64, b: f64, t_end: f64, t: f64) -> f64 {
-    (a * (w * (t_end - t)).sin() + b * (w * t).sin()) / (w * t_end).sin()
-}
-
-/// The symmetric choreographies of the eight (N divisible by 12): one curve x_k carries the three
-/// bodies (body i at x_{k+iN/3}); x_{−k} = −x_k, x_{N/2−k} = R x_k (R: across the long axis e₁),
-/// x_{k+N/2} = R' x_k (R': across the short axis). Parameters: x₁..x_{N/4−1} and s, x_{N/4} = (s, 0).
-fn figure_eight_family(n: usize) -> Vec<DMatrix<f64>> {
-    let quarter = n / 4;
-    let d = 2 * (quarter - 1) + 1;
-    let mut curve = vec![DMatrix::<f64>::zeros(2, d); n];
-    for (k, c) in curve.iter_mut().enumerate().take(quarter).skip(1) {
-        c[(0, 2 * (k - 1))] = 1.0;
-        c[(1, 2 * (k - 1) + 1)] = 1.0;
-    }
-    curve[quarter][(0, d - 1)] = 1.0;
-    let long = DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, -1.0]));
-    let short = DMatrix::from_diagonal(&DVector::from_vec(vec![-1.0, 1.0]));
-    for k in quarter + 1..=n / 2 {
-        curve[k] = &long * &curve[n / 2 - k];
-    }
-    for k in n / 2 + 1..n {
-        curve[k] = &short * &curve[k - n / 2];
-    }
-    (0..=n)
-        .map(|k| {
-            let mut a = DMatrix::zeros(6, d);
-            for body in 0..3 {
-                a.view_mut((2 * body, 0), (2, d))
-                    .copy_from(&curve[(k + body * n / 3) % n]);
-            }
-            a
-        })
-        .collect()
-}
 
 /// Runs the example. Tolerances are next to each check, with the measured errors.
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
@@ -172,7 +66,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
 
     // 2. Oscillator: O(h²) against the continuous path, N = 100 and 200 (ratio 4: fitted order).
     let w = 1.0;
-    let osc = BoundaryValue::new(Midpoint::new(Oscillator { w }));
+    let osc = BoundaryValue::new(Midpoint::new(Oscillator { m: 1.0, w }));
     let (qa, qb, t_osc) = (0.3, -1.2, 2.0);
     let mut errs = Vec::new();
     for n in [100usize, 200] {
@@ -270,7 +164,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // 4. The figure-eight, N = 192: published initial conditions to O(h²) (measured error 9.75e-4, the
     //    discretisation error; bound 1.1e-3; the fitted order over N = 48..384 is 2.002,
     //    crates/discrete/tests/discrete/boundary.rs).
-    let t8 = 6.32591398;
+    let t8 = EIGHT_T;
     let n8 = 192usize;
     let h8 = t8 / n8 as f64;
     let w8 = 2.0 * PI / t8;
@@ -281,18 +175,19 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         y0.push(0.35 * (2.0 * w8 * t).sin());
     }
     y0.push(1.1);
-    let eight =
-        BoundaryValue::new(Midpoint::new(ThreeBody)).solve_linear(0.0, t8, &figure_eight_family(n8), &y0)?;
+    let eight = BoundaryValue::new(Midpoint::new(ThreeBodyLagrangian)).solve_linear(
+        0.0,
+        t8,
+        &figure_eight_family(n8),
+        &y0,
+    )?;
     let mut p = [0.0; 6];
-    Midpoint::new(ThreeBody).d1(0.0, h8, eight.q[0].as_slice(), eight.q[1].as_slice(), &mut p);
+    Midpoint::new(ThreeBodyLagrangian).d1(0.0, h8, eight.q[0].as_slice(), eight.q[1].as_slice(), &mut p);
     let (x1, v3) = (
         Vector2::new(eight.q[0][2], eight.q[0][3]),
         Vector2::new(-p[0], -p[1]),
     );
-    let (px, pv): (Vector2<f64>, Vector2<f64>) = (
-        Vector2::new(0.97000436, -0.24308753),
-        Vector2::new(-0.93240737, -0.86473146),
-    );
+    let (px, pv): (Vector2<f64>, Vector2<f64>) = (Vector2::from(EIGHT_X1), Vector2::from(EIGHT_V3));
     // The published orbit is ours up to a rotation, a reflection and the time reversal: the smallest
     // difference over the four variants, each rotated so that x₁ points along the published x₁.
     let err = [(false, 1.0), (true, 1.0), (false, -1.0), (true, -1.0)]

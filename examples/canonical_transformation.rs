@@ -7,145 +7,14 @@
 //! Run: `cargo run --release --features examples --example canonical_transformation` (the rotating-frame picture goes to
 //! `gallery-out/`).
 
-use noether::canonical::generating::{Generated, GeneratingFunction, Kind, Transformed};
-use noether::canonical::transform::{self, canonicity, invert, newton_to_rounding, CanonicalMap};
+use noether::canonical::generating::{Generated, Transformed};
+use noether::canonical::transform::{self, canonicity, invert, newton_to_rounding};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::canonical::{ActionAngle, Oscillator, Planar, Polar, PolarF3, RotatingF2, RotatingK};
 use std::f64::consts::PI;
 use std::process::ExitCode;
-
-/// The oscillator H = p²/2m + ½ m ω² q².
-#[derive(Debug, Clone, Copy)]
-pub struct Oscillator {
-    /// Mass.
-    pub m: f64,
-    /// Angular frequency.
-    pub w: f64,
-}
-
-impl Hamiltonian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        p[0] * p[0] * (0.5 / self.m) + q[0] * q[0] * (0.5 * self.m * self.w * self.w)
-    }
-}
-
-/// F₁(q, Q) = ½ m ω q² cot Q: p = mωq cot Q, P = ½mωq²/sin²Q, i.e. q = sqrt(2P/mω) sin Q,
-/// p = sqrt(2mωP) cos Q (degenerate where q = 0).
-#[derive(Debug, Clone, Copy)]
-pub struct ActionAngle {
-    /// Mass.
-    pub m: f64,
-    /// Angular frequency.
-    pub w: f64,
-}
-
-impl GeneratingFunction for ActionAngle {
-    fn kind(&self) -> Kind {
-        Kind::F1
-    }
-    fn dof(&self) -> usize {
-        1
-    }
-    fn generating<D: Scalar>(&self, _t: D, q: &[D], big_q: &[D]) -> D {
-        q[0] * q[0] * big_q[0].tan().recip() * (0.5 * self.m * self.w)
-    }
-}
-
-/// Polar coordinates as a map: r, θ, p_r = (x p_x + y p_y)/r, p_θ = x p_y − y p_x.
-pub struct Polar;
-
-impl CanonicalMap for Polar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn map<D: Scalar>(&self, _t: D, q: &[D], p: &[D], nq: &mut [D], np: &mut [D]) {
-        let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
-        nq[0] = r;
-        nq[1] = q[1].atan2(q[0]);
-        np[0] = (q[0] * p[0] + q[1] * p[1]) / r;
-        np[1] = q[0] * p[1] - q[1] * p[0];
-    }
-}
-
-/// Polar coordinates from F₃(p, Q) = −(p_x r cos θ + p_y r sin θ): q = −∂F/∂p, P = −∂F/∂Q.
-pub struct PolarF3;
-
-impl GeneratingFunction for PolarF3 {
-    fn kind(&self) -> Kind {
-        Kind::F3
-    }
-    fn dof(&self) -> usize {
-        2
-    }
-    fn generating<D: Scalar>(&self, _t: D, p: &[D], big_q: &[D]) -> D {
-        let (s, c) = big_q[1].sin_cos();
-        -(p[0] * c + p[1] * s) * big_q[0]
-    }
-}
-
-/// A planar anharmonic oscillator H = |p|²/2m + ½ m ω₀² r² + ε r⁴ (rotationally invariant).
-#[derive(Debug, Clone, Copy)]
-pub struct Planar {
-    /// Mass.
-    pub m: f64,
-    /// Frequency of the harmonic part.
-    pub w0: f64,
-    /// Quartic coefficient.
-    pub eps: f64,
-}
-
-impl Hamiltonian for Planar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let r2 = q[0] * q[0] + q[1] * q[1];
-        (p[0] * p[0] + p[1] * p[1]) * (0.5 / self.m)
-            + r2 * (0.5 * self.m * self.w0 * self.w0)
-            + r2 * r2 * self.eps
-    }
-}
-
-/// F₂(q, P, t) = P·R(−ωt) q: coordinates Q = R(−ωt) q and momenta P = R(−ωt) p of a frame rotating
-/// at ω; K = H + ∂F₂/∂t = H − ω L_z.
-pub struct RotatingFrame {
-    /// Angular velocity of the frame.
-    pub w: f64,
-}
-
-impl GeneratingFunction for RotatingFrame {
-    fn kind(&self) -> Kind {
-        Kind::F2
-    }
-    fn dof(&self) -> usize {
-        2
-    }
-    fn generating<D: Scalar>(&self, t: D, q: &[D], big_p: &[D]) -> D {
-        let (s, c) = (t * self.w).sin_cos();
-        big_p[0] * (c * q[0] + s * q[1]) + big_p[1] * (c * q[1] - s * q[0])
-    }
-}
-
-/// K = H − ω L_z written out, as an ordinary Hamiltonian model.
-pub struct RotatingK {
-    /// H of the inertial frame.
-    pub h: Planar,
-    /// Angular velocity of the frame.
-    pub w: f64,
-}
-
-impl Hamiltonian for RotatingK {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
-        self.h.hamiltonian(t, q, p) - (q[0] * p[1] - q[1] * p[0]) * self.w
-    }
-}
 
 /// R(−ωt) applied to a planar vector.
 fn to_rotating(w: f64, t: f64, v: &[f64]) -> [f64; 2] {
@@ -260,11 +129,11 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // global error at 1e-14 over ~3 orbits); tolerance 2e-13.
     let h = Planar {
         m: 1.0,
-        w0: 1.0,
+        w: 1.0,
         eps: 0.1,
     };
     let wf = 0.5;
-    let rot = Generated::new(RotatingFrame { w: wf });
+    let rot = Generated::new(RotatingF2 { w: wf });
     let (t1, q1, p1) = (1.3, [1.0, 0.2], [0.1, 0.9]);
     let (rq1, rp1) = rot.forward(t1, (&q1, &p1), (&[0.0, 0.0], &[0.0, 0.0]))?;
     let k1 = rot.new_hamiltonian(&h, t1, (&q1, &p1), (&rq1, &rp1))?;
@@ -285,7 +154,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     .save(Save::Times(times.clone()))?
     .run_until(t_end)?;
     let (nq1, np1) = (to_rotating(wf, 0.0, &q1), to_rotating(wf, 0.0, &p1));
-    let through_f2 = Transformed::new(h, Generated::new(RotatingFrame { w: wf }), (&q1, &p1))?;
+    let through_f2 = Transformed::new(h, Generated::new(RotatingF2 { w: wf }), (&q1, &p1))?;
     let in_k = Driver::new(
         Dop853::new(&through_f2).tolerances(1e-14, 1e-14)?,
         State::with_momenta(0.0, nq1, np1),

@@ -24,43 +24,16 @@ use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
 
-/// Double pendulum parameters.
-#[derive(Debug, Clone, Copy)]
-pub struct DoublePendulum {
-    /// Upper bob mass.
-    pub m1: f64,
-    /// Lower bob mass.
-    pub m2: f64,
-    /// Upper rod length.
-    pub l1: f64,
-    /// Lower rod length.
-    pub l2: f64,
-    /// Gravitational acceleration.
-    pub g: f64,
-}
+/// The double pendulum, L = ½(m1+m2) l1² θ̇1² + ½ m2 l2² θ̇2² + m2 l1 l2 θ̇1 θ̇2 cos(θ1 − θ2)
+/// + (m1+m2) g l1 cos θ1 + m2 g l2 cos θ2 (the model of core's AD tests).
+pub use noether_testkit::systems::DoublePendulum;
 
-impl Lagrangian for DoublePendulum {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let Self { m1, m2, l1, l2, g } = *self;
-        v[0] * v[0] * (0.5 * (m1 + m2) * l1 * l1)
-            + v[1] * v[1] * (0.5 * m2 * l2 * l2)
-            + v[0] * v[1] * (q[0] - q[1]).cos() * (m2 * l1 * l2)
-            + q[0].cos() * ((m1 + m2) * g * l1)
-            + q[1].cos() * (m2 * g * l2)
-    }
-}
-
-impl DoublePendulum {
-    /// Position of the lower bob (x to the right, y up, pivot at the origin).
-    pub fn lower_bob(&self, q: &[f64]) -> (f64, f64) {
-        (
-            self.l1 * q[0].sin() + self.l2 * q[1].sin(),
-            -self.l1 * q[0].cos() - self.l2 * q[1].cos(),
-        )
-    }
+/// Position of the lower bob (x to the right, y up, pivot at the origin).
+pub fn lower_bob(dp: &DoublePendulum, q: &[f64]) -> (f64, f64) {
+    (
+        dp.l1 * q[0].sin() + dp.l2 * q[1].sin(),
+        -dp.l1 * q[0].cos() - dp.l2 * q[1].cos(),
+    )
 }
 
 /// Length of the run.
@@ -117,7 +90,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .collect();
     let path: Vec<(f64, f64)> = (1..sol.len())
         .filter(|&i| sol.times()[i] <= 20.0)
-        .map(|i| dp.lower_bob(sol.q(i)))
+        .map(|i| lower_bob(&dp, sol.q(i)))
         .collect();
     let flips = sol.event_times("flip")?.len();
     let mut report = Report::default();

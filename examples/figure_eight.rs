@@ -18,58 +18,17 @@
 //!
 //! Run: `cargo run --release --features examples --example figure_eight` (the orbit goes to `gallery-out/`).
 
-use noether::analysis::periodic::{Energy, FirstIntegral, Integral, Shooting, Stability};
-use noether::core::ad::Field;
+use noether::analysis::periodic::{Energy, FirstIntegral, Shooting, Stability};
 use noether::core::integrators::Rk4;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::three_body::{
+    figure_eight, figure_eight_shooting, ThreeBody, EIGHT_T, EIGHT_V3, EIGHT_X1,
+};
 use std::process::ExitCode;
 
 const NAME: &str = "figure_eight";
-
-/// Three equal masses (G = m = 1) in the plane, q = (x₁, y₁, x₂, y₂, x₃, y₃), p likewise:
-/// H = |p|²/2 − Σ_{i<j} 1/r_ij.
-#[derive(Debug, Clone, Copy)]
-pub struct ThreeBody;
-
-impl Hamiltonian for ThreeBody {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let mut h = p.iter().fold(D::zero(), |acc, &pi| acc + pi * pi) * 0.5;
-        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-            let (dx, dy) = (q[2 * i] - q[2 * j], q[2 * i + 1] - q[2 * j + 1]);
-            h -= (dx * dx + dy * dy).sqrt().recip();
-        }
-        h
-    }
-}
-
-/// Total momentum along x (0) or y (1), angular momentum (2).
-#[derive(Debug, Clone, Copy)]
-pub struct Momentum(pub usize);
-
-impl Field for Momentum {
-    fn eval<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (0..3).fold(D::zero(), |acc, i| match self.0 {
-            0 => acc + p[2 * i],
-            1 => acc + p[2 * i + 1],
-            _ => acc + q[2 * i] * p[2 * i + 1] - q[2 * i + 1] * p[2 * i],
-        })
-    }
-}
-
-/// The symmetric configuration x₁ = −x₂, x₃ = 0, v₃ = −2v₁ = −2v₂.
-fn euler_point(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
-    let v1 = [-0.5 * v3[0], -0.5 * v3[1]];
-    State::with_momenta(
-        0.0,
-        [x1[0], x1[1], -x1[0], -x1[1], 0.0, 0.0],
-        [v1[0], v1[1], v1[0], v1[1], v3[0], v3[1]],
-    )
-}
 
 /// Runs the example.
 ///
@@ -84,31 +43,13 @@ fn euler_point(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
 /// h = T/4000 is not symplectic, h⁴T ≈ 4e-11; tolerance 2e-11).
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let mut report = Report::default();
-    let published = euler_point([0.97000436, -0.24308753], [-0.93240737, -0.86473146]);
-    let t_published = 6.32591398;
+    let published = figure_eight(EIGHT_X1, EIGHT_V3);
+    let t_published = EIGHT_T;
     let energy = Energy(ThreeBody);
     let e0 = energy.value(published.q.as_slice(), published.v.as_slice())?;
-    let guess = euler_point([0.97, -0.243], [-0.932, -0.865]);
-    let rotation: Vec<f64> = (0..3)
-        .flat_map(|i| [-guess.q[2 * i + 1], guess.q[2 * i]])
-        .chain((0..3).flat_map(|i| [-guess.v[2 * i + 1], guess.v[2 * i]]))
-        .collect();
-    let tx: Vec<f64> = (0..12)
-        .map(|i| if i < 6 && i % 2 == 0 { 1.0 } else { 0.0 })
-        .collect();
-    let ty: Vec<f64> = (0..12)
-        .map(|i| if i < 6 && i % 2 == 1 { 1.0 } else { 0.0 })
-        .collect();
+    let guess = figure_eight([0.97, -0.243], [-0.932, -0.865]);
     let rk4 = Rk4::new(HamiltonEquations::new(ThreeBody));
-    let mut shooting = Shooting::new(rk4, 4000)?
-        .level(energy, e0)
-        .unfold(Integral(Momentum(0)))
-        .unfold(Integral(Momentum(1)))
-        .unfold(Integral(Momentum(2)))
-        .symmetry(tx)
-        .symmetry(ty)
-        .symmetry(rotation)
-        .phase_coordinate(4, 0.0);
+    let mut shooting = figure_eight_shooting(Shooting::new(rk4, 4000)?, &guess, e0);
     let orbit = shooting.solve(&guess, 6.33)?;
     // Compare in the published orientation: rotate so that x₁ points along the published x₁.
     let angle = published.q[1].atan2(published.q[0]) - orbit.initial.q[1].atan2(orbit.initial.q[0]);

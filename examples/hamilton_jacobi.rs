@@ -12,100 +12,13 @@
 //!
 //! Run: `cargo run --release --features examples --example hamilton_jacobi` (r(t) goes to `gallery-out/`).
 
-use noether::canonical::hamilton_jacobi::{self, betas, constants, position, CompleteIntegral};
+use noether::canonical::hamilton_jacobi::{self, betas, constants, position};
 use noether::canonical::transform::newton_to_rounding;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::hamilton_jacobi::{KeplerPolar, KeplerS, Oscillator, OscillatorS};
 use std::process::ExitCode;
-
-/// Kepler in polar coordinates (r, θ): H = p_r²/2m + p_θ²/2mr² − k/r.
-#[derive(Debug, Clone, Copy)]
-pub struct KeplerPolar {
-    /// Mass.
-    pub m: f64,
-    /// Strength of the attraction.
-    pub k: f64,
-}
-
-impl Hamiltonian for KeplerPolar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let r = q[0];
-        p[0] * p[0] * (0.5 / self.m) + p[1] * p[1] / (r * r) * (0.5 / self.m) - r.recip() * self.k
-    }
-}
-
-/// The complete integral S(r, θ; E, L, t) = −E t + L θ + W_r for bound orbits (E < 0, L > 0), with
-/// W_r = ∫ sqrt(R)/r dr, R = a r² + b r + c (a = 2mE, b = 2mk, c = −L², Δ = b² − 4ac):
-/// W_r = sqrt(R) − b/(2 sqrt(−a)) asin((2ar + b)/sqrt(Δ)) − L asin((br + 2c)/(r sqrt(Δ))).
-#[derive(Debug, Clone, Copy)]
-pub struct KeplerS {
-    /// Mass.
-    pub m: f64,
-    /// Strength of the attraction.
-    pub k: f64,
-}
-
-impl CompleteIntegral for KeplerS {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn principal<D: Scalar>(&self, t: D, q: &[D], al: &[D]) -> D {
-        let (r, th, e, l) = (q[0], q[1], al[0], al[1]);
-        let a = e * (2.0 * self.m);
-        let b = 2.0 * self.m * self.k;
-        let c = -(l * l);
-        let sd = (a * c * (-4.0) + b * b).sqrt();
-        let big_r = a * r * r + r * b + c;
-        let wr = big_r.sqrt()
-            - (-a).sqrt().recip() * (0.5 * b) * ((a * r * 2.0 + b) / sd).asin()
-            - l * ((r * b + c * 2.0) / (r * sd)).asin();
-        wr + l * th - e * t
-    }
-}
-
-/// The oscillator H = p²/2m + ½ k q².
-#[derive(Debug, Clone, Copy)]
-pub struct Oscillator {
-    /// Mass.
-    pub m: f64,
-    /// Spring constant.
-    pub k: f64,
-}
-
-impl Hamiltonian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        p[0] * p[0] * (0.5 / self.m) + q[0] * q[0] * (0.5 * self.k)
-    }
-}
-
-/// S = ½ sqrt(mk) [q sqrt(A² − q²) + A² asin(q/A)] − E t with A² = 2E/k (branch p > 0).
-#[derive(Debug, Clone, Copy)]
-pub struct OscillatorS {
-    /// Mass.
-    pub m: f64,
-    /// Spring constant.
-    pub k: f64,
-}
-
-impl CompleteIntegral for OscillatorS {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn principal<D: Scalar>(&self, t: D, q: &[D], a: &[D]) -> D {
-        let e = a[0];
-        let a2 = e * (2.0 / self.k);
-        let w = (q[0] * (a2 - q[0] * q[0]).sqrt() + a2 * (q[0] / a2.sqrt()).asin())
-            * (0.5 * (self.m * self.k).sqrt());
-        w - e * t
-    }
-}
 
 /// Runs the example.
 pub fn run(opts: &Options) -> Result<Report, BoxError> {

@@ -42,35 +42,9 @@ const NAME: &str = "heavy_top";
 // ---------------------------------------------------------------------------------------------------
 // The models.
 
-/// The heavy symmetric top in Euler angles q = (θ, φ, ψ).
-#[derive(Debug, Clone, Copy)]
-pub struct HeavyTop {
-    /// Moment of inertia about a transverse axis through the pivot.
-    pub i1: f64,
-    /// Moment of inertia about the symmetry axis.
-    pub i3: f64,
-    /// M g ℓ (mass × gravity × pivot-to-centre-of-mass distance).
-    pub mgl: f64,
-}
-
-/// The top of the gallery's heavy-top examples: I₁ = 1, I₃ = 1/2, M g ℓ = 1.
-pub const GALLERY_TOP: HeavyTop = HeavyTop {
-    i1: 1.0,
-    i3: 0.5,
-    mgl: 1.0,
-};
-
-impl Lagrangian for HeavyTop {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let (th, dth, dphi, dpsi) = (q[0], v[0], v[1], v[2]);
-        let (s, c) = (th.sin(), th.cos());
-        let w3 = dpsi + dphi * c;
-        (dth * dth + dphi * dphi * s * s) * (0.5 * self.i1) + w3 * w3 * (0.5 * self.i3) - c * self.mgl
-    }
-}
+/// The heavy symmetric top in Euler angles q = (θ, φ, ψ), and the gallery's top (I₁ = 1, I₃ = 1/2,
+/// M g ℓ = 1): shared with the crates' tests.
+pub use noether_testkit::top::{HeavyTop, GALLERY_TOP};
 
 /// The Euler-angle integrator: RK4 guarded against the poles of the chart (sin θ < 10⁻²).
 pub fn euler_angle_stepper(top: HeavyTop) -> noether::core::Result<ChartGuard<Rk4<EulerLagrange<HeavyTop>>>> {

@@ -14,7 +14,7 @@ use noether::plot::Figure;
 use noether::prelude::*;
 use noether::rigid::{Lgvi, RigidBody};
 use noether_gallery::closed_form::elliptic_k_complementary;
-use noether_gallery::examples::free_rigid_body::FreeTop;
+use noether_gallery::closed_form::FreeTop;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
 

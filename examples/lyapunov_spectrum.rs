@@ -19,6 +19,7 @@ use noether::core::TangentStepper;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::henon_heiles::UnitDoublePendulum;
 use std::process::ExitCode;
 
 const NAME: &str = "lyapunov_spectrum";
@@ -50,28 +51,6 @@ impl Hamiltonian for HenonHeiles {
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
             - q[1].powi(3) * (1.0 / 3.0)
-    }
-}
-
-/// Double pendulum with unit masses and rods in gravity g, angles from the downward vertical, in closed
-/// form: the Legendre transform of L = θ̇₁² + ½θ̇₂² + θ̇₁θ̇₂ cos Δ + 2g cos θ₁ + g cos θ₂ (Δ = θ₁ − θ₂),
-/// H = (p₁² + 2p₂² − 2p₁p₂ cos Δ) / (2(1 + sin²Δ)) − 2g cos θ₁ − g cos θ₂.
-#[derive(Debug, Clone, Copy)]
-pub struct DoublePendulum {
-    /// Gravitational acceleration.
-    pub g: f64,
-}
-
-impl Hamiltonian for DoublePendulum {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let d = q[0] - q[1];
-        let s = d.sin();
-        (p[0] * p[0] + p[1] * p[1] * 2.0 - p[0] * p[1] * d.cos() * 2.0) / ((s * s + 1.0) * 2.0)
-            - q[0].cos() * (2.0 * self.g)
-            - q[1].cos() * self.g
     }
 }
 
@@ -246,7 +225,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
 
     // Double pendulum from the horizontal at rest, h = 2e-3, to t = 100.
     let half = std::f64::consts::FRAC_PI_2;
-    let dp = DoublePendulum { g: 9.81 };
+    let dp = UnitDoublePendulum { g: 9.81 };
     let start = State::with_momenta(0.0, [half, half], [0.0, 0.0]);
     let (s, lyap) = spectrum(dp, start.clone(), 2e-3, 5, 100.0)?;
     let classical = two_trajectory(dp, &start, 2e-3, 5, 100.0)?;

@@ -16,6 +16,7 @@ use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_k_complementary;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::three_body::{l1, l1_guess, l1_linear, Cr3bp};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
@@ -23,45 +24,6 @@ const NAME: &str = "periodic_orbits";
 
 /// The pendulum H = p²/2 − g cos q (m = l = 1), the model of the action-angle example.
 pub use noether_gallery::examples::action_angle::Pendulum;
-
-/// The circular restricted three-body problem in the rotating frame (primaries 1 − μ at (−μ, 0) and
-/// μ at (1 − μ, 0)): H = ½(p_x² + p_y²) + y p_x − x p_y − (1 − μ)/r₁ − μ/r₂ = −C/2.
-#[derive(Debug, Clone, Copy)]
-pub struct Cr3bp {
-    /// Mass ratio μ.
-    pub mu: f64,
-}
-
-impl Hamiltonian for Cr3bp {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        let r1 = ((x + self.mu) * (x + self.mu) + y * y).sqrt();
-        let r2 = ((x - (1.0 - self.mu)) * (x - (1.0 - self.mu)) + y * y).sqrt();
-        (p[0] * p[0] + p[1] * p[1]) * 0.5 + y * p[0]
-            - x * p[1]
-            - r1.recip() * (1.0 - self.mu)
-            - r2.recip() * self.mu
-    }
-}
-
-/// L1 (bisection of ∂Ω/∂x on the axis between the primaries) and c₂ = (1 − μ)/r₁³ + μ/r₂³ there.
-fn l1(mu: f64) -> (f64, f64) {
-    let dphi = |x: f64| x - (1.0 - mu) / (x + mu).powi(2) + mu / (x - 1.0 + mu).powi(2);
-    let (mut a, mut b) = (0.5, 1.0 - mu - 1e-3);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if dphi(a) * dphi(m) <= 0.0 {
-            b = m;
-        } else {
-            a = m;
-        }
-    }
-    let x = 0.5 * (a + b);
-    (x, (1.0 - mu) / (x + mu).powi(3) + mu / (1.0 - mu - x).powi(3))
-}
 
 /// Runs the example.
 ///
@@ -90,9 +52,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // Lyapunov orbits about L1, Earth-Moon.
     let mu = 0.01215;
     let (xl, c2) = l1(mu);
-    let disc = (9.0 * c2 * c2 - 8.0 * c2).sqrt();
-    let omega = ((2.0 - c2 + disc) / 2.0).sqrt();
-    let k = (omega * omega + 1.0 + 2.0 * c2) / (2.0 * omega);
+    let (omega, k) = l1_linear(c2);
     let t0 = 2.0 * PI / omega;
     let energy = Energy(Cr3bp { mu });
     let mut fig = Figure::new("Planar Lyapunov orbits about L1 (Earth-Moon, rotating frame)")
@@ -102,31 +62,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let mut before: Option<(f64, State<Momenta>, f64)> = None;
     let mut amplitude = 0.001;
     while amplitude < 0.006 {
-        let x0 = xl - amplitude;
-        let (guess, t_guess) = match (&last, &before) {
-            (None, _) => (
-                State::with_momenta(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]),
-                t0,
-            ),
-            (Some((a, o, t)), None) => {
-                let r = amplitude / a;
-                let q = [xl + r * (o.q[0] - xl), r * o.q[1]];
-                let p = [r * o.v[0], xl + r * (o.v[1] - xl)];
-                (State::with_momenta(0.0, q, p), t0 + (t - t0) * r * r)
-            }
-            (Some((a1, o1, t1)), Some((a0, o0, t_0))) => {
-                let s = (amplitude - a1) / (a1 - a0);
-                let q = [
-                    o1.q[0] + s * (o1.q[0] - o0.q[0]),
-                    o1.q[1] + s * (o1.q[1] - o0.q[1]),
-                ];
-                let p = [
-                    o1.v[0] + s * (o1.v[0] - o0.v[0]),
-                    o1.v[1] + s * (o1.v[1] - o0.v[1]),
-                ];
-                (State::with_momenta(0.0, q, p), t1 + s * (t1 - t_0))
-            }
-        };
+        let (guess, t_guess) = l1_guess((xl, omega, k, t0), amplitude, &last, &before);
         let e = energy.value(guess.q.as_slice(), guess.v.as_slice())?;
         let rk4 = Rk4::new(HamiltonEquations::new(Cr3bp { mu }));
         let mut shooting = Shooting::new(rk4, 4000)?

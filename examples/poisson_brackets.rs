@@ -10,80 +10,9 @@ use noether::canonical::poisson::{self, BracketOf, PhaseFunction};
 use noether::canonical::{bracket, constant_of_motion, time_derivative};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::canonical::{AngularMomentum, Coordinates, Kepler3, RungeLenz};
 use rand::{rngs::StdRng, Rng, SeedableRng};
 use std::process::ExitCode;
-
-/// Kepler problem H = |p|²/2m − k/|q| in Cartesian coordinates.
-#[derive(Debug, Clone, Copy)]
-pub struct Kepler {
-    /// Mass.
-    pub m: f64,
-    /// Strength of the attraction (G M m).
-    pub k: f64,
-}
-
-impl Hamiltonian for Kepler {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let r = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
-        (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) * (0.5 / self.m) - r.recip() * self.k
-    }
-}
-
-/// The angular momentum L = q × p: a vector-valued phase function (three outputs).
-pub struct AngularMomentum;
-
-impl PhaseFunction for AngularMomentum {
-    fn phase_dof(&self) -> usize {
-        3
-    }
-    fn outputs(&self) -> usize {
-        3
-    }
-    fn values<D: Scalar>(&self, _t: D, q: &[D], p: &[D], out: &mut [D]) {
-        out[0] = q[1] * p[2] - q[2] * p[1];
-        out[1] = q[2] * p[0] - q[0] * p[2];
-        out[2] = q[0] * p[1] - q[1] * p[0];
-    }
-}
-
-/// The Runge-Lenz vector A = p × L − m k q/|q|.
-pub struct RungeLenz(pub Kepler);
-
-impl PhaseFunction for RungeLenz {
-    fn phase_dof(&self) -> usize {
-        3
-    }
-    fn outputs(&self) -> usize {
-        3
-    }
-    fn values<D: Scalar>(&self, t: D, q: &[D], p: &[D], out: &mut [D]) {
-        let mut l = [D::zero(); 3];
-        AngularMomentum.values(t, q, p, &mut l);
-        let c = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt().recip() * (self.0.m * self.0.k);
-        out[0] = p[1] * l[2] - p[2] * l[1] - q[0] * c;
-        out[1] = p[2] * l[0] - p[0] * l[2] - q[1] * c;
-        out[2] = p[0] * l[1] - p[1] * l[0] - q[2] * c;
-    }
-}
-
-/// z = (q, p) itself, for the fundamental brackets.
-struct Coordinates;
-
-impl PhaseFunction for Coordinates {
-    fn phase_dof(&self) -> usize {
-        3
-    }
-    fn outputs(&self) -> usize {
-        6
-    }
-    fn values<D: Scalar>(&self, _t: D, q: &[D], p: &[D], out: &mut [D]) {
-        out[..3].copy_from_slice(q);
-        out[3..].copy_from_slice(p);
-    }
-}
 
 /// The free particle's "initial position" m q − p t (a boost generator): it depends on t explicitly,
 /// and is conserved because ∂f/∂t = −p cancels {f, H} = p.
@@ -136,14 +65,14 @@ fn point(rng: &mut StdRng) -> (f64, Vec<f64>, Vec<f64>) {
 /// terms that cancel; the tolerances are a few ε times those terms (measured values in each comment).
 pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     const EX: &str = "poisson_brackets";
-    let kepler = Kepler { m: 1.3, k: 2.1 };
+    let kepler = Kepler3 { m: 1.3, k: 2.1 };
     let mut rng = StdRng::seed_from_u64(17);
     let mut report = Report::default();
 
     // {qᵢ, pⱼ} = δᵢⱼ, {qᵢ, qⱼ} = {pᵢ, pⱼ} = 0: the bracket matrix of z is Ω, exactly (measured 0).
     let (t, q, p) = point(&mut rng);
     let omega = noether::canonical::transform::omega(3);
-    let fundamental = (bracket(&Coordinates, &Coordinates, t, &q, &p)? - omega).amax();
+    let fundamental = (bracket(&Coordinates(3), &Coordinates(3), t, &q, &p)? - omega).amax();
     report
         .checks
         .push(Check::abs(EX, "max |{z_a, z_b} − Ω_ab|", fundamental, 0.0, 0.0));
@@ -210,7 +139,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let (f, g, x) = (
         Component(AngularMomentum, 0),
         Component(RungeLenz(kepler), 1),
-        Component(Coordinates, 0),
+        Component(Coordinates(3), 0),
     );
     let terms = [
         bracket(&f, &BracketOf(&g, &x), t, &q, &p)?[(0, 0)],

@@ -19,87 +19,18 @@
 //!
 //! Run: `cargo run --release --features examples --example rolling_sphere`.
 
-use noether::constraints::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
+use noether::constraints::{GibbsAppell, GibbsAppellEquations, RigidPart};
 use noether::core::integrators::Rk4;
 use noether::prelude::*;
 use noether_gallery::closed_form::elliptic_k;
 use noether_gallery::measure::mean_period;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::gibbs_appell::{body_omega, quat_rate_space, sphere, turntable_run};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
 const NAME: &str = "rolling_sphere";
 const G: f64 = 9.81;
-
-/// Quaternion (w, x, y, z) product a ⊗ b.
-fn qmul<D: Scalar>(a: &[D], b: &[D]) -> [D; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// The orientation's rate q̇ = ½ (0, ω_space) ⊗ q into `out`.
-fn quat_rate<D: Scalar>(q: &[D], omega: &[D], out: &mut [D]) {
-    let r = qmul(&[D::from(0.0), omega[0], omega[1], omega[2]], q);
-    for (o, r) in out.iter_mut().zip(r) {
-        *o = r * 0.5;
-    }
-}
-
-/// Body-axes angular velocity ω = 2 vec(q̄ ⊗ q̇)/|q|² (the division keeps it exact when an integrator
-/// lets |q| drift from 1).
-fn body_omega<D: Scalar>(q: &[D], qdot: &[D], omega: &mut [D]) {
-    let r = qmul(&[q[0], -q[1], -q[2], -q[3]], qdot);
-    let n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-    for k in 0..3 {
-        omega[k] = r[k + 1] * 2.0 / n2;
-    }
-}
-
-/// A uniform sphere as a rigid part: mass 1, I = (2/5) a².
-fn sphere(a: f64) -> RigidPart {
-    RigidPart::principal(1.0, [0.4 * a * a; 3])
-}
-
-/// A sphere of radius `a` rolling on a table turning at `omega`.
-pub struct Turntable {
-    /// Sphere radius.
-    pub a: f64,
-    /// The table's angular velocity Ω.
-    pub omega: f64,
-}
-
-impl GibbsAppell for Turntable {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn quasi(&self) -> usize {
-        3
-    }
-    /// ṙ = Ω ẑ × r + a ω × ẑ, and the quaternion rate.
-    fn velocities<D: Scalar>(&self, _t: D, q: &[D], u: &[D], qdot: &mut [D]) {
-        qdot[0] = u[1] * self.a - q[1] * self.omega;
-        qdot[1] = -u[0] * self.a + q[0] * self.omega;
-        quat_rate(&q[2..6], u, &mut qdot[2..6]);
-    }
-    fn bodies(&self) -> usize {
-        1
-    }
-    fn body(&self, _b: usize) -> RigidPart {
-        sphere(self.a)
-    }
-    fn centres<D: Scalar>(&self, _t: D, q: &[D], c: &mut [D]) {
-        c[0] = q[0];
-        c[1] = q[1];
-        c[2] = D::from(self.a);
-    }
-    fn angular_velocities<D: Scalar>(&self, _t: D, q: &[D], qdot: &[D], omega: &mut [D]) {
-        body_omega(&q[2..6], &qdot[2..6], omega)
-    }
-}
 
 /// A sphere of radius `a` rolling inside a spherical bowl of radius `bowl`, in gravity.
 pub struct Bowl {
@@ -130,7 +61,7 @@ impl GibbsAppell for Bowl {
         let k = -self.a / (self.bowl - self.a);
         qdot[0] = (u[1] * c[2] - u[2] * c[1]) * k;
         qdot[1] = (u[2] * c[0] - u[0] * c[2]) * k;
-        quat_rate(&q[2..6], u, &mut qdot[2..6]);
+        quat_rate_space(&q[2..6], u, &mut qdot[2..6]);
     }
     fn bodies(&self) -> usize {
         1
@@ -142,7 +73,7 @@ impl GibbsAppell for Bowl {
         c.copy_from_slice(&self.centre(q));
     }
     fn angular_velocities<D: Scalar>(&self, _t: D, q: &[D], qdot: &[D], omega: &mut [D]) {
-        body_omega(&q[2..6], &qdot[2..6], omega)
+        omega.copy_from_slice(&body_omega(&q[2..6], &qdot[2..6]));
     }
     /// V = m g z of the centre (m = 1).
     fn potential<D: Scalar>(&self, _t: D, q: &[D]) -> D {
@@ -158,25 +89,8 @@ fn max_abs(x: &[f64]) -> f64 {
 /// The turntable orbit against its closed form.
 fn turntable(checks: &mut Vec<Check>) -> Result<(), BoxError> {
     let (a, big_omega) = (0.1, 2.0);
-    let sys = GibbsAppellEquations::new(Turntable { a, omega: big_omega })?;
     let (r0, w0) = ([0.5, 0.2], [1.0, -3.0, 4.0]);
-    let v0 = [a * w0[1] - big_omega * r0[1], -a * w0[0] + big_omega * r0[0]];
-    let nu = 2.0 * big_omega / 7.0;
-    let exact = move |t: f64| {
-        let (s, c) = (nu * t).sin_cos();
-        [
-            r0[0] + (s * v0[0] - (1.0 - c) * v0[1]) / nu,
-            r0[1] + (s * v0[1] + (1.0 - c) * v0[0]) / nu,
-        ]
-    };
-    let start = sys.state(0.0, &[r0[0], r0[1], 1.0, 0.0, 0.0, 0.0], &w0)?;
-    let sol = Driver::with_step(Rk4::new(&sys), start, 2e-3)?
-        .observe("err", move |s: &State<QuasiVelocities>| {
-            let e = exact(s.t);
-            (s.q[0] - e[0]).hypot(s.q[1] - e[1])
-        })
-        .observe("wz", move |s: &State<QuasiVelocities>| s.v[2] - w0[2])
-        .run_until(2.0 * 2.0 * PI / nu)?;
+    let sol = turntable_run(a, big_omega, r0, w0, 2e-3)?;
     let err = max_abs(&sol.observed("err")?);
     let dwz = max_abs(&sol.observed("wz")?);
     // RK4, h = 2e-3, two orbits: measured 3.2e-13 m (5.7e-12 at h = 4e-3, RK4's h⁴): 1e-12.

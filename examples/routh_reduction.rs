@@ -17,53 +17,15 @@ use noether::core::roots::bracketed_root;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::top::{top_samples, KeplerPolar, GALLERY_TOP};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
 const NAME: &str = "routh_reduction";
 
-/// Kepler per unit mass in polar coordinates (r, φ), L = (ṙ² + r² φ̇²)/2 + μ/r.
-#[derive(Debug, Clone, Copy)]
-pub struct Kepler {
-    /// Gravitational parameter μ.
-    pub mu: f64,
-}
-
-impl Lagrangian for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + q[0] * q[0] * v[1] * v[1]) * 0.5 + q[0].recip() * self.mu
-    }
-}
-
-/// The heavy symmetric top in Euler angles (θ, φ, ψ), as in the `heavy_top` example.
-#[derive(Debug, Clone, Copy)]
-pub struct HeavyTop {
-    /// Transverse moment of inertia about the pivot.
-    pub i1: f64,
-    /// Axial moment of inertia.
-    pub i3: f64,
-    /// M g ℓ.
-    pub mgl: f64,
-}
-
-impl Lagrangian for HeavyTop {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let (th, dth, dphi, dpsi) = (q[0], v[0], v[1], v[2]);
-        let (s, c) = (th.sin(), th.cos());
-        let w3 = dpsi + dphi * c;
-        (dth * dth + dphi * dphi * s * s) * (0.5 * self.i1) + w3 * w3 * (0.5 * self.i3) - c * self.mgl
-    }
-}
-
 fn kepler(report: &mut Report) -> Result<(), BoxError> {
     let (mu, l) = (1.0, 0.8);
-    let routh = Routh::new(Kepler { mu }, &[1], &[l])?;
+    let routh = Routh::new(KeplerPolar { mu }, &[1], &[l])?;
     let samples: Vec<_> = (0..5)
         .map(|i| (0.0, vec![0.5 + 0.3 * i as f64, 0.7 * i as f64], vec![0.1, 0.4]))
         .collect();
@@ -115,25 +77,13 @@ fn kepler(report: &mut Report) -> Result<(), BoxError> {
 }
 
 fn top(opts: &Options, report: &mut Report) -> Result<(), BoxError> {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let (th0, dphi0, dpsi0) = (0.8, 0.5, 5.0);
     let full = EulerLagrange::new(top);
     let mut p = [0.0; 3];
     full.momenta(0.0, &[th0, 0.0, 0.0], &[0.0, dphi0, dpsi0], &mut p)?;
     let routh = Routh::new(top, &[1, 2], &[p[1], p[2]])?;
-    let samples: Vec<_> = (0..4)
-        .map(|i| {
-            (
-                0.0,
-                vec![0.3 + 0.5 * i as f64, 1.0 * i as f64, -2.0 * i as f64],
-                vec![0.2, 0.5, 5.0],
-            )
-        })
-        .collect();
+    let samples = top_samples();
     report.checks.push(Check::abs(
         NAME,
         "top: max |∂L/∂φ|, |∂L/∂ψ| at samples",

@@ -20,6 +20,7 @@ use noether::core::selfcheck::{observed_order, reversibility, symplecticity};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::henon_heiles::HenonHeiles;
 use std::process::ExitCode;
 
 /// Harmonic oscillator H = ½(p² + q²) (for RK4 and Euler-Cromer).
@@ -41,18 +42,6 @@ impl Lagrangian for OscillatorL {
     }
     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
         (v[0] * v[0] - q[0] * q[0]) * 0.5
-    }
-}
-
-/// Hénon-Heiles, H = ½|p|² + ½(x² + y²) + x²y − y³/3.
-pub struct HenonHeiles;
-impl Hamiltonian for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
-            - q[1].powi(3) / 3.0
     }
 }
 

@@ -14,7 +14,9 @@
 extern crate self as noether_gallery;
 
 mod check;
-pub mod closed_form;
+/// The special functions of the closed forms (K, E, sn, cn, dn, Kepler's equation) and the free top,
+/// shared with the crates' tests through noether-testkit.
+pub use noether_testkit::closed_form;
 pub mod measure;
 pub mod page;
 

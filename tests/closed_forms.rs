@@ -1,5 +1,6 @@
-//! The gallery's shared closed forms and measurements (src/closed_form.rs, src/measure.rs) against
-//! tables, identities and hand-worked cases.
+//! The gallery's shared closed forms and measurements (`noether_gallery::closed_form`, which is
+//! crates/testkit/src/closed_form.rs, and src/measure.rs) against tables, identities and hand-worked
+//! cases.
 
 // Reference values are quoted with the digits their source gives.
 #[allow(clippy::excessive_precision)]

@@ -8,6 +8,7 @@
 
 use noether_analysis::{Error, Lyapunov, Spectrum};
 use noether_core::prelude::*;
+use noether_testkit::henon_heiles::{HenonHeiles, UnitDoublePendulum};
 
 /// H = ½(p² + ω² q²).
 #[derive(Debug, Clone, Copy)]
@@ -23,44 +24,11 @@ impl Hamiltonian for Oscillator {
     }
 }
 
-/// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3.
-#[derive(Debug, Clone, Copy)]
-struct HenonHeiles;
-impl Hamiltonian for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
-            - q[1].powi(3) / 3.0
-    }
-}
-
 /// A Hénon-Heiles state with q = (0, q₂), p₂ = `p2` and p₁ > 0 from the energy E.
 fn hh_state(e: f64, q2: f64, p2: f64) -> State<Momenta> {
     let v = 0.5 * q2 * q2 - q2.powi(3) / 3.0;
     let p1 = (2.0 * (e - v) - p2 * p2).sqrt();
     State::with_momenta(0.0, [0.0, q2], [p1, p2])
-}
-
-/// Double pendulum with unit masses and rods, angles from the downward vertical, in closed form
-/// (the Legendre transform of L = θ̇₁² + ½θ̇₂² + θ̇₁θ̇₂ cos Δ + 2g cos θ₁ + g cos θ₂, Δ = θ₁ − θ₂):
-/// H = (p₁² + 2p₂² − 2p₁p₂ cos Δ) / (2(1 + sin²Δ)) − 2g cos θ₁ − g cos θ₂.
-#[derive(Debug, Clone, Copy)]
-struct DoublePendulum {
-    g: f64,
-}
-impl Hamiltonian for DoublePendulum {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let d = q[0] - q[1];
-        let s = d.sin();
-        (p[0] * p[0] + p[1] * p[1] * 2.0 - p[0] * p[1] * d.cos() * 2.0) / ((s * s + 1.0) * 2.0)
-            - q[0].cos() * (2.0 * self.g)
-            - q[1].cos() * self.g
-    }
 }
 
 /// The running estimate at (the re-orthonormalisation nearest to) time t.
@@ -220,7 +188,7 @@ fn chaotic_henon_heiles() {
 fn double_pendulum_from_horizontal() {
     let h = 2e-3;
     let half = std::f64::consts::FRAC_PI_2;
-    let rk4 = || Rk4::new(HamiltonEquations::new(DoublePendulum { g: 9.81 }));
+    let rk4 = || Rk4::new(HamiltonEquations::new(UnitDoublePendulum { g: 9.81 }));
     let start = State::with_momenta(0.0, [half, half], [0.0, 0.0]);
     let mut lyap = Lyapunov::new(rk4(), start.clone(), 4, h, 5).unwrap();
     lyap.advance_to(400.0).unwrap();
@@ -235,7 +203,7 @@ fn double_pendulum_from_horizontal() {
     let s = lyap.spectrum(10).unwrap();
     print("double pendulum", &s);
     let end = lyap.state();
-    let energy = HamiltonEquations::new(DoublePendulum { g: 9.81 })
+    let energy = HamiltonEquations::new(UnitDoublePendulum { g: 9.81 })
         .energy(end.t, end.q.as_slice(), end.v.as_slice())
         .unwrap();
     println!("energy at the end {energy:e}");

@@ -2,10 +2,13 @@
 //! libration period, the figure-eight choreography of three equal masses, a planar Lyapunov orbit
 //! about L1 of the circular restricted three-body problem; and the typed errors.
 
-use noether_analysis::periodic::{Energy, FirstIntegral, Integral, Shooting, Stability};
+use noether_analysis::periodic::{Energy, FirstIntegral, Shooting, Stability};
 use noether_analysis::Error;
-use noether_core::ad::Field;
 use noether_core::prelude::*;
+use noether_testkit::three_body::{
+    figure_eight, figure_eight_shooting, l1, l1_guess, l1_linear, Cr3bp, ThreeBody, EIGHT_T, EIGHT_V3,
+    EIGHT_X1,
+};
 use std::f64::consts::PI;
 
 /// Pendulum H = p²/2 − g cos q (m = l = 1).
@@ -72,49 +75,6 @@ fn closed_form_pendulum_libration_period() {
     }
 }
 
-/// Three equal masses (G = m = 1) in the plane, q = (x₁, y₁, x₂, y₂, x₃, y₃), p likewise:
-/// H = |p|²/2 − Σ_{i<j} 1/r_ij.
-#[derive(Debug, Clone, Copy)]
-struct ThreeBody;
-
-impl Hamiltonian for ThreeBody {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let mut h = p.iter().fold(D::zero(), |acc, &pi| acc + pi * pi) * 0.5;
-        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-            let (dx, dy) = (q[2 * i] - q[2 * j], q[2 * i + 1] - q[2 * j + 1]);
-            h -= (dx * dx + dy * dy).sqrt().recip();
-        }
-        h
-    }
-}
-
-/// Total momentum along x (k = 0) or y (k = 1), and the angular momentum (k = 2), as AD fields.
-#[derive(Debug, Clone, Copy)]
-struct Momentum(usize);
-
-impl Field for Momentum {
-    fn eval<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (0..3).fold(D::zero(), |acc, i| match self.0 {
-            0 => acc + p[2 * i],
-            1 => acc + p[2 * i + 1],
-            _ => acc + q[2 * i] * p[2 * i + 1] - q[2 * i + 1] * p[2 * i],
-        })
-    }
-}
-
-/// Simó's / Moore's figure-eight: x₁ = −x₂, x₃ = 0, v₃ = −2v₁ = −2v₂.
-fn figure_eight(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
-    let v1 = [-0.5 * v3[0], -0.5 * v3[1]];
-    State::with_momenta(
-        0.0,
-        [x1[0], x1[1], -x1[0], -x1[1], 0.0, 0.0],
-        [v1[0], v1[1], v1[0], v1[1], v3[0], v3[1]],
-    )
-}
-
 /// The figure-eight choreography (Chenciner & Montgomery, Ann. Math. 152, 2000), found from a rough
 /// guess (the published values rounded to three digits, the period to 6.33) at the published energy,
 /// and compared with the published initial conditions and period (Simó 2002; Moore 1993):
@@ -132,34 +92,15 @@ fn figure_eight(x1: [f64; 2], v3: [f64; 2]) -> State<Momenta> {
 /// orbit next to the eight, whose own basin is correspondingly small in that direction.
 #[test]
 fn published_figure_eight() {
-    let published = figure_eight([0.97000436, -0.24308753], [-0.93240737, -0.86473146]);
-    let t_published = 6.32591398;
+    let published = figure_eight(EIGHT_X1, EIGHT_V3);
+    let t_published = EIGHT_T;
     let energy = Energy(ThreeBody);
     let e0 = energy
         .value(published.q.as_slice(), published.v.as_slice())
         .unwrap();
     let guess = figure_eight([0.97, -0.243], [-0.932, -0.865]);
-    let rotation: Vec<f64> = (0..3)
-        .flat_map(|i| [-guess.q[2 * i + 1], guess.q[2 * i]])
-        .chain((0..3).flat_map(|i| [-guess.v[2 * i + 1], guess.v[2 * i]]))
-        .collect();
-    let tx: Vec<f64> = (0..12)
-        .map(|i| if i < 6 && i % 2 == 0 { 1.0 } else { 0.0 })
-        .collect();
-    let ty: Vec<f64> = (0..12)
-        .map(|i| if i < 6 && i % 2 == 1 { 1.0 } else { 0.0 })
-        .collect();
     let rk4 = Rk4::new(HamiltonEquations::new(ThreeBody));
-    let mut shooting = Shooting::new(rk4, 4000)
-        .unwrap()
-        .level(energy, e0)
-        .unfold(Integral(Momentum(0)))
-        .unfold(Integral(Momentum(1)))
-        .unfold(Integral(Momentum(2)))
-        .symmetry(tx)
-        .symmetry(ty)
-        .symmetry(rotation)
-        .phase_coordinate(4, 0.0);
+    let mut shooting = figure_eight_shooting(Shooting::new(rk4, 4000).unwrap(), &guess, e0);
     let orbit = shooting.solve(&guess, 6.33).unwrap();
     // Rotate the solution so that x₁ lies along the published x₁.
     let angle = published.q[1].atan2(published.q[0]) - orbit.initial.q[1].atan2(orbit.initial.q[0]);
@@ -208,45 +149,6 @@ fn published_figure_eight() {
     );
 }
 
-/// The circular restricted three-body problem in the rotating frame (unit distance, unit angular
-/// velocity, masses 1 − μ at (−μ, 0) and μ at (1 − μ, 0)):
-/// H = ½(p_x² + p_y²) + y p_x − x p_y − (1 − μ)/r₁ − μ/r₂ = −C/2 (C the Jacobi constant).
-#[derive(Debug, Clone, Copy)]
-struct Cr3bp {
-    mu: f64,
-}
-
-impl Hamiltonian for Cr3bp {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        let r1 = ((x + self.mu) * (x + self.mu) + y * y).sqrt();
-        let r2 = ((x - (1.0 - self.mu)) * (x - (1.0 - self.mu)) + y * y).sqrt();
-        (p[0] * p[0] + p[1] * p[1]) * 0.5 + y * p[0]
-            - x * p[1]
-            - r1.recip() * (1.0 - self.mu)
-            - r2.recip() * self.mu
-    }
-}
-
-/// L1 (by bisection of ∂Ω/∂x on the axis between the primaries) and c₂ = (1 − μ)/r₁³ + μ/r₂³ there.
-fn l1(mu: f64) -> (f64, f64) {
-    let dphi = |x: f64| x - (1.0 - mu) / (x + mu).powi(2) + mu / (x - 1.0 + mu).powi(2);
-    let (mut a, mut b) = (0.5, 1.0 - mu - 1e-3);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if dphi(a) * dphi(m) <= 0.0 {
-            b = m;
-        } else {
-            a = m;
-        }
-    }
-    let x = 0.5 * (a + b);
-    (x, (1.0 - mu) / (x + mu).powi(3) + mu / (1.0 - mu - x).powi(3))
-}
-
 /// Planar Lyapunov orbits about L1 of the Earth-Moon system (μ = 0.01215), amplitudes 0.001 to 0.005
 /// (380 to 1900 km). The linearisation
 /// x = x_L − A cos ωt, y = k A sin ωt (ω² = (2 − c₂ + sqrt(9c₂² − 8c₂))/2, k = (ω² + 1 + 2c₂)/(2ω),
@@ -262,8 +164,7 @@ fn l1(mu: f64) -> (f64, f64) {
 fn lyapunov_orbits_about_l1() {
     let mu = 0.01215;
     let (xl, c2) = l1(mu);
-    let omega = ((2.0 - c2 + (9.0 * c2 * c2 - 8.0 * c2).sqrt()) / 2.0).sqrt();
-    let k = (omega * omega + 1.0 + 2.0 * c2) / (2.0 * omega);
+    let (omega, k) = l1_linear(c2);
     let lambda_s = ((c2 - 2.0 + (9.0 * c2 * c2 - 8.0 * c2).sqrt()) / 2.0).sqrt();
     let t0 = 2.0 * PI / omega;
     let energy = Energy(Cr3bp { mu });
@@ -272,32 +173,7 @@ fn lyapunov_orbits_about_l1() {
     let mut before: Option<(f64, State<Momenta>, f64)> = None;
     let mut amplitude = 0.001;
     while amplitude < 0.006 {
-        // x = x_L − A, y = 0, ẋ = 0, ẏ = k A ω; p_x = ẋ − y, p_y = ẏ + x.
-        let x0 = xl - amplitude;
-        let linear = State::with_momenta(0.0, [x0, 0.0], [0.0, k * amplitude * omega + x0]);
-        let (guess, t_guess) = match (&last, &before) {
-            (None, _) => (linear, t0),
-            (Some((a, orbit, t)), None) => {
-                // Offsets from L1 (q = (x_L, 0), p = (0, x_L)) scaled by the amplitude ratio.
-                let r = amplitude / a;
-                let q = [xl + r * (orbit.q[0] - xl), r * orbit.q[1]];
-                let p = [r * orbit.v[0], xl + r * (orbit.v[1] - xl)];
-                (State::with_momenta(0.0, q, p), t0 + (t - t0) * r * r)
-            }
-            (Some((a1, o1, t1)), Some((a0, o0, t0_))) => {
-                // Secant through the last two orbits.
-                let s = (amplitude - a1) / (a1 - a0);
-                let q = [
-                    o1.q[0] + s * (o1.q[0] - o0.q[0]),
-                    o1.q[1] + s * (o1.q[1] - o0.q[1]),
-                ];
-                let p = [
-                    o1.v[0] + s * (o1.v[0] - o0.v[0]),
-                    o1.v[1] + s * (o1.v[1] - o0.v[1]),
-                ];
-                (State::with_momenta(0.0, q, p), t1 + s * (t1 - t0_))
-            }
-        };
+        let (guess, t_guess) = l1_guess((xl, omega, k, t0), amplitude, &last, &before);
         let e = energy.value(guess.q.as_slice(), guess.v.as_slice()).unwrap();
         let rk4 = Rk4::new(HamiltonEquations::new(Cr3bp { mu }));
         let mut shooting = Shooting::new(rk4, 4000)

@@ -1,7 +1,7 @@
 //! AD-derived accelerations against hand-written ones, side by side in one run, for the double pendulum,
 //! the heavy symmetric top (Euler angles) and pendulum chains of 10, 20 and 40 links.
 //!
-//! - `hand`: the hand-derived equations of motion of `tests/ad/systems.rs` (closed forms; Cramer's rule
+//! - `hand`: the hand-derived equations of motion of `noether_testkit::systems` (closed forms; Cramer's rule
 //!   for the double pendulum, the cyclic-coordinate closed form for the top, a stack Cholesky of the
 //!   hand-built mass matrix for the chain);
 //! - `ad`: `EulerLagrange::accelerations` (one Lagrange-jet evaluation and a stack LDLᵀ up to 10 dof;
@@ -27,10 +27,7 @@ use noether_core::{EulerLagrange, Lagrangian, Scalar};
 use std::hint::black_box;
 use std::time::Duration;
 
-#[allow(dead_code)]
-#[path = "../tests/ad/systems.rs"]
-mod systems;
-use systems::{Chain, DoublePendulum, HeavyTop};
+use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 
 struct AsField<L>(L);
 impl<L: Lagrangian> Field for AsField<L> {

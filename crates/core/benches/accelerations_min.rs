@@ -13,11 +13,8 @@
 #![allow(missing_docs)]
 
 use noether_core::{EulerLagrange, Lagrangian};
+use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 use std::hint::black_box;
-#[allow(dead_code)]
-#[path = "../tests/ad/systems.rs"]
-mod systems;
-use systems::{Chain, DoublePendulum, HeavyTop};
 
 /// Calls per round (and per callgrind run).
 const IT: usize = 10000;

@@ -14,9 +14,7 @@ use noether_core::prelude::*;
 use std::hint::black_box;
 use std::time::Duration;
 
-#[path = "common/kepler.rs"]
-mod kepler;
-use kepler::{start_state as start, Kepler, T_END};
+use noether_testkit::kepler::{start_state as start, Kepler, T_END};
 
 /// Runs `stepper` over 100 orbits: (error |q(200π) − q₀|, stats).
 fn run<S: Stepper<Partner = Velocities>>(stepper: S) -> (f64, noether_core::Stats) {

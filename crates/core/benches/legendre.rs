@@ -11,34 +11,11 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use noether_core::{HamiltonEquations, Hamiltonian, LegendreTransform, Scalar};
+use noether_core::{HamiltonEquations, LegendreTransform};
 use std::hint::black_box;
 use std::time::Duration;
 
-#[allow(dead_code)]
-#[path = "../tests/ad/systems.rs"]
-mod systems;
-use systems::DoublePendulum;
-
-/// Double pendulum by hand: H = ½ pᵀ M(q)⁻¹ p − (m1+m2) g l1 cos θ1 − m2 g l2 cos θ2 (the 2×2 inverse
-/// by its adjugate), as in the `ad` tests.
-struct DoublePendulumH(DoublePendulum);
-
-impl Hamiltonian for DoublePendulumH {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let s = &self.0;
-        let a11 = (s.m1 + s.m2) * s.l1 * s.l1;
-        let a22 = s.m2 * s.l2 * s.l2;
-        let a12 = (q[0] - q[1]).cos() * (s.m2 * s.l1 * s.l2);
-        let det = -a12 * a12 + a11 * a22;
-        (p[0] * p[0] * a22 - p[0] * p[1] * a12 * 2.0 + p[1] * p[1] * a11) / (det * 2.0)
-            - q[0].cos() * ((s.m1 + s.m2) * s.g * s.l1)
-            - q[1].cos() * (s.m2 * s.g * s.l2)
-    }
-}
+use noether_testkit::systems::{DoublePendulum, DoublePendulumH};
 
 fn bench(c: &mut Criterion) {
     let sys = DoublePendulum::default();

@@ -9,9 +9,7 @@
 use noether_core::prelude::*;
 use std::time::{Duration, Instant};
 
-#[path = "common/kepler.rs"]
-mod kepler;
-use kepler::{start, Kepler, E};
+use noether_testkit::kepler::{start, Kepler, E};
 
 /// (error, time, stats) of one method, the fastest of several repetitions.
 fn measure<S: Stepper>(make: impl Fn() -> S) -> Result<(f64, Duration, noether_core::Stats)> {

@@ -14,12 +14,8 @@ use noether_core::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
 
-#[path = "common/kepler.rs"]
-mod kepler;
-use kepler::{start, Kepler, KeplerRhs, T_END};
-#[path = "common/peer.rs"]
-mod peer;
-use peer::ode_solvers_end;
+use noether_testkit::kepler::{start, Kepler, T_END};
+use noether_testkit::peer::{ode_solvers_end, KeplerRhs};
 
 /// (error |q(T) − q₀|, steps accepted + rejected) of noether's DOP853.
 fn noether(tol: f64) -> Result<(f64, usize)> {

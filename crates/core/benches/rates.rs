@@ -28,9 +28,7 @@ fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-#[path = "common/kepler.rs"]
-mod kepler;
-use kepler::Kepler;
+use noether_testkit::kepler::Kepler;
 
 /// The same V without the hint.
 struct KeplerPlain;

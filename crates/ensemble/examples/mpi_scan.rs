@@ -15,35 +15,16 @@
 //! order, identical to a local run; it exits with failure otherwise. Each member's T/4 is also
 //! checked against the arithmetic-geometric mean closed form K(k) = π / (2 agm(1, √(1 − k²))).
 
-use noether_core::prelude::*;
 use noether_ensemble::mpi::traits::*;
 use noether_ensemble::rand::Rng;
 use noether_ensemble::{Ensemble, Histogram, Mean, Members, Sampler};
+use noether_testkit::pendulum;
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// Pendulum, L = ½ θ̇² + cos θ (g/l = 1).
-struct Pendulum;
-impl Lagrangian for Pendulum {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        v[0] * v[0] * 0.5 + q[0].cos()
-    }
-}
-
-/// T/4 from rest at amplitude `a`: the first upward crossing of θ = 0 from −a.
+/// T/4 from rest at amplitude `a`: the first upward crossing of θ = 0 from −a (DOP853 at 1e-12).
 fn quarter_period(a: f64) -> Result<f64, noether_core::Error> {
-    let el = EulerLagrange::new(Pendulum);
-    let sol = Driver::new(
-        Dop853::new(&el).tolerances(1e-12, 1e-12)?,
-        State::new(0.0, [-a], [0.0]),
-    )?
-    .save(Save::End)?
-    .event(Event::new("θ = 0", |s: &State| s.q[0]).rising().terminal())
-    .run_until(100.0)?;
-    Ok(sol.last().t)
+    pendulum::quarter_period(a, 1e-12, 100.0)
 }
 
 /// K(k) = π / (2 agm(1, √(1 − k²))) (the arithmetic-geometric mean converges quadratically).

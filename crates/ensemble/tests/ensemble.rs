@@ -8,30 +8,12 @@ use noether_ensemble::{
     member_rng, Axis, Counts, Ensemble, Error, Fold, Grid, Histogram, Map, Max, Mean, MemberError, Members,
     Moments, Reducer, Sampler, Wire,
 };
+use noether_testkit::pendulum;
 
-/// Pendulum, L = ½ θ̇² + cos θ (g/l = 1).
-struct Pendulum;
-impl Lagrangian for Pendulum {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        v[0] * v[0] * 0.5 + q[0].cos()
-    }
-}
-
-/// A quarter period of the pendulum released from rest at amplitude `a`: the time at which θ first
-/// crosses 0 upwards from −a (a terminal event of the driver).
+/// A quarter period of the pendulum released from rest at amplitude `a` (DOP853 at 1e-10, at most 20
+/// time units).
 fn quarter_period(a: f64) -> Result<f64, noether_core::Error> {
-    let el = EulerLagrange::new(Pendulum);
-    let sol = Driver::new(
-        Dop853::new(&el).tolerances(1e-10, 1e-10)?,
-        State::new(0.0, [-a], [0.0]),
-    )?
-    .save(Save::End)?
-    .event(Event::new("θ = 0", |s: &State| s.q[0]).rising().terminal())
-    .run_until(20.0)?;
-    Ok(sol.last().t)
+    pendulum::quarter_period(a, 1e-10, 20.0)
 }
 
 /// Runs `f` on a rayon pool of `threads` threads.

@@ -2,12 +2,10 @@
 //! Jacobi's elliptic functions and its period from K(k), the symmetric body's precession of ω, the
 //! Casimir |L|, the energy and the orthogonality of R over long runs, and the observed order.
 
-use crate::common;
-
-use common::FreeTop;
 use nalgebra::{UnitQuaternion, Vector3};
 use noether_core::{Driver, Momenta, State, Stepper};
 use noether_rigid::{Lgvi, RigidBody};
+use noether_testkit::closed_form::FreeTop;
 
 const I: [f64; 3] = [1.0, 2.0, 3.0];
 /// Ω(0) = (1, 0, 0.8): L² = 6.76 > 2EI₂ = 5.84, k² = 0.24.
@@ -24,7 +22,7 @@ fn free_start(body: &RigidBody<noether_rigid::Free>) -> State<Momenta> {
 /// Largest |Ω(t) − Ω_exact(t)| over n steps of size h.
 fn omega_error(h: f64, n: usize) -> f64 {
     let body = RigidBody::free(I[0], I[1], I[2]).unwrap();
-    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
+    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1).expect("L² > 2EI₂");
     let mut lgvi = Lgvi::new(body).unwrap();
     let mut s = free_start(&body);
     let mut worst: f64 = 0.0;
@@ -41,7 +39,7 @@ fn omega_error(h: f64, n: usize) -> f64 {
 /// (≈ 9.36), at h = 1e-3: the LGVI's global error is O(h²) (measured 2.46e-6; tolerance 3e-6).
 #[test]
 fn closed_form_free_asymmetric_top_omega() {
-    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
+    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1).expect("L² > 2EI₂");
     let n = (top.period() / 1e-3).round() as usize;
     let err = omega_error(1e-3, n);
     eprintln!("free top: max |Ω − Ω_exact| over one period = {err:e}");
@@ -54,7 +52,7 @@ fn closed_form_free_asymmetric_top_omega() {
 #[test]
 fn closed_form_free_asymmetric_top_period() {
     let body = RigidBody::free(I[0], I[1], I[2]).unwrap();
-    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
+    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1).expect("L² > 2EI₂");
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
     let mut run = Driver::new(Lgvi::new(body).unwrap(), free_start(&body))
         .unwrap()

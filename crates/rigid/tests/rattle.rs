@@ -2,18 +2,17 @@
 //! asymmetric top and against the LGVI: ω(t) by Jacobi's elliptic functions, |Π| and the spatial L,
 //! RᵀR = I, and the observed order 2.
 
-use crate::common;
-
-use common::FreeTop;
 use nalgebra::{UnitQuaternion, Vector3};
 use noether_core::{Momenta, State, Stepper};
 use noether_rigid::rattle::{body_momentum, matrix_state, rattle, rotation, RigidRattle};
 use noether_rigid::{Free, RigidBody};
+use noether_testkit::closed_form::FreeTop;
 
 /// Not free_body.rs's (1, 2, 3): that body is a lamina (I₃ = I₁ + I₂), too flat for matrix coordinates
 /// (J_d singular, see `bad_input_flat_body`).
 const I: [f64; 3] = [1.0, 2.0, 2.5];
-/// Ω(0) = (1, 0, 1.2): L² = 10 > 2EI₂ = 9.2, the case the closed form of tests/common covers.
+/// Ω(0) = (1, 0, 1.2): L² = 10 > 2EI₂ = 9.2, the case the closed form of
+/// `noether_testkit::closed_form::FreeTop` covers.
 const OMEGA0: (f64, f64) = (1.0, 1.2);
 
 fn start() -> (RigidRattle<Free>, State<Momenta>) {
@@ -33,7 +32,7 @@ fn start() -> (RigidRattle<Free>, State<Momenta>) {
 /// Largest |Ω(t) − Ω_exact(t)| over n steps of size h, with the largest drift of |Π|, of the spatial
 /// L = RΠ and of RᵀR − I.
 fn run(h: f64, n: usize) -> [f64; 4] {
-    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
+    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1).expect("L² > 2EI₂");
     let (mut stepper, mut s) = start();
     let (pi0, l0) = (
         body_momentum(&s).unwrap(),
@@ -59,7 +58,7 @@ fn run(h: f64, n: usize) -> [f64; 4] {
 /// RᵀR − I: 4.4e-16 (tolerance 1e-15).
 #[test]
 fn closed_form_rattle_free_asymmetric_top() {
-    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1);
+    let top = FreeTop::new(I, OMEGA0.0, OMEGA0.1).expect("L² > 2EI₂");
     let n = (top.period() / 1e-3).round() as usize;
     let [omega, casimir, spatial, ortho] = run(1e-3, n);
     eprintln!("RATTLE free top: ω {omega:e}, |Π| {casimir:e}, L {spatial:e}, RᵀR − I {ortho:e}");

@@ -4,21 +4,8 @@
 
 use noether_canonical::{ActionAngle, Error, Orbit, Separated, SeparatedActions};
 use noether_core::prelude::*;
+use noether_testkit::canonical::{kepler_orbits, KeplerSeparated, Oscillator};
 use std::f64::consts::PI;
-
-/// Oscillator H = p²/(2m) + m ω² q²/2.
-struct Oscillator {
-    m: f64,
-    w: f64,
-}
-impl Hamiltonian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        p[0] * p[0] * (0.5 / self.m) + q[0] * q[0] * (0.5 * self.m * self.w * self.w)
-    }
-}
 
 /// Pendulum H = p²/(2 m l²) − m g l cos q.
 #[derive(Clone, Copy)]
@@ -271,23 +258,6 @@ fn errors_are_typed() {
     .is_err());
 }
 
-/// Kepler per unit mass in polar coordinates, separated with α = (E, L):
-/// H_r = p_r²/2 + α₁²/(2r²) − μ/r = α₀ and H_φ = p_φ = α₁.
-struct KeplerPolar {
-    mu: f64,
-}
-impl Separated for KeplerPolar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn separated<D: Scalar>(&self, k: usize, alpha: &[D], q: D, p: D) -> D {
-        match k {
-            0 => p * p * 0.5 + alpha[1] * alpha[1] / (q * q * 2.0) - q.recip() * self.mu,
-            _ => p,
-        }
-    }
-}
-
 /// Two uncoupled oscillators H = Σ (pₖ² + ωₖ² qₖ²)/2, separated with αₖ the energy of each.
 struct TwoOscillators {
     w: [f64; 2],
@@ -306,17 +276,10 @@ fn closed_form_separated_kepler_actions_and_degenerate_frequencies() {
     // J_r = μ/sqrt(−2E) − L, J_φ = L; H = −μ²/(2(J_r + J_φ)²), so ω_r = ω_φ = μ²/(J_r + J_φ)³ =
     // 2π/T with T = 2π sqrt(a³/μ) (Kepler's third law: the frequencies are degenerate, orbits close).
     let mu = 1.3;
-    let sep = SeparatedActions::new(KeplerPolar { mu });
+    let sep = SeparatedActions::new(KeplerSeparated { mu });
     let mut worst: f64 = 0.0;
     for (e, l) in [(-0.5, 0.9), (-0.2, 0.4), (-0.6, 1.1)] {
-        let orbits = [
-            Orbit::Libration { q_inside: l * l / mu },
-            Orbit::Rotation {
-                q0: 0.0,
-                period: 2.0 * PI,
-                p_guess: l,
-            },
-        ];
+        let orbits = kepler_orbits(mu, l);
         let res = sep.actions(&[e, l], &orbits).unwrap();
         let w = res.frequencies(&[1.0, 0.0]).unwrap();
         let a = -mu / (2.0 * e);

@@ -3,79 +3,11 @@
 //! stepped by core's integrators.
 
 use crate::common::{Planar, Rng};
-use crate::transform::{Polar, Rotating, RotatingK};
-use noether_canonical::generating::{Generated, GeneratingFunction, Kind, Transformed};
+use noether_canonical::generating::{Generated, Transformed};
 use noether_canonical::{transform, Error};
 use noether_core::prelude::*;
+use noether_testkit::canonical::{ActionAngle, Oscillator, Polar, PolarF3, Rotating, RotatingF2, RotatingK};
 use std::f64::consts::PI;
-
-/// The oscillator H = p²/2m + ½ m ω² q².
-#[derive(Debug, Clone, Copy)]
-struct Oscillator {
-    m: f64,
-    w: f64,
-}
-impl Hamiltonian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        p[0] * p[0] * (0.5 / self.m) + q[0] * q[0] * (0.5 * self.m * self.w * self.w)
-    }
-}
-
-/// F1(q, Q) = ½ m ω q² cot Q: p = m ω q cot Q, P = ½ m ω q²/sin² Q, so q = sqrt(2P/mω) sin Q,
-/// p = sqrt(2mωP) cos Q and H = ωP (ch. 77, the oscillator's action-angle variables; P = E/ω).
-#[derive(Debug, Clone, Copy)]
-struct ActionAngle {
-    m: f64,
-    w: f64,
-}
-impl GeneratingFunction for ActionAngle {
-    fn kind(&self) -> Kind {
-        Kind::F1
-    }
-    fn dof(&self) -> usize {
-        1
-    }
-    fn generating<D: Scalar>(&self, _t: D, q: &[D], big_q: &[D]) -> D {
-        q[0] * q[0] * big_q[0].tan().recip() * (0.5 * self.m * self.w)
-    }
-}
-
-/// F3(p, Q) = −(p_x r cos θ + p_y r sin θ) with Q = (r, θ): q = −∂F/∂p = (r cos θ, r sin θ) and
-/// P = −∂F/∂Q = (p_x cos θ + p_y sin θ, r(p_y cos θ − p_x sin θ)): polar coordinates as a point
-/// transformation.
-struct PolarF3;
-impl GeneratingFunction for PolarF3 {
-    fn kind(&self) -> Kind {
-        Kind::F3
-    }
-    fn dof(&self) -> usize {
-        2
-    }
-    fn generating<D: Scalar>(&self, _t: D, p: &[D], big_q: &[D]) -> D {
-        let (s, c) = big_q[1].sin_cos();
-        -(p[0] * c + p[1] * s) * big_q[0]
-    }
-}
-
-/// F2(q, P, t) = P·R(−ωt) q: Q = R(−ωt) q, p = R(ωt) P; K = H + ∂F₂/∂t = H − ω L_z.
-struct RotatingF2 {
-    w: f64,
-}
-impl GeneratingFunction for RotatingF2 {
-    fn kind(&self) -> Kind {
-        Kind::F2
-    }
-    fn dof(&self) -> usize {
-        2
-    }
-    fn generating<D: Scalar>(&self, t: D, q: &[D], big_p: &[D]) -> D {
-        let (s, c) = (t * self.w).sin_cos();
-        big_p[0] * (c * q[0] + s * q[1]) + big_p[1] * (c * q[1] - s * q[0])
-    }
-}
 
 /// The oscillator to action-angle variables with F1 = ½ m ω q² cot Q, at 200 random points with
 /// Q ∈ (0.2, π − 0.2) ∪ (π + 0.2, 2π − 0.2) (F1 is degenerate at q = 0): forward by Newton against

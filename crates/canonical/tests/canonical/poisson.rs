@@ -3,61 +3,11 @@
 
 use crate::common::{Kepler3, Rng};
 use nalgebra::DMatrix;
-use noether_canonical::poisson::{self, BracketOf, PhaseFunction};
+use noether_canonical::poisson::{self, BracketOf};
 use noether_canonical::{bracket, constant_of_motion, time_derivative, Error};
 use noether_core::{Hamiltonian, Scalar};
+use noether_testkit::canonical::{AngularMomentum, Coordinates, RungeLenz};
 use proptest::prelude::*;
-
-/// z = (q, p) itself as a phase function (2n outputs).
-struct Coordinates(usize);
-impl PhaseFunction for Coordinates {
-    fn phase_dof(&self) -> usize {
-        self.0
-    }
-    fn outputs(&self) -> usize {
-        2 * self.0
-    }
-    fn values<D: Scalar>(&self, _t: D, q: &[D], p: &[D], out: &mut [D]) {
-        out[..self.0].copy_from_slice(q);
-        out[self.0..].copy_from_slice(p);
-    }
-}
-
-/// L = q × p (three outputs).
-struct AngularMomentum;
-impl PhaseFunction for AngularMomentum {
-    fn phase_dof(&self) -> usize {
-        3
-    }
-    fn outputs(&self) -> usize {
-        3
-    }
-    fn values<D: Scalar>(&self, _t: D, q: &[D], p: &[D], out: &mut [D]) {
-        out[0] = q[1] * p[2] - q[2] * p[1];
-        out[1] = q[2] * p[0] - q[0] * p[2];
-        out[2] = q[0] * p[1] - q[1] * p[0];
-    }
-}
-
-/// The Runge-Lenz vector A = p × L − m k q/|q| of [`Kepler3`].
-struct RungeLenz(Kepler3);
-impl PhaseFunction for RungeLenz {
-    fn phase_dof(&self) -> usize {
-        3
-    }
-    fn outputs(&self) -> usize {
-        3
-    }
-    fn values<D: Scalar>(&self, t: D, q: &[D], p: &[D], out: &mut [D]) {
-        let mut l = [D::zero(); 3];
-        AngularMomentum.values(t, q, p, &mut l);
-        let r = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
-        let c = r.recip() * (self.0.m * self.0.k);
-        out[0] = p[1] * l[2] - p[2] * l[1] - q[0] * c;
-        out[1] = p[2] * l[0] - p[0] * l[2] - q[1] * c;
-        out[2] = p[0] * l[1] - p[1] * l[0] - q[2] * c;
-    }
-}
 
 /// The symplectic matrix Ω of n degrees of freedom.
 fn omega(n: usize) -> DMatrix<f64> {

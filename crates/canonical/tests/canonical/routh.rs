@@ -3,32 +3,19 @@
 
 use noether_canonical::{Error, Routh};
 use noether_core::prelude::*;
+use noether_testkit::top::{top_samples, KeplerPolar, GALLERY_TOP};
 use std::f64::consts::PI;
-
-/// Kepler per unit mass in polar coordinates, L = (ṙ² + r² φ̇²)/2 + μ/r.
-#[derive(Clone, Copy)]
-struct Kepler {
-    mu: f64,
-}
-impl Lagrangian for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + q[0] * q[0] * v[1] * v[1]) * 0.5 + q[0].recip() * self.mu
-    }
-}
 
 #[test]
 fn closed_form_kepler_reduced_to_r() {
     let (mu, l) = (1.0, 0.8);
-    let routh = Routh::new(Kepler { mu }, &[1], &[l]).unwrap();
+    let routh = Routh::new(KeplerPolar { mu }, &[1], &[l]).unwrap();
     // φ is cyclic (checked by AD at sample points), r is not.
     let points: Vec<_> = (0..5)
         .map(|i| (0.0, vec![0.5 + 0.3 * i as f64, 0.7 * i as f64], vec![0.1, 0.4]))
         .collect();
     assert_eq!(routh.check_cyclic(&points, 0.0).unwrap(), 0.0);
-    let wrong = Routh::new(Kepler { mu }, &[0], &[l]).unwrap();
+    let wrong = Routh::new(KeplerPolar { mu }, &[0], &[l]).unwrap();
     assert!(matches!(
         wrong.check_cyclic(&points, 1e-12),
         Err(Error::NotCyclic { index: 0, .. })
@@ -86,33 +73,9 @@ fn closed_form_kepler_reduced_to_r() {
     assert!(err_phi < 5e-13, "{err_phi:e}");
 }
 
-/// The heavy symmetric top in Euler angles (θ, φ, ψ):
-/// L = ½ I₁ (θ̇² + φ̇² sin²θ) + ½ I₃ (ψ̇ + φ̇ cos θ)² − M g ℓ cos θ.
-#[derive(Clone, Copy)]
-struct HeavyTop {
-    i1: f64,
-    i3: f64,
-    mgl: f64,
-}
-impl Lagrangian for HeavyTop {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let (th, dth, dphi, dpsi) = (q[0], v[0], v[1], v[2]);
-        let (s, c) = (th.sin(), th.cos());
-        let w3 = dpsi + dphi * c;
-        (dth * dth + dphi * dphi * s * s) * (0.5 * self.i1) + w3 * w3 * (0.5 * self.i3) - c * self.mgl
-    }
-}
-
 #[test]
 fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
-    let top = HeavyTop {
-        i1: 1.0,
-        i3: 0.5,
-        mgl: 1.0,
-    };
+    let top = GALLERY_TOP;
     let (th0, dphi0, dpsi0) = (0.8, 0.5, 5.0);
     let full = EulerLagrange::new(top);
     let mut p = [0.0; 3];
@@ -120,15 +83,7 @@ fn regress_heavy_top_reduced_to_theta_matches_the_full_model() {
         .unwrap();
     let (p_phi, p_psi) = (p[1], p[2]);
     let routh = Routh::new(top, &[1, 2], &[p_phi, p_psi]).unwrap();
-    let samples: Vec<_> = (0..4)
-        .map(|i| {
-            (
-                0.0,
-                vec![0.3 + 0.5 * i as f64, 1.0 * i as f64, -2.0 * i as f64],
-                vec![0.2, 0.5, 5.0],
-            )
-        })
-        .collect();
+    let samples = top_samples();
     assert_eq!(routh.check_cyclic(&samples, 0.0).unwrap(), 0.0);
     // The turning points from the closed form: the roots of the cubic in u = cos θ,
     // f(u) = (1 − u²)(2E′ − 2Mgℓu)/I₁ − ((p_φ − p_ψ u)/I₁)², E′ = E − p_ψ²/(2I₃).

@@ -3,58 +3,8 @@
 
 use crate::common::{Planar, Rng};
 use noether_canonical::transform::{self, canonicity, invert, new_hamiltonian_defect, CanonicalMap};
-use noether_core::{Hamiltonian, Scalar};
-
-/// Polar coordinates (r, θ) with their conjugate momenta p_r = (x p_x + y p_y)/r, p_θ = x p_y − y p_x:
-/// the point transformation extended to momenta (p = (∂Q/∂q)ᵀ P).
-pub struct Polar;
-impl CanonicalMap for Polar {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn map<D: Scalar>(&self, _t: D, q: &[D], p: &[D], nq: &mut [D], np: &mut [D]) {
-        let r = (q[0] * q[0] + q[1] * q[1]).sqrt();
-        nq[0] = r;
-        nq[1] = q[1].atan2(q[0]);
-        np[0] = (q[0] * p[0] + q[1] * p[1]) / r;
-        np[1] = q[0] * p[1] - q[1] * p[0];
-    }
-}
-
-/// Coordinates in a frame rotating at angular velocity ω: Q = R(−ωt) q, P = R(−ωt) p.
-pub struct Rotating {
-    /// Angular velocity of the frame.
-    pub w: f64,
-}
-impl CanonicalMap for Rotating {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn map<D: Scalar>(&self, t: D, q: &[D], p: &[D], nq: &mut [D], np: &mut [D]) {
-        let (s, c) = (t * self.w).sin_cos();
-        nq[0] = c * q[0] + s * q[1];
-        nq[1] = c * q[1] - s * q[0];
-        np[0] = c * p[0] + s * p[1];
-        np[1] = c * p[1] - s * p[0];
-    }
-}
-
-/// K = H − ω L_z of a rotationally invariant H in the rotating frame (closed form: K = H + ∂F₂/∂t
-/// with F₂ = P·R(−ωt) q, ∂F₂/∂t = ω(P₁Q₂ − P₂Q₁)).
-pub struct RotatingK {
-    /// The Hamiltonian of the inertial frame.
-    pub h: Planar,
-    /// Angular velocity of the frame.
-    pub w: f64,
-}
-impl Hamiltonian for RotatingK {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, t: D, q: &[D], p: &[D]) -> D {
-        self.h.hamiltonian(t, q, p) - (q[0] * p[1] - q[1] * p[0]) * self.w
-    }
-}
+use noether_core::Scalar;
+use noether_testkit::canonical::{Polar, Rotating, RotatingK};
 
 /// Polar coordinates are canonical: ‖JᵀΩJ − Ω‖ and ‖{Z, Z} − Ω‖ at 200 random points with r ∈
 /// [0.3, 2.8], |p| ≲ 2.8. Measured worst 1.8e-15 (Jacobian entries of size up to |p|/r ~ 10, their

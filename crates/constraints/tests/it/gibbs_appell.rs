@@ -5,137 +5,7 @@
 use nalgebra::{Matrix3, Vector3};
 use noether_constraints::prelude::*;
 
-/// Quaternion (w, x, y, z) product a ⊗ b.
-fn qmul<D: Scalar>(a: &[D], b: &[D]) -> [D; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// R(q) ρ for a unit quaternion q (body → space).
-fn rotate<D: Scalar>(q: &[D], p: [f64; 3]) -> [D; 3] {
-    let zero = D::from(0.0);
-    let r = qmul(
-        &qmul(q, &[zero, D::from(p[0]), D::from(p[1]), D::from(p[2])]),
-        &[q[0], -q[1], -q[2], -q[3]],
-    );
-    [r[1], r[2], r[3]]
-}
-
-/// Body-frame angular velocity ω = 2 vec(q̄ ⊗ q̇)/|q|² (the division keeps ω = Rᵀω_space exact when an
-/// integrator lets |q| drift from 1).
-fn body_omega<D: Scalar>(q: &[D], qdot: &[D]) -> [D; 3] {
-    let r = qmul(&[q[0], -q[1], -q[2], -q[3]], qdot);
-    let n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-    [r[1] * 2.0 / n2, r[2] * 2.0 / n2, r[3] * 2.0 / n2]
-}
-
-/// q̇ = ½ q ⊗ (0, ω_body).
-fn quat_rate<D: Scalar>(q: &[D], omega: &[D], out: &mut [D]) {
-    let r = qmul(q, &[D::from(0.0), omega[0], omega[1], omega[2]]);
-    for i in 0..4 {
-        out[i] = r[i] * 0.5;
-    }
-}
-
-const RHO: [[f64; 3]; 4] = [
-    [0.3, 0.1, 0.5],
-    [-0.2, 0.4, 0.6],
-    [0.1, -0.5, 0.4],
-    [0.05, 0.2, 0.9],
-];
-const MASS: [f64; 4] = [1.0, 2.0, 1.5, 0.7];
-const G: f64 = 9.81;
-
-/// A rigid body of four particles about a fixed point (the origin), in gravity: q the unit quaternion,
-/// u = ω in body axes.
-struct ParticleTop;
-
-impl GibbsAppell for ParticleTop {
-    fn dof(&self) -> usize {
-        4
-    }
-    fn quasi(&self) -> usize {
-        3
-    }
-    fn velocities<D: Scalar>(&self, _t: D, q: &[D], u: &[D], qdot: &mut [D]) {
-        quat_rate(q, u, qdot)
-    }
-    fn particles(&self) -> usize {
-        4
-    }
-    fn mass(&self, i: usize) -> f64 {
-        MASS[i]
-    }
-    fn positions<D: Scalar>(&self, _t: D, q: &[D], r: &mut [D]) {
-        for (i, rho) in RHO.iter().enumerate() {
-            r[3 * i..3 * i + 3].copy_from_slice(&rotate(q, *rho));
-        }
-    }
-    fn potential<D: Scalar>(&self, _t: D, q: &[D]) -> D {
-        let mut v = D::from(0.0);
-        for (rho, m) in RHO.iter().zip(MASS) {
-            v += rotate(q, *rho)[2] * (m * G);
-        }
-        v
-    }
-}
-
-/// Mass, centre of mass (body axes) and inertia tensors about the fixed point and about the centre.
-fn inertia() -> (f64, Vector3<f64>, Matrix3<f64>, Matrix3<f64>) {
-    let tensor = |m: f64, p: Vector3<f64>| (Matrix3::identity() * p.norm_squared() - p * p.transpose()) * m;
-    let mass: f64 = MASS.iter().sum();
-    let mut c = Vector3::zeros();
-    let mut i_o = Matrix3::zeros();
-    for (rho, m) in RHO.iter().zip(MASS) {
-        let p = Vector3::from(*rho);
-        c += p * (m / mass);
-        i_o += tensor(m, p);
-    }
-    (mass, c, i_o, i_o - tensor(mass, c))
-}
-
-/// The same body as one rigid part: centre R c, inertia about the centre, ω from (q, q̇).
-struct BodyTop {
-    mass: f64,
-    c: [f64; 3],
-    i_c: Matrix3<f64>,
-}
-
-impl GibbsAppell for BodyTop {
-    fn dof(&self) -> usize {
-        4
-    }
-    fn quasi(&self) -> usize {
-        3
-    }
-    fn velocities<D: Scalar>(&self, _t: D, q: &[D], u: &[D], qdot: &mut [D]) {
-        quat_rate(q, u, qdot)
-    }
-    fn bodies(&self) -> usize {
-        1
-    }
-    fn body(&self, _b: usize) -> RigidPart {
-        RigidPart::new(self.mass, self.i_c)
-    }
-    fn centres<D: Scalar>(&self, _t: D, q: &[D], c: &mut [D]) {
-        c.copy_from_slice(&rotate(q, self.c));
-    }
-    fn angular_velocities<D: Scalar>(&self, _t: D, q: &[D], qdot: &[D], omega: &mut [D]) {
-        omega.copy_from_slice(&body_omega(q, qdot));
-    }
-    fn potential<D: Scalar>(&self, _t: D, q: &[D]) -> D {
-        rotate(q, self.c)[2] * (self.mass * G)
-    }
-}
-
-fn unit(q: [f64; 4]) -> [f64; 4] {
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    q.map(|x| x / n)
-}
+use noether_testkit::gibbs_appell::*;
 
 const STATES: [([f64; 4], [f64; 3]); 3] = [
     ([1.0, 0.0, 0.0, 0.0], [0.5, -1.0, 3.0]),
@@ -159,21 +29,11 @@ fn closed_form_euler_equations_from_the_gibbs_function() -> Result<()> {
     let mut worst = (0.0_f64, 0.0_f64);
     for (q, w) in STATES {
         let q = unit(q);
-        let omega = Vector3::from(w);
-        // Gravity in body axes: Rᵀ ẑ is the third row of R, read off by rotating with q̄.
-        let z_body = rotate(&[q[0], -q[1], -q[2], -q[3]], [0.0, 0.0, 1.0]);
-        let z_body = Vector3::from(z_body);
-        let torque = RHO.iter().zip(MASS).fold(Vector3::zeros(), |n, (rho, m)| {
-            n + Vector3::from(*rho).cross(&(z_body * (-m * G)))
-        });
-        let euler = i_o
-            .lu()
-            .solve(&(torque - omega.cross(&(i_o * omega))))
-            .ok_or(Error::Core(noether_core::Error::InvalidParameter {
-                name: "I",
-                value: 0.0,
-                reason: "singular",
-            }))?;
+        let euler = euler_rates(&i_o, &q, w).ok_or(Error::Core(noether_core::Error::InvalidParameter {
+            name: "I",
+            value: 0.0,
+            reason: "singular",
+        }))?;
         let (mut a, mut b) = ([0.0; 3], [0.0; 3]);
         particles.accelerations(0.0, &q, &w, &mut a)?;
         body.accelerations(0.0, &q, &w, &mut b)?;
@@ -216,12 +76,8 @@ fn conserves_gauss_principle_of_least_constraint() -> Result<()> {
 /// (relative) with ω normalized by |q|²; 5e-14.
 #[test]
 fn conserves_energy_and_casimir_of_the_free_body() -> Result<()> {
-    let (mass, _, _, i_c) = inertia();
-    let sys = GibbsAppellEquations::new(BodyTop {
-        mass,
-        c: [0.0; 3],
-        i_c,
-    })?;
+    let (_, _, _, i_c) = inertia();
+    let sys = GibbsAppellEquations::new(free_body())?;
     let w0 = [0.5, -1.0, 3.0];
     let start = sys.state(0.0, &unit([0.8, 0.3, -0.4, 0.2]), &w0)?;
     let l = |w: &[f64]| (i_c * Vector3::from_column_slice(&w[..3])).norm();
@@ -253,78 +109,6 @@ fn conserves_energy_and_casimir_of_the_free_body() -> Result<()> {
     Ok(())
 }
 
-/// A vertical disk (radius R, mass m) rolling without slipping on a plane tilted so that the potential
-/// is V = m g' x (g' = g sin β); q = (x, y, θ, φ) (contact point, rolling angle, heading).
-const R: f64 = 0.3;
-const M: f64 = 2.0;
-const G_TILT: f64 = 9.81 * 0.2;
-
-struct DiskL;
-impl Lagrangian for DiskL {
-    fn dof(&self) -> usize {
-        4
-    }
-    /// L = ½ m (ẋ² + ẏ²) + ½ I θ̇² + ½ J φ̇² − m g' x, I = ½ m R², J = ¼ m R².
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1]) * (0.5 * M)
-            + v[2] * v[2] * (0.25 * M * R * R)
-            + v[3] * v[3] * (0.125 * M * R * R)
-            - q[0] * (M * G_TILT)
-    }
-}
-
-struct Rolling;
-impl Nonholonomic for Rolling {
-    fn dof(&self) -> usize {
-        4
-    }
-    fn count(&self) -> usize {
-        2
-    }
-    fn constraints<D: Scalar>(&self, _t: D, q: &[D], v: &[D], out: &mut [D]) {
-        out[0] = v[0] - v[2] * q[3].cos() * R;
-        out[1] = v[1] - v[2] * q[3].sin() * R;
-    }
-}
-
-/// The same disk with u = (θ̇, φ̇): q̇ = (R θ̇ cos φ, R θ̇ sin φ, θ̇, φ̇), one rigid part with centre
-/// (x, y, R), body axes after R_z(φ) R_y(θ) (axle along body y), ω = (−φ̇ sin θ, θ̇, φ̇ cos θ),
-/// I = diag(J, I, J).
-struct DiskGA;
-impl GibbsAppell for DiskGA {
-    fn dof(&self) -> usize {
-        4
-    }
-    fn quasi(&self) -> usize {
-        2
-    }
-    fn velocities<D: Scalar>(&self, _t: D, q: &[D], u: &[D], qdot: &mut [D]) {
-        qdot[0] = u[0] * q[3].cos() * R;
-        qdot[1] = u[0] * q[3].sin() * R;
-        qdot[2] = u[0];
-        qdot[3] = u[1];
-    }
-    fn bodies(&self) -> usize {
-        1
-    }
-    fn body(&self, _b: usize) -> RigidPart {
-        RigidPart::principal(M, [0.25 * M * R * R, 0.5 * M * R * R, 0.25 * M * R * R])
-    }
-    fn centres<D: Scalar>(&self, _t: D, q: &[D], c: &mut [D]) {
-        c[0] = q[0];
-        c[1] = q[1];
-        c[2] = D::from(R);
-    }
-    fn angular_velocities<D: Scalar>(&self, _t: D, q: &[D], v: &[D], omega: &mut [D]) {
-        omega[0] = -v[3] * q[2].sin();
-        omega[1] = v[2];
-        omega[2] = v[3] * q[2].cos();
-    }
-    fn potential<D: Scalar>(&self, _t: D, q: &[D]) -> D {
-        q[0] * (M * G_TILT)
-    }
-}
-
 /// Pointwise, the Gibbs-Appell u̇ = (θ̈, φ̈) and q̈ = W u̇ + Ẇ u equal the multiplier form's q̈
 /// (Lagrange-d'Alembert, 4 accelerations and 2 multipliers) to rounding (measured 4.9e-16 relative:
 /// 4e-15). Along a run (RK4, h = 1e-3, 10 s) both follow the closed form
@@ -333,26 +117,13 @@ impl GibbsAppell for DiskGA {
 /// end differ by 1.9e-14 (rounding): 1e-13.
 #[test]
 fn closed_form_rolling_disk_agrees_with_the_multiplier_form() -> Result<()> {
-    let mult = Constrained::nonholonomic(DiskL, Rolling)?;
-    let ga = GibbsAppellEquations::new(DiskGA)?;
     let mut worst = 0.0_f64;
     for (q, u) in [
         ([0.1_f64, -0.4, 0.3, 0.9], [6.0_f64, 0.8]),
         ([1.0, 2.0, -2.0, 2.5], [-3.0, 1.7]),
         ([0.0, 0.0, 0.0, -1.2], [0.5, -4.0]),
     ] {
-        let qdot = [R * u[0] * q[3].cos(), R * u[0] * q[3].sin(), u[0], u[1]];
-        let (mut dq, mut qdd) = ([0.0; 4], [0.0; 4]);
-        Dynamics::rates(&mult, 0.0, &q, &qdot, &mut dq, &mut qdd)?;
-        let mut ud = [0.0; 2];
-        ga.accelerations(0.0, &q, &u, &mut ud)?;
-        let (s, c) = q[3].sin_cos();
-        let from_ga = [
-            R * (ud[0] * c - u[0] * u[1] * s),
-            R * (ud[0] * s + u[0] * u[1] * c),
-            ud[0],
-            ud[1],
-        ];
+        let (qdd, from_ga) = disk_both_ways(&q, &u)?;
         let scale = qdd.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         for (a, b) in qdd.iter().zip(from_ga) {
             worst = worst.max((a - b).abs() / scale);
@@ -362,15 +133,7 @@ fn closed_form_rolling_disk_agrees_with_the_multiplier_form() -> Result<()> {
     assert!(worst < 4e-15, "{worst:e}");
 
     let (th0, ph0, phd) = (6.0, 0.4, 0.8);
-    let closed = move |t: f64| th0 - 2.0 * G_TILT * ((ph0 + phd * t).sin() - ph0.sin()) / (3.0 * R * phd);
-    let q0 = [1.0, -0.5, 0.0, ph0];
-    let ga_sol = Driver::with_step(Rk4::new(&ga), ga.state(0.0, &q0, &[th0, phd])?, 1e-3)?
-        .observe("err", move |s: &State<QuasiVelocities>| s.v[0] - closed(s.t))
-        .run_until(10.0)?;
-    let start = State::new(0.0, q0, [R * th0 * ph0.cos(), R * th0 * ph0.sin(), th0, phd]);
-    let m_sol = Driver::with_step(Projected::new(Rk4::new(&mult), mult.constraints()), start, 1e-3)?
-        .observe("err", move |s: &State| s.v[2] - closed(s.t))
-        .run_until(10.0)?;
+    let (ga_sol, m_sol) = disk_runs(th0, ph0, phd)?;
     let max = |v: noether_core::Result<Vec<f64>>| {
         v.map(|v| v.iter().fold(0.0_f64, |m, x| m.max(x.abs())))
             .unwrap_or(f64::NAN)
@@ -383,46 +146,6 @@ fn closed_form_rolling_disk_agrees_with_the_multiplier_form() -> Result<()> {
     Ok(())
 }
 
-/// A uniform sphere (radius a, I = (2/5) m a²) rolling without slipping on a table turning at Ω about
-/// the vertical z axis through the origin. q = (x, y, quaternion), u = ω in space axes;
-/// no slip at the contact: ṙ = Ω ẑ × r + a ω × ẑ.
-struct Turntable {
-    a: f64,
-    omega: f64,
-}
-
-impl GibbsAppell for Turntable {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn quasi(&self) -> usize {
-        3
-    }
-    fn velocities<D: Scalar>(&self, _t: D, q: &[D], u: &[D], qdot: &mut [D]) {
-        qdot[0] = u[1] * self.a - q[1] * self.omega;
-        qdot[1] = -u[0] * self.a + q[0] * self.omega;
-        // q̇ = ½ (0, ω_space) ⊗ q.
-        let r = qmul(&[D::from(0.0), u[0], u[1], u[2]], &q[2..6]);
-        for i in 0..4 {
-            qdot[2 + i] = r[i] * 0.5;
-        }
-    }
-    fn bodies(&self) -> usize {
-        1
-    }
-    fn body(&self, _b: usize) -> RigidPart {
-        RigidPart::principal(1.0, [0.4 * self.a * self.a; 3])
-    }
-    fn centres<D: Scalar>(&self, _t: D, q: &[D], c: &mut [D]) {
-        c[0] = q[0];
-        c[1] = q[1];
-        c[2] = D::from(self.a);
-    }
-    fn angular_velocities<D: Scalar>(&self, _t: D, q: &[D], qdot: &[D], omega: &mut [D]) {
-        omega.copy_from_slice(&body_omega(&q[2..6], &qdot[2..6]));
-    }
-}
-
 /// The turntable orbit. With friction F at the contact, m v̇ = F and I ω̇ = (−a ẑ) × F; differentiating
 /// the no-slip condition v = Ω ẑ × r + a ω × ẑ gives v̇ = Ω ẑ × v − (m a²/I) v̇, so
 /// v̇ = (2/7) Ω ẑ × v: the velocity turns at ν = 2Ω/7 and the centre runs on a circle,
@@ -433,25 +156,8 @@ impl GibbsAppell for Turntable {
 #[test]
 fn closed_form_sphere_on_a_turntable() -> Result<()> {
     let (a, big_omega) = (0.1, 2.0);
-    let sys = GibbsAppellEquations::new(Turntable { a, omega: big_omega })?;
     let (r0, w0) = ([0.5, 0.2], [1.0, -3.0, 4.0]);
-    let v0 = [a * w0[1] - big_omega * r0[1], -a * w0[0] + big_omega * r0[0]];
-    let nu = 2.0 * big_omega / 7.0;
-    let exact = move |t: f64| {
-        let (s, c) = (nu * t).sin_cos();
-        [
-            r0[0] + (s * v0[0] - (1.0 - c) * v0[1]) / nu,
-            r0[1] + (s * v0[1] + (1.0 - c) * v0[0]) / nu,
-        ]
-    };
-    let start = sys.state(0.0, &[r0[0], r0[1], 1.0, 0.0, 0.0, 0.0], &w0)?;
-    let sol = Driver::with_step(Rk4::new(&sys), start, 2e-3)?
-        .observe("err", move |s: &State<QuasiVelocities>| {
-            let e = exact(s.t);
-            (s.q[0] - e[0]).hypot(s.q[1] - e[1])
-        })
-        .observe("wz", move |s: &State<QuasiVelocities>| s.v[2] - w0[2])
-        .run_until(2.0 * 2.0 * std::f64::consts::PI / nu)?;
+    let sol = turntable_run(a, big_omega, r0, w0, 2e-3)?;
     let max = |v: noether_core::Result<Vec<f64>>| {
         v.map(|v| v.iter().fold(0.0_f64, |m, x| m.max(x.abs())))
             .unwrap_or(f64::NAN)

@@ -10,7 +10,7 @@
 //! scalar) is off by O(1).
 
 use super::hamilton::ChargeH;
-use super::systems::{ChargeInField, DoublePendulum, HeavyTop};
+use super::systems::{ChargeInField, DoublePendulum, DoublePendulumH, HeavyTop};
 use super::{charge_state, draw, for_states, Sample, TOL};
 use noether_core::integrators::{Dop853, Gauss};
 use noether_core::{
@@ -62,27 +62,6 @@ fn compare<L: Lagrangian, H: Hamiltonian>(
 }
 
 // ---------------------------------------------------------------------------------------------------
-/// Double pendulum by hand: H = ½ pᵀ M(q)⁻¹ p − (m1+m2) g l1 cos θ1 − m2 g l2 cos θ2, with
-/// M = [[a11, a12 c], [a12 c, a22]] (`DoublePendulum::hand_mass`), M⁻¹ by the 2×2 adjugate.
-#[derive(Debug, Clone, Copy)]
-struct DoublePendulumH(DoublePendulum);
-
-impl Hamiltonian for DoublePendulumH {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let s = &self.0;
-        let a11 = (s.m1 + s.m2) * s.l1 * s.l1;
-        let a22 = s.m2 * s.l2 * s.l2;
-        let a12 = (q[0] - q[1]).cos() * (s.m2 * s.l1 * s.l2);
-        let det = -a12 * a12 + a11 * a22;
-        (p[0] * p[0] * a22 - p[0] * p[1] * a12 * 2.0 + p[1] * p[1] * a11) / (det * 2.0)
-            - q[0].cos() * ((s.m1 + s.m2) * s.g * s.l1)
-            - q[1].cos() * (s.m2 * s.g * s.l2)
-    }
-}
-
 /// A double-pendulum state: angles in [−π, π), momenta in [−5, 5).
 fn pendulum_state(r: &mut StdRng) -> Sample<2> {
     (0.0, draw(r, -PI, PI), draw(r, -5.0, 5.0))

@@ -13,9 +13,9 @@ mod hamilton;
 mod legendre;
 mod legendre_transform;
 mod momenta;
-#[allow(dead_code)]
-mod systems;
 mod taped;
+
+use noether_testkit::systems;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

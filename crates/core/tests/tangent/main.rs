@@ -13,21 +13,7 @@ mod symplectic;
 use nalgebra::DMatrix;
 use noether_core::prelude::*;
 use noether_core::tangent::central_difference;
-
-/// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3: nonlinear, non-separable in no way
-/// that matters here, with third derivatives of unit size.
-#[derive(Debug, Clone, Copy)]
-pub struct HenonHeiles;
-
-impl Hamiltonian for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
-            - q[1].powi(3) / 3.0
-    }
-}
+pub use noether_testkit::henon_heiles::HenonHeiles;
 
 /// Hénon-Heiles as a separable H = T(p) + V(q), for the split methods.
 #[derive(Debug, Clone, Copy)]

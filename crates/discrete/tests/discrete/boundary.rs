@@ -3,25 +3,13 @@
 //! and the figure-eight choreography of three bodies.
 
 use nalgebra::{DVector, Vector3};
-use noether_core::{Lagrangian, Scalar};
-use noether_discrete::boundary::{straight_line, NotMinimum, PathConstraint};
+use noether_discrete::boundary::{straight_line, NotMinimum};
 use noether_discrete::{BoundaryValue, Midpoint, Trapezoidal};
+use noether_testkit::boundary::{
+    figure_eight_family, oscillator_path, FreeParticle, Oscillator, Projectile, Sphere,
+};
+use noether_testkit::three_body::{ThreeBodyLagrangian, EIGHT_T, EIGHT_V3, EIGHT_X1};
 use std::f64::consts::PI;
-
-/// Projectile L = ½m|q̇|² − m g y in the plane.
-struct Projectile {
-    m: f64,
-    g: f64,
-}
-
-impl Lagrangian for Projectile {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1]) * (0.5 * self.m) - q[1] * (self.m * self.g)
-    }
-}
 
 /// The projectile from a at t = 0 through the target b at t = T. Closed form (x linear, y a parabola):
 /// q(t) = a + (b − a) t/T + ½ g t (T − t) ŷ, p(0) = m q̇(0), p(T) = m q̇(T).
@@ -92,26 +80,6 @@ fn closed_form_projectile_through_a_target_is_exact_at_the_nodes() {
         assert!(serr < 1e-12, "{name}: {serr:e}");
         assert_eq!(path.morse_index, Some(0));
     }
-}
-
-/// Harmonic oscillator L = ½ m (q̇² − ω² q²).
-struct Oscillator {
-    m: f64,
-    w: f64,
-}
-
-impl Lagrangian for Oscillator {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] - q[0] * q[0] * (self.w * self.w)) * (0.5 * self.m)
-    }
-}
-
-/// q(t) = (a sin ω(T − t) + b sin ω t)/sin ωT with frequency ω (continuous: ω; discrete: ω_d).
-fn oscillator_path(w: f64, a: f64, b: f64, t_end: f64, t: f64) -> f64 {
-    (a * (w * (t_end - t)).sin() + b * (w * t).sin()) / (w * t_end).sin()
 }
 
 /// Midpoint discrete frequency: the DEL (q_{k+1} − 2q_k + q_{k−1})/h² + ω²(q_{k+1} + 2q_k + q_{k−1})/4
@@ -264,33 +232,6 @@ fn minimize_finds_the_minimum_and_refuses_a_saddle() {
     );
 }
 
-/// A free particle L = ½|q̇|² in space.
-struct FreeParticle;
-
-impl Lagrangian for FreeParticle {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * 0.5
-    }
-}
-
-/// The unit sphere |q|² − 1 = 0.
-struct Sphere;
-
-impl PathConstraint for Sphere {
-    fn dof(&self) -> usize {
-        3
-    }
-    fn count(&self) -> usize {
-        1
-    }
-    fn constraints<D: Scalar>(&self, q: &[D], out: &mut [D]) {
-        out[0] = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] - 1.0;
-    }
-}
-
 /// Geodesics of the unit sphere as the discrete motion of a free particle constrained to it (midpoint
 /// L_d, multipliers at the nodes). Closed form: the nodes equally spaced on the great circle through
 /// a and b, q_k = cos(kθ/N) a + sin(kθ/N) e (θ = ∠(a, b), e the unit vector of the plane ⟂ a): then
@@ -356,69 +297,6 @@ fn closed_form_sphere_geodesic_lies_on_the_great_circle() {
     assert!(lerr < 1e-12, "{lerr:e}");
 }
 
-/// Three equal masses in the plane with G = m = 1: L = ½Σ|q̇_i|² + Σ_{i<j} 1/|q_i − q_j|,
-/// q = (x₁, y₁, x₂, y₂, x₃, y₃).
-struct ThreeBody;
-
-impl Lagrangian for ThreeBody {
-    fn dof(&self) -> usize {
-        6
-    }
-    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        let mut l = v.iter().fold(D::zero(), |a, x| a + *x * *x) * 0.5;
-        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-            let (dx, dy) = (q[2 * i] - q[2 * j], q[2 * i + 1] - q[2 * j + 1]);
-            l += (dx * dx + dy * dy).sqrt().recip();
-        }
-        l
-    }
-}
-
-/// The symmetric choreographies of the figure-eight as a linear family (N divisible by 12): one curve
-/// x_k (k mod N) carries the three bodies, body i at x_{k + iN/3} (the choreography q_i(t + T/3) =
-/// q_{i+1}(t)), with the symmetries of the eight (long axis along e₁): x_{−k} = −x_k (time reversal
-/// and point reflection), x_{N/2−k} = R x_k (R the reflection across the long axis), hence x₀ = 0 and
-/// x_{N/4} = (s, 0), and x_{k+N/2} = R' x_k (R' across the short axis). Each is a symmetry of the
-/// midpoint action (an isometry, an index shift, and L_d(q₀, q₁) = L_d(q₁, q₀)), so a stationary point
-/// in the family is one of the full action (Palais); they also remove the translations, the rotation
-/// and the time shift, which would make the Hessian singular. Parameters y: x₁, …, x_{N/4−1}, s.
-fn figure_eight_family(n: usize) -> Vec<nalgebra::DMatrix<f64>> {
-    let quarter = n / 4;
-    let d = 2 * (quarter - 1) + 1;
-    // x_k = C_k y for k in 0..N.
-    let mut curve = vec![nalgebra::DMatrix::<f64>::zeros(2, d); n];
-    for (k, c) in curve.iter_mut().enumerate().take(quarter).skip(1) {
-        c[(0, 2 * (k - 1))] = 1.0;
-        c[(1, 2 * (k - 1) + 1)] = 1.0;
-    }
-    curve[quarter][(0, d - 1)] = 1.0;
-    let reflect_long = nalgebra::DMatrix::from_diagonal(&DVector::from_vec(vec![1.0, -1.0]));
-    let reflect_short = nalgebra::DMatrix::from_diagonal(&DVector::from_vec(vec![-1.0, 1.0]));
-    for k in quarter + 1..=n / 2 {
-        curve[k] = &reflect_long * &curve[n / 2 - k];
-    }
-    for k in n / 2 + 1..n {
-        curve[k] = &reflect_short * &curve[k - n / 2];
-    }
-    (0..=n)
-        .map(|k| {
-            let mut a = nalgebra::DMatrix::zeros(6, d);
-            for body in 0..3 {
-                let c = &curve[(k + body * n / 3) % n];
-                a.view_mut((2 * body, 0), (2, d)).copy_from(c);
-            }
-            a
-        })
-        .collect()
-}
-
-/// Published figure-eight (Chenciner & Montgomery 2000; initial conditions of Simó): at the Euler
-/// configuration x₃ = 0, x₁ = −x₂ = (0.97000436, −0.24308753), v₁ = v₂ = −v₃/2,
-/// v₃ = (−0.93240737, −0.86473146), period T = 6.32591398.
-const EIGHT_X1: [f64; 2] = [0.97000436, -0.24308753];
-const EIGHT_V3: [f64; 2] = [-0.93240737, -0.86473146];
-const EIGHT_T: f64 = 6.32591398;
-
 /// The figure-eight as the stationary discrete path of the midpoint action of three equal masses over
 /// the symmetric choreographies of period T = 6.32591398 (family above), by Newton from a rough guess:
 /// the lemniscate x(t) = (1.1 sin ωt, 0.35 sin 2ωt), ω = 2π/T. It is a minimum within the family (reduced
@@ -431,7 +309,7 @@ const EIGHT_T: f64 = 6.32591398;
 /// discretisation error, far above the published 8 digits.
 #[test]
 fn figure_eight_is_a_symmetric_minimiser_of_the_discrete_action() {
-    let bvp = BoundaryValue::new(Midpoint::new(ThreeBody));
+    let bvp = BoundaryValue::new(Midpoint::new(ThreeBodyLagrangian));
     let w = 2.0 * PI / EIGHT_T;
     let mut logs = Vec::new();
     for n in [48usize, 96, 192, 384] {
@@ -447,7 +325,7 @@ fn figure_eight_is_a_symmetric_minimiser_of_the_discrete_action() {
         y0.push(1.1);
         let path = bvp.solve_linear(0.0, EIGHT_T, &maps, &y0).unwrap();
         // Full DEL residual at every node (the path closes: node N = node 0).
-        let ld = Midpoint::new(ThreeBody);
+        let ld = Midpoint::new(ThreeBodyLagrangian);
         let mut worst = 0.0_f64;
         let (mut g1, mut g2) = (vec![0.0; 6], vec![0.0; 6]);
         for k in 0..n {

@@ -1,8 +1,6 @@
 //! noether-rigid's integration tests in one test binary (one link; what the files share is compiled
 //! once): one module per file of tests/.
 
-#[path = "../common/mod.rs"]
-mod common;
 #[path = "../errors.rs"]
 mod errors;
 #[path = "../free_body.rs"]

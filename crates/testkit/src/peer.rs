@@ -1,5 +1,8 @@
-//! The Rust peer ode_solvers' DOP853 as the benchmarks run it, included by path into core's
-//! `peer_dop853` and the gallery's `work_precision`.
+//! The Rust peer ode_solvers' DOP853 as the benchmarks run it, and Kepler's problem written for it
+//! by hand.
+//!
+//! Used by noether-core's `peer_dop853` benchmark and the gallery's `work_precision` benchmark
+//! (feature `peer`: the only module that needs ode_solvers).
 
 use nalgebra::SVector;
 
@@ -36,4 +39,19 @@ where
     let stats = s.integrate().expect("ode_solvers run");
     let trials = (stats.accepted_steps + stats.rejected_steps) as usize;
     (*s.y_out().last().expect("a state"), trials)
+}
+
+/// Kepler's problem ([`crate::kepler`]) as a hand-written right-hand side on y = (q, q̇) for the
+/// Rust peer ode_solvers: q̈ = −q/|q|³.
+pub struct KeplerRhs;
+impl ode_solvers::System<f64, SVector<f64, 4>> for KeplerRhs {
+    #[inline]
+    fn system(&self, _t: f64, y: &SVector<f64, 4>, dy: &mut SVector<f64, 4>) {
+        let r2 = y[0] * y[0] + y[1] * y[1];
+        let r3 = r2 * r2.sqrt();
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = -y[0] / r3;
+        dy[3] = -y[1] / r3;
+    }
 }

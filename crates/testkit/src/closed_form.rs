@@ -1,5 +1,9 @@
-//! Special functions the examples' closed forms need beyond `std`, written once: the complete elliptic
-//! integrals K and E, the Jacobi elliptic functions sn, cn, dn, and Kepler's equation E − e sin E = M.
+//! Special functions the closed forms of the gallery and the tests need beyond `std`, written once: the
+//! complete elliptic integrals K and E, the Jacobi elliptic functions sn, cn, dn, and Kepler's equation
+//! E − e sin E = M; and the free asymmetric top's Ω(t) by them.
+//!
+//! Used by the gallery (as `noether_gallery::closed_form`, checked by its `tests/closed_forms.rs`) and
+//! noether-rigid's tests (the free top).
 //!
 //! All take the complementary modulus (k′, or the parameter m₁ = 1 − m along with m), so that a
 //! caller near k → 1 (a pendulum released near the top, a motion near a separatrix) can pass the small
@@ -137,4 +141,65 @@ pub fn kepler_eccentric_anomaly(mean_anomaly: f64, e: f64) -> f64 {
         }
     }
     ea + shift
+}
+
+/// The free asymmetric top I₁ < I₂ < I₃ on the side L² > 2EI₂ of the separatrix, started at
+/// Ω = (Ω₁₀, 0, Ω₃₀), Ω₁₀, Ω₃₀ > 0: Landau-Lifshitz's solution (37.10) (Landau & Lifshitz, *Mechanics*
+/// §37):
+/// Ω₁ = sqrt((2EI₃ − L²)/(I₁(I₃ − I₁))) cn τ, Ω₂ = sqrt((2EI₃ − L²)/(I₂(I₃ − I₂))) sn τ,
+/// Ω₃ = sqrt((L² − 2EI₁)/(I₃(I₃ − I₁))) dn τ, τ = t sqrt((I₃ − I₂)(L² − 2EI₁)/(I₁I₂I₃)),
+/// k² = (I₂ − I₁)(2EI₃ − L²)/((I₃ − I₂)(L² − 2EI₁)); the period of Ω is 4K(k)/(dτ/dt).
+#[derive(Debug, Clone, Copy)]
+pub struct FreeTop {
+    /// Principal moments I₁ < I₂ < I₃.
+    pub i: [f64; 3],
+    /// Twice the energy, 2E = Ω·JΩ.
+    pub two_e: f64,
+    /// L² = |JΩ|².
+    pub l2: f64,
+}
+
+impl FreeTop {
+    /// The top with moments `i` started at Ω = (`omega1`, 0, `omega3`); `None` unless
+    /// I₁ < I₂ < I₃ and L² > 2EI₂ (the case the formulas describe).
+    pub fn new(i: [f64; 3], omega1: f64, omega3: f64) -> Option<Self> {
+        let two_e = i[0] * omega1 * omega1 + i[2] * omega3 * omega3;
+        let l2 = (i[0] * omega1).powi(2) + (i[2] * omega3).powi(2);
+        (i[0] < i[1] && i[1] < i[2] && l2 > two_e * i[1]).then_some(FreeTop { i, two_e, l2 })
+    }
+
+    /// dτ/dt = sqrt((I₃ − I₂)(L² − 2EI₁)/(I₁I₂I₃)).
+    pub fn rate(&self) -> f64 {
+        let [i1, i2, i3] = self.i;
+        ((i3 - i2) * (self.l2 - self.two_e * i1) / (i1 * i2 * i3)).sqrt()
+    }
+
+    /// (m, m₁) = (k², 1 − k²), with m₁ = (I₃ − I₁)(L² − 2EI₂)/((I₃ − I₂)(L² − 2EI₁)) from its own closed
+    /// form, so that it keeps its digits near the separatrix (m₁ → 0).
+    pub fn parameter(&self) -> (f64, f64) {
+        let [i1, i2, i3] = self.i;
+        let den = (i3 - i2) * (self.l2 - self.two_e * i1);
+        (
+            (i2 - i1) * (self.two_e * i3 - self.l2) / den,
+            (i3 - i1) * (self.l2 - self.two_e * i2) / den,
+        )
+    }
+
+    /// The period of Ω(t), T = 4K(k)/(dτ/dt) (K from the complementary modulus k′ = sqrt(m₁)).
+    pub fn period(&self) -> f64 {
+        4.0 * elliptic_k_complementary(self.parameter().1.sqrt()) / self.rate()
+    }
+
+    /// Ω(t) in the body frame.
+    pub fn omega(&self, t: f64) -> [f64; 3] {
+        let [i1, i2, i3] = self.i;
+        let (m, m1) = self.parameter();
+        let (sn, cn, dn) = jacobi_sn_cn_dn(self.rate() * t, m, m1);
+        let a = self.two_e * i3 - self.l2;
+        [
+            (a / (i1 * (i3 - i1))).sqrt() * cn,
+            (a / (i2 * (i3 - i2))).sqrt() * sn,
+            ((self.l2 - self.two_e * i1) / (i3 * (i3 - i1))).sqrt() * dn,
+        ]
+    }
 }

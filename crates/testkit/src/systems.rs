@@ -2,12 +2,14 @@
 //! hand-derived equations of motion, momenta and mass matrix (what a textbook writes). The hand
 //! formulas are the truth the AD results are compared with; each one states its derivation.
 //!
-//! Shared by the `ad` test binary and the `accelerations` benchmark (`#[path]` include).
+//! Used by noether-core's `ad` tests, its `accelerations`, `accelerations_min` and `legendre`
+//! benchmarks, and the gallery's `work_precision` benchmark (the 40-link chain). The hand-written
+//! functions are `#[inline]`, as they were when each bench binary compiled this file itself.
 
 // Index loops read like the textbook formulas they transcribe.
 #![allow(clippy::needless_range_loop)]
 
-use noether_core::{Lagrangian, Scalar};
+use noether_core::{Hamiltonian, Lagrangian, Scalar};
 
 /// Solves the small SPD system M x = b in place (Cholesky, row-major, lower triangle of `m` used).
 /// The hand-written baselines use this; it is the textbook algorithm with no allocation.
@@ -51,10 +53,15 @@ pub fn cholesky_solve<const N: usize>(m: &mut [[f64; N]; N], b: &mut [f64; N]) {
 /// L = ½(m1+m2) l1² θ̇1² + ½ m2 l2² θ̇2² + m2 l1 l2 θ̇1 θ̇2 cos Δ + (m1+m2) g l1 cos θ1 + m2 g l2 cos θ2.
 #[derive(Debug, Clone, Copy)]
 pub struct DoublePendulum {
+    /// Mass m1 (upper bob).
     pub m1: f64,
+    /// Mass m2 (lower bob).
     pub m2: f64,
+    /// Rod length l1.
     pub l1: f64,
+    /// Rod length l2.
     pub l2: f64,
+    /// Gravity g.
     pub g: f64,
 }
 
@@ -103,6 +110,7 @@ impl DoublePendulum {
     }
 
     /// M = [[(m1+m2) l1², m2 l1 l2 c], [m2 l1 l2 c, m2 l2²]].
+    #[inline]
     pub fn hand_mass(&self, q: &[f64; 2]) -> [[f64; 2]; 2] {
         let c = (q[0] - q[1]).cos();
         let a12 = self.m2 * self.l1 * self.l2 * c;
@@ -113,6 +121,7 @@ impl DoublePendulum {
     }
 
     /// p = M θ̇; h = T + V = ½ θ̇ᵀ M θ̇ − (m1+m2) g l1 cos θ1 − m2 g l2 cos θ2.
+    #[inline]
     pub fn hand_momenta_energy(&self, q: &[f64; 2], v: &[f64; 2]) -> ([f64; 2], f64) {
         let m = self.hand_mass(q);
         let p = [m[0][0] * v[0] + m[0][1] * v[1], m[1][0] * v[0] + m[1][1] * v[1]];
@@ -123,13 +132,37 @@ impl DoublePendulum {
     }
 }
 
+/// The double pendulum's Hamiltonian by hand: H = ½ pᵀ M(q)⁻¹ p − (m1+m2) g l1 cos θ1 − m2 g l2 cos θ2,
+/// with M = [[a11, a12 c], [a12 c, a22]] ([`DoublePendulum::hand_mass`]), M⁻¹ by the 2×2 adjugate.
+#[derive(Debug, Clone, Copy)]
+pub struct DoublePendulumH(pub DoublePendulum);
+
+impl Hamiltonian for DoublePendulumH {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+        let s = &self.0;
+        let a11 = (s.m1 + s.m2) * s.l1 * s.l1;
+        let a22 = s.m2 * s.l2 * s.l2;
+        let a12 = (q[0] - q[1]).cos() * (s.m2 * s.l1 * s.l2);
+        let det = -a12 * a12 + a11 * a22;
+        (p[0] * p[0] * a22 - p[0] * p[1] * a12 * 2.0 + p[1] * p[1] * a11) / (det * 2.0)
+            - q[0].cos() * ((s.m1 + s.m2) * s.g * s.l1)
+            - q[1].cos() * (s.m2 * s.g * s.l2)
+    }
+}
+
 // ---------------------------------------------------------------------------------------------------
 /// Heavy symmetric top, Euler angles q = (θ, φ, ψ):
 /// L = ½ I1 (θ̇² + φ̇² sin²θ) + ½ I3 (ψ̇ + φ̇ cos θ)² − M g ℓ cos θ.
 #[derive(Debug, Clone, Copy)]
 pub struct HeavyTop {
+    /// Transverse moment of inertia I1 about the fixed point.
     pub i1: f64,
+    /// Axial moment of inertia I3.
     pub i3: f64,
+    /// M g ℓ (ℓ: fixed point to centre of mass).
     pub mgl: f64,
 }
 
@@ -173,6 +206,7 @@ impl HeavyTop {
     }
 
     /// M = [[I1, 0, 0], [0, I1 s² + I3 c², I3 c], [0, I3 c, I3]].
+    #[inline]
     pub fn hand_mass(&self, q: &[f64; 3]) -> [[f64; 3]; 3] {
         let (s, c) = q[0].sin_cos();
         [
@@ -183,6 +217,7 @@ impl HeavyTop {
     }
 
     /// p_θ = I1 θ̇, p_φ = I1 φ̇ s² + I3 ω3 c, p_ψ = I3 ω3; h = T + V = ½ I1 (θ̇² + φ̇² s²) + ½ I3 ω3² + M g ℓ c.
+    #[inline]
     pub fn hand_momenta_energy(&self, q: &[f64; 3], v: &[f64; 3]) -> ([f64; 3], f64) {
         let (s, c) = q[0].sin_cos();
         let w3 = v[2] + v[1] * c;
@@ -202,8 +237,11 @@ impl HeavyTop {
 /// L = Σ_k ½ m_k (ẋ_k² + ẏ_k²) − Σ_k m_k g y_k (written by the user as running sums: O(N) operations).
 #[derive(Debug, Clone, Copy)]
 pub struct Chain<const N: usize> {
+    /// Masses m_k.
     pub m: [f64; N],
+    /// Rod lengths l_k.
     pub l: [f64; N],
+    /// Gravity g.
     pub g: f64,
 }
 
@@ -288,6 +326,7 @@ impl<const N: usize> Chain<N> {
     }
 
     /// M_ij = μ_max(i,j) l_i l_j cos(θ_i − θ_j).
+    #[inline]
     pub fn hand_mass(&self, q: &[f64; N]) -> [[f64; N]; N] {
         let mu = self.mu();
         std::array::from_fn(|i| {
@@ -303,12 +342,19 @@ impl<const N: usize> Chain<N> {
 /// L = ½ m |ṙ|² + e ṙ·A(r, t) − e φ(r, t) (a velocity-dependent potential with explicit t).
 #[derive(Debug, Clone, Copy)]
 pub struct ChargeInField {
+    /// Mass m.
     pub m: f64,
+    /// Charge e.
     pub e: f64,
+    /// Field strength B0.
     pub b0: f64,
+    /// Modulation depth ε of B.
     pub eps: f64,
+    /// Angular frequency ω of the modulation and of E.
     pub omega: f64,
+    /// Curvature κ of the scalar potential.
     pub kappa: f64,
+    /// Amplitude E0 of the axial electric field.
     pub e0: f64,
 }
 
@@ -342,6 +388,7 @@ impl Lagrangian for ChargeInField {
 
 impl ChargeInField {
     /// B(t) and dB/dt.
+    #[inline]
     pub fn field(&self, t: f64) -> (f64, f64) {
         let (s, c) = (self.omega * t).sin_cos();
         (
@@ -352,6 +399,7 @@ impl ChargeInField {
 
     /// Hand-derived Lorentz force m r̈ = e (E + ṙ × B) with E = −∇φ − ∂A/∂t:
     /// E = (−κ x + ½ Ḃ y, −κ y − ½ Ḃ x, −E0 cos ωt), ṙ × B ẑ = (ẏ B, −ẋ B, 0).
+    #[inline]
     pub fn hand_accelerations(&self, t: f64, q: &[f64; 3], v: &[f64; 3]) -> [f64; 3] {
         let (b, bdot) = self.field(t);
         let ex = -self.kappa * q[0] + 0.5 * bdot * q[1];
@@ -363,6 +411,7 @@ impl ChargeInField {
 
     /// Canonical momenta p = m ṙ + e A (not the kinetic momentum); h = ½ m |ṙ|² + e φ (the
     /// magnetic term is linear in ṙ and drops out of h).
+    #[inline]
     pub fn hand_momenta_energy(&self, t: f64, q: &[f64; 3], v: &[f64; 3]) -> ([f64; 3], f64) {
         let (b, _) = self.field(t);
         let a = [-0.5 * b * q[1], 0.5 * b * q[0], 0.0];
@@ -380,11 +429,17 @@ impl ChargeInField {
 /// force Q = −c q̇ + F cos ωt (Lagrange's equations with Q, as Desloge writes them).
 #[derive(Debug, Clone, Copy)]
 pub struct DrivenOscillator {
+    /// Mass m.
     pub m: f64,
+    /// Spring constant k.
     pub k: f64,
+    /// Cubic stiffness β.
     pub beta: f64,
+    /// Damping c.
     pub c: f64,
+    /// Drive amplitude F.
     pub f: f64,
+    /// Drive angular frequency ω.
     pub omega: f64,
 }
 
@@ -419,6 +474,7 @@ impl Lagrangian for DrivenOscillator {
 
 impl DrivenOscillator {
     /// m q̈ = −k q − β q³ − c q̇ + F cos ωt.
+    #[inline]
     pub fn hand_acceleration(&self, t: f64, q: f64, v: f64) -> f64 {
         (-self.k * q - self.beta * q * q * q - self.c * v + self.f * (self.omega * t).cos()) / self.m
     }
@@ -429,8 +485,11 @@ impl DrivenOscillator {
 /// L = ½ m l² (θ̇² + sin²θ φ̇²) + m g l cos θ.
 #[derive(Debug, Clone, Copy)]
 pub struct SphericalPendulum {
+    /// Mass m.
     pub m: f64,
+    /// Length l.
     pub l: f64,
+    /// Gravity g.
     pub g: f64,
 }
 
@@ -457,6 +516,7 @@ impl Lagrangian for SphericalPendulum {
 
 impl SphericalPendulum {
     /// θ̈ = sin θ cos θ φ̇² − (g/l) sin θ; φ̈ = −2 cot θ θ̇ φ̇ (from ṗ_φ = d/dt(m l² sin²θ φ̇) = 0).
+    #[inline]
     pub fn hand_accelerations(&self, q: &[f64; 2], v: &[f64; 2]) -> [f64; 2] {
         let (s, c) = q[0].sin_cos();
         [
@@ -470,7 +530,9 @@ impl SphericalPendulum {
 /// Kepler problem in plane polar coordinates q = (r, φ): L = ½ m (ṙ² + r² φ̇²) + k / r.
 #[derive(Debug, Clone, Copy)]
 pub struct KeplerPolar {
+    /// Mass m.
     pub m: f64,
+    /// Strength k of the attraction k/r.
     pub k: f64,
 }
 
@@ -492,6 +554,7 @@ impl Lagrangian for KeplerPolar {
 
 impl KeplerPolar {
     /// r̈ = r φ̇² − k / (m r²); φ̈ = −2 ṙ φ̇ / r (from ṗ_φ = d/dt(m r² φ̇) = 0).
+    #[inline]
     pub fn hand_accelerations(&self, q: &[f64; 2], v: &[f64; 2]) -> [f64; 2] {
         let r = q[0];
         [
@@ -501,6 +564,7 @@ impl KeplerPolar {
     }
 
     /// p = (m ṙ, m r² φ̇); h = ½ m (ṙ² + r² φ̇²) − k / r.
+    #[inline]
     pub fn hand_momenta_energy(&self, q: &[f64; 2], v: &[f64; 2]) -> ([f64; 2], f64) {
         let r = q[0];
         let p = [self.m * v[0], self.m * r * r * v[1]];

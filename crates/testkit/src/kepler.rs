@@ -1,10 +1,9 @@
-//! Kepler's problem as the benchmarks run it (μ = 1, a = 1, e = 0.6, from pericentre, 100 orbits),
-//! written once and included by path into each bench binary that needs it: core's `rates`, `nystrom`,
-//! `ias15` and `peer_dop853`, and the gallery's `work_precision`. Each binary uses part of it.
-#![allow(dead_code)]
+//! Kepler's problem as the benchmarks run it (μ = 1, a = 1, e = 0.6, from pericentre, 100 orbits).
+//!
+//! Used by noether-core's `rates`, `nystrom`, `ias15` and `peer_dop853` benchmarks and the gallery's
+//! `work_precision` benchmark; the peer's right-hand side is in [`crate::peer`].
 
-use nalgebra::SVector;
-use noether_core::prelude::*;
+use noether_core::{Potential, Scalar, Separable, State};
 
 /// V = −1/|q| (μ = 1), with `#[inline]` as the scalar module's docs ask of a model.
 pub struct Kepler;
@@ -47,18 +46,4 @@ pub fn start() -> ([f64; 2], [f64; 2]) {
 pub fn start_state() -> State {
     let (q, v) = start();
     State::new(0.0, q, v)
-}
-
-/// The hand-written right-hand side on y = (q, q̇) for the Rust peer ode_solvers.
-pub struct KeplerRhs;
-impl ode_solvers::System<f64, SVector<f64, 4>> for KeplerRhs {
-    #[inline]
-    fn system(&self, _t: f64, y: &SVector<f64, 4>, dy: &mut SVector<f64, 4>) {
-        let r2 = y[0] * y[0] + y[1] * y[1];
-        let r3 = r2 * r2.sqrt();
-        dy[0] = y[2];
-        dy[1] = y[3];
-        dy[2] = -y[0] / r3;
-        dy[3] = -y[1] / r3;
-    }
 }
