@@ -1,7 +1,7 @@
 //! Compiled models against hand-written equations and the dual-number path, per call of q̈ (issue 32).
 //!
 //! For each of core's test models with hand-derived equations of motion (the double pendulum, the
-//! heavy symmetric top, chains of 10 and 40 links; `crates/core/tests/ad/systems.rs`): the time of one
+//! heavy symmetric top, chains of 10 and 40 links; `crates/testkit/src/systems.rs`): the time of one
 //! q̈ by the hand-written closed form; by the compiled model's equations emitted as Rust source
 //! (`rust_source`, committed in `benches/generated/` and checked by noether-compile's test
 //! `generated`: ahead-of-time compilation by LLVM); by the compiled model run by its interpreter; and
@@ -25,16 +25,12 @@ use std::hint::black_box;
 use std::time::Instant;
 
 #[allow(dead_code)]
-#[path = "../crates/core/tests/ad/systems.rs"]
-mod systems;
-
-#[allow(dead_code)]
 mod generated {
     include!("generated/double_pendulum.rs");
     include!("generated/heavy_top.rs");
     include!("generated/chain10.rs");
 }
-use systems::{Chain, DoublePendulum, HeavyTop};
+use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 
 /// Nanoseconds per call of each closure: the minimum over `rounds` interleaved rounds of `calls` calls.
 fn race<const K: usize>(rounds: usize, calls: usize, mut runs: [&mut dyn FnMut(); K]) -> [f64; K] {

@@ -2,16 +2,12 @@
 //! hand-derived equations of core's test models, at random states; guards, refusals and the error
 //! contract of the compiled path.
 
-#[allow(dead_code)]
-#[path = "../../core/tests/ad/systems.rs"]
-mod systems;
-
 use noether_compile::{Compile, CompiledEulerLagrange, Error};
 use noether_core::{hamiltonian, lagrangian, Dynamics, EulerLagrange, HamiltonEquations, Lagrangian, Scalar};
-use proptest::prelude::*;
-use systems::{
+use noether_testkit::systems::{
     Chain, ChargeInField, DoublePendulum, DrivenOscillator, HeavyTop, KeplerPolar, SphericalPendulum,
 };
+use proptest::prelude::*;
 
 /// max_i |a_i − b_i| / max_i |b_i|: the error of a vector relative to its size.
 fn relative(a: &[f64], b: &[f64]) -> f64 {

@@ -51,6 +51,7 @@
 
 use noether_analysis as analysis;
 use noether_canonical as canonical;
+use noether_compile as compile;
 use noether_constraints as constraints;
 use noether_core as core;
 use noether_discrete as discrete;
@@ -93,6 +94,9 @@ pub enum Error {
     /// Rigid bodies: quaternions, inertia.
     #[error(transparent)]
     Rigid(rigid::Error),
+    /// Compiled models: a model that cannot be recorded (it reads the value of its scalar).
+    #[error(transparent)]
+    Compile(compile::Error),
     /// Setting up or collecting an ensemble.
     #[cfg(feature = "ensemble")]
     #[error(transparent)]
@@ -148,7 +152,8 @@ macro_rules! from_crates {
 }
 
 from_crates!(discrete => Discrete, constraints => Constraints, particles => Particles,
-             analysis => Analysis, canonical => Canonical, rigid => Rigid);
+             analysis => Analysis, canonical => Canonical, rigid => Rigid,
+             compile => Compile);
 
 #[cfg(feature = "ensemble")]
 impl From<ensemble::Error> for Error {
