@@ -124,7 +124,7 @@ impl Weights {
         }
     }
 
-    /// γ = [1]: the base method itself (Störmer-Verlet when the base is kick-drift-kick), order 2.
+    /// γ = (1): the base method itself (Störmer-Verlet when the base is kick-drift-kick), order 2.
     pub fn stormer_verlet() -> Self {
         Self::named(vec![1.0], 2, "Störmer-Verlet")
     }
