@@ -264,7 +264,7 @@ impl GibbsAppell for DiskGA {
     }
 }
 
-/// The disk's q̈ = W u̇ + Ẇ u from the Gibbs-Appell u̇ = (θ̈, φ̈) at heading φ = q[3].
+/// The disk's q̈ = W u̇ + Ẇ u from the Gibbs-Appell u̇ = (θ̈, φ̈) at heading φ = `q[3]`.
 pub fn disk_qdd(q: &[f64; 4], u: &[f64; 2], ud: &[f64; 2]) -> [f64; 4] {
     let (s, c) = q[3].sin_cos();
     [

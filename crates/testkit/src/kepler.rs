@@ -1,7 +1,8 @@
 //! Kepler's problem as the benchmarks run it (μ = 1, a = 1, e = 0.6, from pericentre, 100 orbits).
 //!
 //! Used by noether-core's `rates`, `nystrom`, `ias15` and `peer_dop853` benchmarks and the gallery's
-//! `work_precision` benchmark; the peer's right-hand side is in [`crate::peer`].
+//! `work_precision` benchmark; the peer's right-hand side is in the module
+//! `peer` (feature `peer`).
 
 use noether_core::{Potential, Scalar, Separable, State};
 
