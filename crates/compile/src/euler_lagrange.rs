@@ -9,7 +9,7 @@
 //! each a graph: ∂L/∂q and p by one reverse accumulation from L; the mixed term (∂p/∂q) q̇ + ∂p/∂t as
 //! one derivative of p along the flow direction (δt, δq) = (1, q̇) (forward accumulation); row i of M
 //! (its lower triangle) by reverse accumulation from p_i; and q̈ by the unrolled LDLᵀ solve of
-//! [`ldlt`](crate::ldlt). Generalized forces Q(t, q, q̇) (plain f64 functions of the model) are
+//! [`ldlt`]. Generalized forces Q(t, q, q̇) (plain f64 functions of the model) are
 //! inputs of the program, evaluated before it runs.
 
 use crate::derive::{directional, gradient};
@@ -377,7 +377,7 @@ impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
 }
 
 /// The exact Jacobian of Lagrange's equations from the compiled graph (any number of degrees of
-/// freedom; see [`jacobian_program`](CompiledEulerLagrange::jacobian_program)), or the dual-number
+/// freedom: forward accumulation through the unrolled solve), or the dual-number
 /// path's where the program's result is not usable — and always for a model with generalized forces,
 /// which the dual-number path refuses ([`Error::Unsupported`](noether_core::Error::Unsupported)): Q is
 /// a plain function that neither path can differentiate.

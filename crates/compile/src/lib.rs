@@ -4,7 +4,7 @@
 //! The dual-number path of noether-core differentiates the model at every call. Here the model — the
 //! same generic code, unchanged — is evaluated once with the tracing scalar [`Traced`], which
 //! records every operation into a [`Graph`]; the derivatives that the equations of motion need are
-//! built on that graph by the chain rule ([`derive`]: reverse accumulation for gradients, forward
+//! built on that graph by the chain rule ([`derive`](mod@derive): reverse accumulation for gradients, forward
 //! for derivatives along the flow), the linear solve is unrolled into it ([`ldlt`]), and every node
 //! is simplified and shared as it is built (constant folding, algebraic identities, one node per
 //! common subexpression across all outputs). The outputs then run as a flat [`Program`] over
@@ -35,9 +35,9 @@
 
 pub mod derive;
 mod error;
-mod euler_lagrange;
+pub mod euler_lagrange;
 pub mod graph;
-mod hamilton_equations;
+pub mod hamilton_equations;
 pub mod ldlt;
 mod program;
 pub mod show;

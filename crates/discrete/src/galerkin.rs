@@ -58,7 +58,7 @@ use noether_core::{
 };
 
 /// The Galerkin variational integrator (see the module docs). As a
-/// [`Stepper`](noether_core::Stepper) it advances states (t, q, p).
+/// [`Stepper`] it advances states (t, q, p).
 pub struct Galerkin<L> {
     el: EulerLagrange<L>,
     /// Degree s of the path.

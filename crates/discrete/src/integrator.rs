@@ -134,7 +134,7 @@ impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
 
 /// The variational integrator of a discrete Lagrangian, in position-momentum form (see the module docs).
 ///
-/// As a [`Stepper`](noether_core::Stepper) it advances a [`State`] whose `v` holds the momenta p.
+/// As a [`Stepper`] it advances a [`State`] whose `v` holds the momenta p.
 pub struct VariationalIntegrator<Ld> {
     ld: Ld,
     newton: Newton,

@@ -135,7 +135,7 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
 }
 
 /// Midpoint variational integrator of a [`Mechanical`] system (see the module docs). As a
-/// [`Stepper`](noether_core::Stepper) it advances states (t, q, p).
+/// [`Stepper`] it advances states (t, q, p).
 pub struct MechanicalMidpoint<P> {
     sys: Mechanical<P>,
     newton: Newton,
