@@ -114,6 +114,28 @@ fn energy_output(r: &mut Recorded) -> Id {
     g.sub(s, r.value)
 }
 
+/// The value of a one-output `program` (the energy) at (t, q, v) when every guard holds and it is
+/// finite, else `fallback()` (the dual-number path: the right value or the right error).
+pub(crate) fn value_or(
+    program: &Program,
+    guards: &[f64],
+    (t, q, v): (f64, &[f64], &[f64]),
+    fallback: impl FnOnce() -> noether_core::Result<f64>,
+) -> noether_core::Result<f64> {
+    let compiled = program.run_with(&[&[t], q, v], |o| {
+        (guards_hold(&o, 1, guards) && o.get(0).is_finite()).then(|| o.get(0))
+    })?;
+    compiled.map_or_else(fallback, Ok)
+}
+
+/// The point a model is recorded at when none is given: t = 0, q_i = 0.1 + 0.01 i, v_i = 0.2 + 0.01 i
+/// (it only decides the branches the recording takes).
+pub(crate) fn default_point(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let q = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
+    let v = (0..n).map(|i| 0.2 + 0.01 * i as f64).collect();
+    (q, v)
+}
+
 /// `true` when every guard holds: the outputs from `offset` on have the signs recorded.
 pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool {
     signs
@@ -156,9 +178,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// Compiles `system`, recording L at a point chosen only for the branches L takes there (t = 0,
     /// q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
     pub fn new(system: EulerLagrange<L>) -> Result<Self> {
-        let n = system.dof();
-        let q: Vec<f64> = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
-        let v: Vec<f64> = (0..n).map(|i| 0.2 + 0.01 * i as f64).collect();
+        let (q, v) = default_point(system.dof());
         Self::at(system, 0.0, &q, &v)
     }
 
@@ -330,13 +350,9 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// The energy h = p·q̇ − L.
     pub fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         check_phase_point(self.dual.dof(), t, q, v, "q̇")?;
-        let compiled = self.energy.run_with(&[&[t], q, v], |o| {
-            (guards_hold(&o, 1, &self.guards) && o.get(0).is_finite()).then(|| o.get(0))
-        })?;
-        match compiled {
-            Some(h) => Ok(h),
-            None => self.dual.energy(t, q, v),
-        }
+        value_or(&self.energy, &self.guards, (t, q, v), || {
+            self.dual.energy(t, q, v)
+        })
     }
 }
 

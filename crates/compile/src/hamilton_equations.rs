@@ -7,7 +7,7 @@
 //! both from one reverse accumulation from H on its graph; the energy is H itself.
 
 use crate::derive::gradient;
-use crate::euler_lagrange::guards_hold;
+use crate::euler_lagrange::{default_point, guards_hold, value_or};
 use crate::graph::Id;
 use crate::program::Program;
 use crate::trace::{Guard, Recorded};
@@ -29,9 +29,7 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
     /// Compiles `system`, recording H at a point chosen only for the branches H takes there (t = 0,
     /// q_i = 0.1 + 0.01 i, p_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
     pub fn new(system: HamiltonEquations<H>) -> Result<Self> {
-        let n = system.dof();
-        let q: Vec<f64> = (0..n).map(|i| 0.1 + 0.01 * i as f64).collect();
-        let p: Vec<f64> = (0..n).map(|i| 0.2 + 0.01 * i as f64).collect();
+        let (q, p) = default_point(system.dof());
         Self::at(system, 0.0, &q, &p)
     }
 
@@ -112,12 +110,8 @@ impl<H: Hamiltonian> Dynamics for CompiledHamiltonEquations<H> {
     }
     fn energy(&self, t: f64, q: &[f64], p: &[f64]) -> noether_core::Result<f64> {
         check_phase_point(self.dual.dof(), t, q, p, "p")?;
-        let compiled = self.energy.run_with(&[&[t], q, p], |o| {
-            (guards_hold(&o, 1, &self.guards) && o.get(0).is_finite()).then(|| o.get(0))
-        })?;
-        match compiled {
-            Some(h) => Ok(h),
-            None => self.dual.energy(t, q, p),
-        }
+        value_or(&self.energy, &self.guards, (t, q, p), || {
+            self.dual.energy(t, q, p)
+        })
     }
 }
