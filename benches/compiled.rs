@@ -15,12 +15,26 @@
 //! where "compiled" is the ahead-of-time code where it is generated (not for the 40-link chain: 34 000
 //! lines) and the interpreter otherwise.
 //!
+//! Then Hamilton's equations of the double pendulum's H built from L (`LegendreTransform::new(l)
+//! .compile()`: the transform in closed form on the graph) against the same equations written by
+//! hand and against `LegendreTransform` by dual numbers (Newton per call): `ratio
+//! legendre_double_pendulum <compiled / hand>`.
+//!
+//! Then Kahan-Li 8 on Hénon-Heiles (q₀ = (0.1, 0), q̇₀ = (0, 0.5), h = 0.01, 2·10⁴ steps): the
+//! composition written by hand in closed form against `Composition::kahan_li8` on the compiled
+//! `Natural` and on `Natural` by dual numbers, per stage (`ratio henon_heiles_kl8 <compiled / hand>`,
+//! with the distance of each end point to the hand loop's).
+//!
 //! `cargo bench --bench compiled`; results in docs/benchmarks.md.
 
 #![allow(missing_docs)]
 
 use noether::compile::Compile;
-use noether::core::{EulerLagrange, Lagrangian};
+use noether::core::integrators::Composition;
+use noether::core::{
+    Dynamics, EulerLagrange, HamiltonEquations, Lagrangian, LegendreTransform, Natural, State, Stepper,
+    Velocities,
+};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -30,7 +44,8 @@ mod generated {
     include!("generated/heavy_top.rs");
     include!("generated/chain10.rs");
 }
-use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
+use noether_testkit::henon_heiles::{composition_by_hand, HenonHeiles};
+use noether_testkit::systems::{Chain, DoublePendulum, DoublePendulumH, HeavyTop};
 
 /// Nanoseconds per call of each closure: the minimum over `rounds` interleaved rounds of `calls` calls.
 fn race<const K: usize>(rounds: usize, calls: usize, mut runs: [&mut dyn FnMut(); K]) -> [f64; K] {
@@ -114,6 +129,96 @@ fn model<
     );
 }
 
+/// Hamilton's equations of the double pendulum's H from L: by hand, compiled, by dual numbers.
+fn legendre_double_pendulum() {
+    let dp = DoublePendulum::default();
+    let hand = DoublePendulumH(dp);
+    let t0 = Instant::now();
+    let compiled = LegendreTransform::new(dp).compile().unwrap();
+    let build = t0.elapsed();
+    let dual = HamiltonEquations::new(LegendreTransform::new(dp));
+    let (q, p) = ([0.6, -0.4], [1.3, -0.7]);
+    let (mut dq, mut dp_) = ([0.0; 2], [0.0; 2]);
+    let [th, tc, td] = race(
+        15,
+        20_000,
+        [
+            &mut || {
+                black_box(hand.hand_rates(black_box(&q), black_box(&p)));
+            },
+            &mut || {
+                compiled
+                    .rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp_)
+                    .unwrap();
+                black_box((&dq, &dp_));
+            },
+            &mut || {
+                dual.rates(0.0, black_box(&q), black_box(&p), &mut dq, &mut dp_)
+                    .unwrap();
+                black_box((&dq, &dp_));
+            },
+        ],
+    );
+    println!(
+        "ratio legendre_double_pendulum {:.2}   (hand {th:.1} ns; compiled {tc:.1} ns; LegendreTransform by \
+         dual numbers {td:.1} ns = {:.2}×; built in {:.2} ms, {} operations)",
+        tc / th,
+        td / th,
+        build.as_secs_f64() * 1e3,
+        compiled.operations()
+    );
+}
+
+/// Kahan-Li 8 on Hénon-Heiles: the hand loop, the compiled `Natural`, the dual-number `Natural`.
+fn henon_heiles_kl8() {
+    const STEPS: usize = 20_000;
+    let t0 = Instant::now();
+    let compiled = Natural::unit(HenonHeiles).compile().unwrap();
+    let build = t0.elapsed();
+    let mut kl8 = Composition::kahan_li8(compiled);
+    let mut dual = Composition::kahan_li8(Natural::unit(HenonHeiles));
+    let gammas = kl8.weights().as_slice().to_vec();
+    let stages = (STEPS * gammas.len()) as f64;
+    let (mut qh, mut qc, mut qd) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+    fn run<S: Stepper<Partner = Velocities>>(stepper: &mut S) -> [f64; 2] {
+        let mut s = State::new(0.0, black_box([0.1, 0.0]), [0.0, 0.5]);
+        for _ in 0..STEPS {
+            stepper.step(&mut s, 0.01).unwrap();
+        }
+        [s.q[0], s.q[1]]
+    }
+    let [th, tc, td] = race(
+        15,
+        1,
+        [
+            &mut || {
+                qh = black_box(composition_by_hand(
+                    &gammas,
+                    STEPS,
+                    0.01,
+                    black_box([0.1, 0.0]),
+                    [0.0, 0.5],
+                ))
+                .0
+            },
+            &mut || qc = run(&mut kl8),
+            &mut || qd = run(&mut dual),
+        ],
+    )
+    .map(|t| t / stages);
+    let dist = |a: [f64; 2]| (qh[0] - a[0]).abs().max((qh[1] - a[1]).abs());
+    println!(
+        "ratio henon_heiles_kl8 {:.2}   (per stage: hand {th:.2} ns; compiled {tc:.2} ns; dual numbers {td:.2} ns = \
+         {:.2}×; |Δq| to the hand loop {:.1e} compiled, {:.1e} dual; built in {:.2} ms, {} operations)",
+        tc / th,
+        td / th,
+        dist(qc),
+        dist(qd),
+        build.as_secs_f64() * 1e3,
+        kl8.base().system().operations()
+    );
+}
+
 fn main() {
     let dp = DoublePendulum::default();
     model(
@@ -157,4 +262,6 @@ fn main() {
         ),
         200,
     );
+    legendre_double_pendulum();
+    henon_heiles_kl8();
 }

@@ -251,6 +251,11 @@ fn conserves_energy_double_pendulum() {
 }
 
 #[test]
+fn textbook_equations_of_motion() {
+    assert_example_passes("equations_of_motion");
+}
+
+#[test]
 fn closed_form_charged_particle() {
     assert_example_passes("charged_particle");
 }

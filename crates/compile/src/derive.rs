@@ -147,7 +147,7 @@ fn unary_partial(g: &mut Graph, f: Unary, v: Id, a: Id) -> Id {
 }
 
 /// Which nodes up to `last` depend on one of `vars`.
-fn dependents(g: &Graph, last: Id, vars: &[Id]) -> Vec<bool> {
+pub(crate) fn dependents(g: &Graph, last: Id, vars: &[Id]) -> Vec<bool> {
     let mut dep = vec![false; last as usize + 1];
     for &x in vars {
         if x <= last {

@@ -20,6 +20,11 @@ pub enum Error {
         /// The operation.
         operation: &'static str,
     },
+    /// The Lagrangian is not quadratic in the velocities (its mass matrix ∂²L/∂q̇² depends on q̇), or
+    /// it compares q̇: its Legendre transform has no closed form on the graph. `LegendreTransform`
+    /// (Newton's method at every call) handles any L convex in q̇.
+    #[error("the Lagrangian is not quadratic in the velocities (or compares them): compile its Euler-Lagrange equations, or use LegendreTransform for its Hamiltonian")]
+    NotQuadratic,
     /// An error of noether-core (dimensions, non-finite numbers).
     #[error(transparent)]
     Core(noether_core::Error),

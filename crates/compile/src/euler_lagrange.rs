@@ -79,7 +79,7 @@ fn lagrange_terms(r: &mut Recorded, forced: bool) -> (Vec<Id>, Vec<Vec<Id>>) {
         .chain(r.q.iter().zip(&r.v).map(|(&q, &v)| (q, v)))
         .collect();
     let mixed = directional(g, p, &seeds);
-    let m: Vec<Vec<Id>> = (0..n).map(|i| gradient(g, p[i], &r.v[..=i])).collect();
+    let m = mass_rows(g, p, &r.v);
     let b: Vec<Id> = (0..n)
         .map(|i| {
             let bi = g.sub(gq[i], mixed[i]);
@@ -92,6 +92,11 @@ fn lagrange_terms(r: &mut Recorded, forced: bool) -> (Vec<Id>, Vec<Vec<Id>>) {
         })
         .collect();
     (b, m)
+}
+
+/// The lower triangle of M = ∂p/∂q̇ by rows: row i by reverse accumulation from p_i (to q̇_0..q̇_i).
+pub(crate) fn mass_rows(g: &mut Graph, p: &[Id], v: &[Id]) -> Vec<Vec<Id>> {
+    (0..p.len()).map(|i| gradient(g, p[i], &v[..=i])).collect()
 }
 
 /// The outputs of the accelerations' program: (q̈, the pivots of M, the diagonal of M) with the solve
@@ -116,7 +121,7 @@ fn energy_output(r: &mut Recorded) -> Id {
 
 /// The value of a one-output `program` (the energy) at (t, q, v) when every guard holds and it is
 /// finite, else `fallback()` (the dual-number path: the right value or the right error).
-pub(crate) fn value_or(
+fn value_or(
     program: &Program,
     guards: &[f64],
     (t, q, v): (f64, &[f64], &[f64]),
@@ -147,7 +152,7 @@ pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool
 /// `true` when the n pivots of M = LDLᵀ at outputs `at..at + n` (the diagonal of M after them) are
 /// positive and regular by [`linalg`](noether_core::linalg)'s criterion (the pivot ratio against the
 /// largest pivot or diagonal entry, which bounds every entry of a positive definite M).
-fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
+pub(crate) fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
     let (lo, hi) = pivot_range((at..at + n).map(|j| o.get(j)));
     let norm = (at + n..at + 2 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
     (at..at + n).all(|j| o.get(j) > 0.0) && !is_singular(pivot_ratio(lo, hi, norm))
@@ -253,6 +258,20 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             layout.as_str(),
         ];
         crate::show::rust_function(&self.graph, inputs, &self.outputs, name, &doc)
+    }
+
+    /// Lagrange's equations M(q, q̇) q̈ = b(t, q, q̇) as formulas: M's lower triangle by rows
+    /// ([`Term::Mass`](crate::show::Term::Mass)), then b ([`Term::Force`](crate::show::Term::Force)),
+    /// simplified; see [`Equations`](crate::show::Equations) to print them as text or LaTeX.
+    pub fn equations(&self) -> crate::show::Equations {
+        use crate::show::Term;
+        let (b, m) = &self.terms;
+        let mut rows: Vec<(Term, Id)> = Vec::new();
+        for (i, row) in m.iter().enumerate() {
+            rows.extend(row.iter().enumerate().map(|(j, &y)| (Term::Mass(i, j), y)));
+        }
+        rows.extend(b.iter().enumerate().map(|(i, &y)| (Term::Force(i), y)));
+        crate::show::Equations::new(self.graph.clone(), rows, self.dual.dof(), false, self.forced)
     }
 
     /// The sign each guard had when L was recorded (the compiled code holds where each has it).

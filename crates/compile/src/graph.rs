@@ -443,6 +443,34 @@ impl Graph {
         acc.unwrap_or_else(|| self.constant(0.0))
     }
 
+    /// The `outputs` rebuilt with node `from` replaced by node `to` for each pair of `pairs`, every
+    /// node on the way built again through the simplifying constructors (so that, say, setting q̇ = 0
+    /// folds away every term that had a factor q̇).
+    pub fn substitute(&mut self, outputs: &[Id], pairs: &[(Id, Id)]) -> Vec<Id> {
+        let last = outputs.iter().copied().max().map_or(0, |m| m as usize + 1);
+        let needed = self.needed(outputs);
+        let mut map: Vec<Id> = (0..last as Id).collect();
+        for &(from, to) in pairs {
+            if (from as usize) < last {
+                map[from as usize] = to;
+            }
+        }
+        for v in (0..last as Id).filter(|&v| needed[v as usize]) {
+            if pairs.iter().any(|p| p.0 == v) {
+                continue;
+            }
+            let m = |x: Id| map[x as usize];
+            map[v as usize] = match self.node(v) {
+                Node::Input(_) | Node::Const(_) => v,
+                Node::Unary(f, a) => self.unary(f, m(a)),
+                Node::Binary(op, a, b) => self.binary(op, m(a), m(b)),
+                Node::Powi(a, n) => self.powi(m(a), n),
+                Node::Powf(a, e) => self.powf(m(a), f64::from_bits(e)),
+            };
+        }
+        outputs.iter().map(|&y| map[y as usize]).collect()
+    }
+
     /// Which nodes `outputs` need (themselves and everything they are computed from), indexed by id
     /// up to the largest output (empty for no output).
     pub fn needed(&self, outputs: &[Id]) -> Vec<bool> {

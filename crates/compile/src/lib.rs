@@ -33,12 +33,15 @@
 //! dual-number path, which gives the right answer or the right error. A model that reads the value
 //! of a traced number is refused ([`Error::Refused`]).
 
+mod default_method;
 pub mod derive;
 mod error;
 pub mod euler_lagrange;
 pub mod graph;
 pub mod hamilton_equations;
 pub mod ldlt;
+pub mod legendre;
+pub mod natural;
 mod program;
 pub mod show;
 mod trace;
@@ -47,7 +50,9 @@ pub use error::{Error, Result};
 pub use euler_lagrange::{CompiledEulerLagrange, Operations, UNROLL_MAX};
 pub use graph::Graph;
 pub use hamilton_equations::CompiledHamiltonEquations;
+pub use natural::CompiledNatural;
 pub use program::{Outputs, Program};
+pub use show::{Equations, Notation, Term};
 pub use trace::{record, Guard, Recording, Traced};
 
 /// Turns a system into its compiled form, with one call.

@@ -28,6 +28,7 @@ fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+use noether_testkit::henon_heiles::composition_by_hand;
 use noether_testkit::kepler::Kepler;
 
 /// The same V without the hint.
@@ -185,28 +186,7 @@ fn composition_stage() {
     let mut kl8 = Composition::kahan_li8(Natural::unit(HenonHeiles));
     let gammas = kl8.weights().as_slice().to_vec();
     let stages = (STEPS * gammas.len()) as f64;
-    let mut kicks = vec![0.0; gammas.len() + 1];
-    for (i, g) in gammas.iter().enumerate() {
-        kicks[i] += 0.5 * g;
-        kicks[i + 1] += 0.5 * g;
-    }
-    let hand = || {
-        let accel = |q: &[f64; 2]| [-q[0] - 2.0 * q[0] * q[1], -q[1] - q[0] * q[0] + q[1] * q[1]];
-        let (mut q, mut v) = (black_box([0.1, 0.0]), [0.0, 0.5]);
-        let h = 0.01;
-        let mut a = accel(&q);
-        for _ in 0..STEPS {
-            for (i, &g) in gammas.iter().enumerate() {
-                let c = kicks[i] * h;
-                v = [v[0] + c * a[0], v[1] + c * a[1]];
-                q = [q[0] + g * h * v[0], q[1] + g * h * v[1]];
-                a = accel(&q);
-            }
-            let c = kicks[gammas.len()] * h;
-            v = [v[0] + c * a[0], v[1] + c * a[1]];
-        }
-        (q, v)
-    };
+    let hand = || composition_by_hand(&gammas, STEPS, 0.01, black_box([0.1, 0.0]), [0.0, 0.5]);
     let mut noether = || {
         let mut s = State::new(0.0, black_box([0.1, 0.0]), [0.0, 0.5]);
         for _ in 0..STEPS {

@@ -4,7 +4,7 @@
 //! Used by noether-core's tangent tests (`tests/tangent/`), noether-analysis' Lyapunov tests, and the
 //! gallery's `symplecticity_check` and `lyapunov_spectrum` examples.
 
-use noether_core::{Hamiltonian, Scalar};
+use noether_core::{Hamiltonian, Potential, Scalar};
 
 /// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3: nonlinear, with third derivatives of
 /// unit size; chaotic above E ≈ 1/8.
@@ -19,6 +19,50 @@ impl Hamiltonian for HenonHeiles {
         (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
             - q[1].powi(3) / 3.0
     }
+}
+
+/// Its potential V = ½(q₁² + q₂²) + q₁²q₂ − q₂³/3, for `Natural::unit(HenonHeiles)` (L = ½|q̇|² − V).
+impl Potential for HenonHeiles {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        let (x, y) = (q[0], q[1]);
+        (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
+    }
+}
+
+/// A symmetric composition of Störmer-Verlet steps with drift weights `gammas` (Kahan-Li 8's, say)
+/// on Hénon-Heiles, written by hand: q̈ = (−q₁ − 2q₁q₂, −q₂ − q₁² + q₂²) in closed form, adjacent
+/// half kicks merged and the last force reused, as `Composition` does. `steps` steps of size h from
+/// (q, v); returns the end (q, v). The reference the benchmarks time a composition against.
+pub fn composition_by_hand(
+    gammas: &[f64],
+    steps: usize,
+    h: f64,
+    q: [f64; 2],
+    v: [f64; 2],
+) -> ([f64; 2], [f64; 2]) {
+    let mut kicks = vec![0.0; gammas.len() + 1];
+    for (i, g) in gammas.iter().enumerate() {
+        kicks[i] += 0.5 * g;
+        kicks[i + 1] += 0.5 * g;
+    }
+    let accel = |q: &[f64; 2]| [-q[0] - 2.0 * q[0] * q[1], -q[1] - q[0] * q[0] + q[1] * q[1]];
+    let (mut q, mut v) = (q, v);
+    let mut a = accel(&q);
+    for _ in 0..steps {
+        for (i, &g) in gammas.iter().enumerate() {
+            let c = kicks[i] * h;
+            v = [v[0] + c * a[0], v[1] + c * a[1]];
+            q = [q[0] + g * h * v[0], q[1] + g * h * v[1]];
+            a = accel(&q);
+        }
+        let c = kicks[gammas.len()] * h;
+        v = [v[0] + c * a[0], v[1] + c * a[1]];
+    }
+    (q, v)
 }
 
 /// Double pendulum with unit masses and rods in gravity g, angles from the downward vertical, in closed

@@ -153,6 +153,35 @@ impl Hamiltonian for DoublePendulumH {
     }
 }
 
+impl DoublePendulumH {
+    /// Hamilton's equations written out by hand. With a₁₁ = (m1+m2) l1², a₂₂ = m2 l2², a₁₂ =
+    /// k cos Δ (k = m2 l1 l2, Δ = θ1 − θ2), det = a₁₁a₂₂ − a₁₂² and N = a₂₂p₁² − 2a₁₂p₁p₂ + a₁₁p₂²
+    /// (so H = N/(2 det) + V): q̇₁ = (a₂₂p₁ − a₁₂p₂)/det, q̇₂ = (a₁₁p₂ − a₁₂p₁)/det, and with
+    /// C = k sin Δ (p₁p₂/det − N a₁₂/det²) = ∂(N/2det)/∂θ₂ = −∂(N/2det)/∂θ₁,
+    /// ṗ₁ = −C − (m1+m2) g l1 sin θ1, ṗ₂ = C − m2 g l2 sin θ2.
+    #[inline]
+    pub fn hand_rates(&self, q: &[f64; 2], p: &[f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let s = &self.0;
+        let (a11, a22, k) = (
+            (s.m1 + s.m2) * s.l1 * s.l1,
+            s.m2 * s.l2 * s.l2,
+            s.m2 * s.l1 * s.l2,
+        );
+        let (sd, cd) = (q[0] - q[1]).sin_cos();
+        let a12 = k * cd;
+        let inv = 1.0 / (a11 * a22 - a12 * a12);
+        let n = a22 * p[0] * p[0] - 2.0 * a12 * p[0] * p[1] + a11 * p[1] * p[1];
+        let c = k * sd * inv * (p[0] * p[1] - n * a12 * inv);
+        (
+            [(a22 * p[0] - a12 * p[1]) * inv, (a11 * p[1] - a12 * p[0]) * inv],
+            [
+                -c - (s.m1 + s.m2) * s.g * s.l1 * q[0].sin(),
+                c - s.m2 * s.g * s.l2 * q[1].sin(),
+            ],
+        )
+    }
+}
+
 // ---------------------------------------------------------------------------------------------------
 /// Heavy symmetric top, Euler angles q = (θ, φ, ψ):
 /// L = ½ I1 (θ̇² + φ̇² sin²θ) + ½ I3 (ψ̇ + φ̇ cos θ)² − M g ℓ cos θ.
