@@ -361,21 +361,21 @@ pub fn positive_pivots_regular(pivots: impl Iterator<Item = f64>, norm: f64) -> 
 /// (Golub & Van Loan, *Matrix Computations*, 4th ed., §4.1.2): no square root, and one reciprocal per
 /// pivot, reused by the column of L and by the diagonal solve, so that the dependent chain of a small
 /// solve holds N divisions and no square root (Cholesky's L_jj = √d_j adds N square roots and a
-/// division per row and per substitution step). Accepted by [`positive_pivots_regular`], the test of
-/// [`DenseFactor::symmetric`] (d_j = L_jj², scale max(d_max, max |m_ij|)). `false`, with `b`
-/// untouched, when a pivot is not positive, the pivots are singular by that test, or an entry of M is
-/// not finite (the caller then reports why, e.g. by [`factor_positive_mass`]).
+/// division per row and per substitution step). Accepted by [`positive_pivots_regular`] with the
+/// largest diagonal entry as the scale, as in the compiled models' LDLᵀ; for a positive definite M it
+/// is the largest entry (|m_ij| ≤ √(m_ii m_jj)), so this is the test of [`DenseFactor::symmetric`]
+/// (d_j = L_jj², scale max(d_max, max |m_ij|)) without a pass over the upper triangle. `false`, with
+/// `b` untouched, when a pivot is not positive, the pivots are singular by that test, or an entry of
+/// the lower triangle is not finite (a NaN pivot follows, or an infinite one, whose ratio is NaN; an
+/// infinite l_ij makes a later pivot −∞). The caller then reports why, e.g. by
+/// [`factor_positive_mass`].
 #[inline]
 pub fn solve_positive_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>) -> bool {
-    // Largest entry magnitude, NaN when an entry is not finite (v − v is 0 or NaN): then the pivot
-    // ratio is NaN and the test rejects.
-    let (norm, nonfinite) = m
-        .iter()
-        .fold((0.0_f64, 0.0), |(n, z), &v| (n.max(v.abs()), z + (v - v)));
     let Some((l, d, inv)) = ldlt_fixed(&m) else {
         return false;
     };
-    if !positive_pivots_regular(d.iter().copied(), norm + nonfinite) {
+    let norm = (0..N).fold(0.0_f64, |n, j| n.max(m[(j, j)]));
+    if !positive_pivots_regular(d.iter().copied(), norm) {
         return false;
     }
     // L y = b, then Lᵀ x = D⁻¹ y, in place.
@@ -883,18 +883,22 @@ mod tests {
             SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::new(1.0, 1.0, 1e-14)),
             "ratio 1e-14",
         );
-        // Non-finite: on the diagonal, in the lower triangle, and in the upper one only (not read by
-        // the factorization, caught by the norm), and an infinite entry.
+        // Non-finite: NaN on the diagonal and in the lower triangle (only the lower triangle is read),
+        // ±∞ on the diagonal and off it, and NaN everywhere.
         for (i, j, v) in [
             (1, 1, f64::NAN),
             (2, 0, f64::NAN),
-            (0, 2, f64::NAN),
+            (2, 1, f64::NAN),
             (1, 0, f64::INFINITY),
+            (2, 1, f64::NEG_INFINITY),
+            (0, 0, f64::INFINITY),
+            (2, 2, f64::INFINITY),
         ] {
             let mut m = spd;
             m[(i, j)] = v;
             reject(m, &format!("{v} at ({i}, {j})"));
         }
+        reject(SMatrix::<f64, 3, 3>::from_element(f64::NAN), "all NaN");
         // The threshold is that of DenseFactor::symmetric: diag(1, 1, r) on either side of it.
         for r in [1e-12, 2e-13, 1e-13, 5e-14] {
             let m = SMatrix::<f64, 3, 3>::from_diagonal(&SVector::<f64, 3>::new(1.0, 1.0, r));
