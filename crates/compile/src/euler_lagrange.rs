@@ -19,7 +19,7 @@ use crate::trace::{Guard, Recorded};
 use crate::{ldlt, Compile, Result};
 use nalgebra::DMatrix;
 use noether_core::error::check_phase_point;
-use noether_core::linalg::{factor_positive_mass, is_singular, pivot_range, pivot_ratio};
+use noether_core::linalg::{factor_positive_mass, positive_pivots_regular};
 use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, EulerLagrange, Lagrangian, Velocities};
 use std::sync::OnceLock;
@@ -150,12 +150,13 @@ pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool
 }
 
 /// `true` when the n pivots of M = LDLᵀ at outputs `at..at + n` (the diagonal of M after them) are
-/// positive and regular by [`linalg`](noether_core::linalg)'s criterion (the pivot ratio against the
-/// largest pivot or diagonal entry, which bounds every entry of a positive definite M).
+/// positive and regular by
+/// [`linalg::positive_pivots_regular`](noether_core::linalg::positive_pivots_regular), the test of the
+/// dual-number path's stack LDLᵀ (the pivot ratio against the largest pivot or diagonal entry, which
+/// bounds every entry of a positive definite M).
 pub(crate) fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
-    let (lo, hi) = pivot_range((at..at + n).map(|j| o.get(j)));
     let norm = (at + n..at + 2 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
-    (at..at + n).all(|j| o.get(j) > 0.0) && !is_singular(pivot_ratio(lo, hi, norm))
+    positive_pivots_regular((at..at + n).map(|j| o.get(j)), norm)
 }
 
 /// q̈ = M⁻¹ b from the outputs (b, M's lower triangle by rows) by

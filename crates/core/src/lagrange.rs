@@ -8,10 +8,11 @@
 //! ```
 //!
 //! [`EulerLagrange`] evaluates the right-hand side without any hand-written derivative:
-//! - up to `JET_MAX` (12) degrees of freedom, one evaluation of L with a
+//! - up to `JET_MAX` (10) degrees of freedom, one evaluation of L with a
 //!   [`LagrangeJet`](ad::LagrangeJet) gives ∂L/∂q, the term (∂²L/∂q̇∂q)·q̇ + ∂²L/∂q̇∂t (a
-//!   Hessian-vector product, never the full mixed Hessian) and M together, and M is factored by an
-//!   in-place LDLᵀ on the stack: no heap allocation per call;
+//!   Hessian-vector product, never the full mixed Hessian) and M together, and M q̈ = b is solved by a
+//!   square-root-free LDLᵀ factorization on the stack ([`linalg::solve_positive_fixed`]): no heap
+//!   allocation, no square root, one division per pivot;
 //! - a mass matrix declared constant is factored once and never differentiated again (then only a
 //!   gradient and a Hessian-vector product are evaluated);
 //! - larger systems record one evaluation of L on a tape ([`ad::lagrange_terms_taped`]): one reverse
@@ -52,8 +53,9 @@ impl<L: Lagrangian + ?Sized> Field for LagrangianField<'_, L> {
 }
 
 /// Overwrites `b` with M⁻¹ b for a small mass matrix held on the stack
-/// ([`linalg::solve_positive_fixed`]: Cholesky with linalg's pivot test). An indefinite, singular or
-/// non-finite M goes through [`linalg::factor_positive_mass`] for the error it reports.
+/// ([`linalg::solve_positive_fixed`]: square-root-free LDLᵀ, M = L D Lᵀ, with linalg's pivot test).
+/// An indefinite, singular or non-finite M goes through [`linalg::factor_positive_mass`] for the error
+/// it reports (or, for a borderline M that passes its test, the solution by its Cholesky factor).
 #[inline]
 fn solve_mass_fixed<const N: usize>(m: SMatrix<f64, N, N>, b: &mut SVector<f64, N>, t: f64) -> Result<()> {
     if linalg::solve_positive_fixed(m, b) {
@@ -165,9 +167,10 @@ impl<L: Lagrangian> EulerLagrange<L> {
 
     /// Accelerations q̈ = M⁻¹ (∂L/∂q − (∂²L/∂q̇∂q)·q̇ − ∂²L/∂q̇∂t + Q), written into `a`.
     ///
-    /// Up to `JET_MAX` (12) degrees of freedom everything comes from one evaluation of L with a
-    /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack (no heap allocation); larger
-    /// systems take one taped evaluation of L ([`ad::lagrange_terms_taped`]) and a dense factor.
+    /// Up to `JET_MAX` (10) degrees of freedom everything comes from one evaluation of L with a
+    /// [`LagrangeJet`](ad::LagrangeJet) and M is factored on the stack by a square-root-free LDLᵀ (no
+    /// heap allocation); larger systems take one taped evaluation of L ([`ad::lagrange_terms_taped`])
+    /// and linalg's dense factor (nalgebra's Cholesky).
     pub fn accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         self.check(t, q, v)?;
         check_len("q̈ (output)", a, self.dof())?;
@@ -187,7 +190,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
     }
 
-    /// The static path: one jet evaluation, stack Cholesky.
+    /// The static path: one jet evaluation, stack LDLᵀ.
     #[inline]
     fn accelerations_fixed<const N: usize>(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> Result<()> {
         let (Ok(qn), Ok(vn)) = (<&[f64; N]>::try_from(q), <&[f64; N]>::try_from(v)) else {
@@ -222,7 +225,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
         }
     }
 
-    /// The run-time-sized path (more than `JET_MAX` (12) degrees of freedom). A mass matrix
+    /// The run-time-sized path (more than `JET_MAX` (10) degrees of freedom). A mass matrix
     /// declared constant is factored once, and only ∂L/∂q and the mixed term are evaluated (chunked
     /// gradient and Hessian-vector product); otherwise one taped evaluation of L
     /// ([`ad::lagrange_terms_taped`]) gives ∂L/∂q, the mixed term and M together, and M is factored

@@ -332,7 +332,7 @@ fn momenta_and_mass_w<L: Lagrangian, const W: usize>(
 }
 
 /// [`LegendreTransform::start`] for n ≤ W: one `Dual2Vec<W>` evaluation at q̇ = 0 for ∂L/∂q̇ and M,
-/// and M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)) by a Cholesky factorization on the stack
+/// and M(t, q, 0)⁻¹ (p − ∂L/∂q̇(t, q, 0)) by a square-root-free LDLᵀ factorization on the stack
 /// ([`linalg::solve_positive_fixed`](crate::linalg::solve_positive_fixed), M padded to W × W with
 /// max |m_ij| on the diagonal, so that the padding leaves the pivot test's ratio that of M); `None`
 /// where M(t, q, 0) is not positive definite or singular by that test.
