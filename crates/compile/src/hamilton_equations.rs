@@ -9,7 +9,7 @@
 use crate::derive::gradient;
 use crate::euler_lagrange::{default_point, guards_hold, value_or};
 use crate::graph::Id;
-use crate::program::Program;
+use crate::program::{Backend, Program};
 use crate::trace::{Guard, Recorded};
 use crate::{Compile, Result};
 use noether_core::error::{check_len, check_phase_point};
@@ -35,6 +35,28 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
 
     /// Compiles `system`, recording H at (t, q, p).
     pub fn at(system: HamiltonEquations<H>, t: f64, q: &[f64], p: &[f64]) -> Result<Self> {
+        Self::build(system, (t, q, p), Backend::Native)
+    }
+
+    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
+    /// feature `jit`.
+    pub fn interpreted(system: HamiltonEquations<H>) -> Result<Self> {
+        let (q, p) = default_point(system.dof());
+        Self::build(system, (0.0, &q, &p), Backend::Interpreter)
+    }
+
+    /// What runs the programs ([`Backend::Native`] with the feature `jit`, unless built by
+    /// [`interpreted`](Self::interpreted) or Cranelift failed).
+    pub fn backend(&self) -> Backend {
+        self.rates.backend()
+    }
+
+    /// Records at (t, q, p), derives, and builds the programs for `backend`.
+    fn build(
+        system: HamiltonEquations<H>,
+        (t, q, p): (f64, &[f64], &[f64]),
+        backend: Backend,
+    ) -> Result<Self> {
         let n = system.dof();
         check_phase_point(n, t, q, p, "p")?;
         let model = system.hamiltonian();
@@ -49,8 +71,8 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
         let mut energy = vec![r.value];
         energy.extend(guards.iter().map(|g| g.node));
         Ok(CompiledHamiltonEquations {
-            rates: Program::new(g, 1 + 2 * n, &outputs),
-            energy: Program::new(g, 1 + 2 * n, &energy),
+            rates: Program::with_backend(g, 1 + 2 * n, &outputs, backend),
+            energy: Program::with_backend(g, 1 + 2 * n, &energy, backend),
             dual: system,
             guards: guards.iter().map(|g| g.sign).collect(),
         })

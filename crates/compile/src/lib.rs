@@ -39,6 +39,8 @@ pub mod euler_lagrange;
 pub mod graph;
 pub mod hamilton_equations;
 pub mod ldlt;
+#[cfg(feature = "jit")]
+mod native;
 mod program;
 pub mod show;
 mod trace;
@@ -47,7 +49,7 @@ pub use error::{Error, Result};
 pub use euler_lagrange::{CompiledEulerLagrange, Operations, UNROLL_MAX};
 pub use graph::Graph;
 pub use hamilton_equations::CompiledHamiltonEquations;
-pub use program::{Outputs, Program};
+pub use program::{Backend, Outputs, Program};
 pub use trace::{record, Guard, Recording, Traced};
 
 /// Turns a system into its compiled form, with one call.
