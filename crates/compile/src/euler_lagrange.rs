@@ -243,7 +243,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     }
 
     /// The program of q̈ (for the measurements of the tests).
-    #[cfg(test)]
+    #[cfg(all(test, feature = "jit"))]
     pub(crate) fn accelerations_program(&self) -> &Program {
         &self.accelerations
     }

@@ -164,25 +164,30 @@ fn is_native(f: Unary) -> bool {
     matches!(f, Unary::Neg | Unary::Recip | Unary::Sqrt | Unary::Abs)
 }
 
+/// Cranelift's settings: optimised for speed; calls by absolute address (cranelift-jit's
+/// requirement); the IR verifier only in debug builds (it costs time at each compilation).
+const SETTINGS: [(&str, &str); 4] = [
+    ("opt_level", "speed"),
+    ("use_colocated_libcalls", "false"),
+    ("is_pic", "false"),
+    (
+        "enable_verifier",
+        if cfg!(debug_assertions) { "true" } else { "false" },
+    ),
+];
+
 /// Compiles `instrs` (the interpreter's program: `inputs` input registers, the outputs in the
-/// registers `outputs`) to machine code, with Cranelift at `opt_level` ("speed" or "none").
+/// registers `outputs`) to machine code, with Cranelift's settings of [`SETTINGS`] and then
+/// `overrides`.
 pub(crate) fn compile(
     instrs: &[Instr],
     inputs: usize,
     outputs: &[u32],
-    opt_level: &str,
+    overrides: &[(&str, &str)],
 ) -> Result<Code, String> {
     let err = |e: &dyn fmt::Display| e.to_string();
     let mut flags = settings::builder();
-    for (name, value) in [
-        ("opt_level", opt_level),
-        ("use_colocated_libcalls", "false"),
-        ("is_pic", "false"),
-        (
-            "enable_verifier",
-            if cfg!(debug_assertions) { "true" } else { "false" },
-        ),
-    ] {
+    for &(name, value) in SETTINGS.iter().chain(overrides) {
         flags.set(name, value).map_err(|e| err(&e))?;
     }
     let isa = cranelift_native::builder()
@@ -395,24 +400,30 @@ mod tests {
     use noether_testkit::systems::{Chain, DoublePendulum};
     use std::time::Instant;
 
-    /// Cranelift's optimisations on ("speed") and off ("none"): the time to compile the program of q̈
-    /// of the double pendulum and of the 40-link chain, and the time per run, printed (not asserted:
-    /// the machine is shared). `cargo test -p noether-compile --release --features jit --lib --
+    /// Cranelift's optimisations on ("speed") and off ("none"), with its two register allocators
+    /// ("backtracking", the default, and "single_pass"): the time to compile the program of q̈ of four
+    /// models and the time per run, printed (not asserted: the machine is shared). `cargo test -p noether-compile --release --features jit --lib --
     /// --ignored --nocapture opt_levels`.
     #[test]
     #[ignore]
     fn opt_levels() {
+        const SETTINGS: [&[(&str, &str)]; 4] = [
+            &[("opt_level", "none")],
+            &[("opt_level", "speed")],
+            &[("opt_level", "none"), ("regalloc_algorithm", "single_pass")],
+            &[("opt_level", "speed"), ("regalloc_algorithm", "single_pass")],
+        ];
         fn measure<L: noether_core::Lagrangian>(name: &str, l: L, runs: usize) {
             let c = EulerLagrange::new(l).compile().unwrap();
             let p = c.accelerations_program();
             let n = p.inputs();
             let x: Vec<f64> = (0..n).map(|i| 0.1 + 0.37 * (i as f64).sin()).collect();
             let mut out = vec![0.0; p.outputs()];
-            for level in ["none", "speed"] {
+            for settings in SETTINGS {
                 let t0 = Instant::now();
-                let q = p.with_opt_level(level);
+                let q = p.with_settings(settings);
                 let build = t0.elapsed().as_secs_f64() * 1e3;
-                let best = (0..5)
+                let best = (0..15)
                     .map(|_| {
                         let t0 = Instant::now();
                         for _ in 0..runs {
@@ -422,12 +433,18 @@ mod tests {
                     })
                     .fold(f64::INFINITY, f64::min);
                 println!(
-                    "{name} ({} operations): opt_level {level}: compiled in {build:.1} ms, {best:.0} ns per run",
+                    "{name} ({} operations), {settings:?}: compiled in {build:.1} ms, {best:.0} ns per run",
                     p.operations()
                 );
             }
         }
         measure("double pendulum", DoublePendulum::default(), 200_000);
+        measure(
+            "heavy top",
+            noether_testkit::systems::HeavyTop::default(),
+            200_000,
+        );
+        measure("10-link chain", Chain::<10>::default(), 5_000);
         measure("40-link chain", Chain::<40>::default(), 200);
     }
 }

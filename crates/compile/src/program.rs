@@ -79,18 +79,19 @@ impl Program {
         let mut program = Self::interpreted(graph, inputs, outputs);
         #[cfg(feature = "jit")]
         if backend == Backend::Native {
-            program.compile_native("speed");
+            program.compile_native(&[]);
         }
         #[cfg(not(feature = "jit"))]
         let _ = backend;
         program
     }
 
-    /// The native code of the program, compiled by Cranelift at `opt_level` ("speed" or "none"), where
-    /// it compiles; the program stays with the interpreter otherwise.
+    /// The native code of the program, compiled by Cranelift (with `settings` in place of the
+    /// defaults of [`native`](crate::native)), where it compiles; the program stays with the
+    /// interpreter otherwise.
     #[cfg(feature = "jit")]
-    fn compile_native(&mut self, opt_level: &str) {
-        if let Ok(code) = crate::native::compile(&self.instrs, self.inputs, &self.outputs, opt_level) {
+    fn compile_native(&mut self, settings: &[(&str, &str)]) {
+        if let Ok(code) = crate::native::compile(&self.instrs, self.inputs, &self.outputs, settings) {
             let slots = (self.inputs..self.inputs + self.outputs.len())
                 .map(|k| k as u32)
                 .collect();
@@ -98,12 +99,12 @@ impl Program {
         }
     }
 
-    /// The program compiled again by Cranelift at `opt_level` (for the measurements of the tests).
+    /// The program compiled again by Cranelift with `settings` (for the measurements of the tests).
     #[cfg(all(test, feature = "jit"))]
-    pub(crate) fn with_opt_level(&self, opt_level: &str) -> Program {
+    pub(crate) fn with_settings(&self, settings: &[(&str, &str)]) -> Program {
         let mut program = self.clone();
         program.native = None;
-        program.compile_native(opt_level);
+        program.compile_native(settings);
         program
     }
 
