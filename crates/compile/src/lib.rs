@@ -8,7 +8,8 @@
 //! for derivatives along the flow), the linear solve is unrolled into it ([`ldlt`]), and every node
 //! is simplified and shared as it is built (constant folding, algebraic identities, one node per
 //! common subexpression across all outputs). The outputs then run as a flat [`Program`] over
-//! registers. This is automatic differentiation done once, as CasADi and JAX do it, not derivatives
+//! registers: interpreted, or with the feature `jit` compiled once to native code by Cranelift
+//! (bit for bit the same results; [`Backend`] tells which). This is automatic differentiation done once, as CasADi and JAX do it, not derivatives
 //! by hand.
 //!
 //! A compiled system implements the same system traits as the one it came from, so every integrator

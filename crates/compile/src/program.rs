@@ -43,8 +43,20 @@ pub enum Backend {
     Native,
 }
 
-/// A compiled list of outputs of a graph: the instructions, the number of inputs and registers, the
-/// register of each output, and with the feature `jit` the native code (see the [module docs](self)).
+/// A compiled list of outputs of a graph: the nodes that the outputs need (dead code eliminated), in
+/// order, as a flat program over a file of f64 registers (reused once a value is dead), the register
+/// of each output, and with the feature `jit` the native code.
+///
+/// - **The interpreter** (always available; the fallback): one pass over the instructions, no
+///   allocation (the register file is a per-thread scratch buffer).
+/// - **Native code** (feature `jit` of noether-compile, or of the facade `noether`): the same
+///   instructions compiled once, when the program is built, to one machine-code function by
+///   Cranelift, which gives the interpreter's results bit for bit: only correctly rounded IEEE
+///   operations (+, −, ·, /, √) and sign-bit operations (−x, |x|) as instructions, every other
+///   function a call of the Rust function the interpreter calls. [`new`](Self::new) builds it (the
+///   interpreter where Cranelift fails, e.g. on a host it does not support);
+///   [`interpreted`](Self::interpreted) builds the interpreter in any case; [`backend`](Self::backend)
+///   tells which runs.
 ///
 /// Cloning shares the native code. A program is `Send` and `Sync`: threads run it at once, each with
 /// its own scratch buffer.
@@ -346,7 +358,7 @@ fn execute(instrs: &[Instr], r: &mut [f64]) {
 mod tests {
     use super::*;
 
-    /// The program gives the graph's own evaluation bit for bit, and reuses registers.
+    /// The program gives the graph's own evaluation bit for bit (both backends), and reuses registers.
     #[test]
     fn matches_the_graph_and_reuses_registers() {
         let mut g = Graph::new();
@@ -358,12 +370,16 @@ mod tests {
             acc = g.add(s, c);
         }
         let outputs = [acc, g.mul(acc, x)];
-        let p = Program::new(&g, 2, &outputs);
-        let mut out = [0.0; 2];
-        p.run(&[0.3, -0.8], &mut out).unwrap();
+        let p = Program::interpreted(&g, 2, &outputs);
+        assert_eq!(p.backend(), Backend::Interpreter);
         let v = g.evaluate(&[0.3, -0.8], outputs[1]);
-        assert_eq!(out[0].to_bits(), v[outputs[0] as usize].to_bits());
-        assert_eq!(out[1].to_bits(), v[outputs[1] as usize].to_bits());
+        // Both backends where the feature `jit` is on (the first is native then).
+        for p in [Program::new(&g, 2, &outputs), p.clone()] {
+            let mut out = [0.0; 2];
+            p.run(&[0.3, -0.8], &mut out).unwrap();
+            assert_eq!(out[0].to_bits(), v[outputs[0] as usize].to_bits());
+            assert_eq!(out[1].to_bits(), v[outputs[1] as usize].to_bits());
+        }
         assert!(
             p.registers() < 8,
             "{} registers for a chain of 80 nodes",
