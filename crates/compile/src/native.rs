@@ -165,11 +165,14 @@ fn is_native(f: Unary) -> bool {
 }
 
 /// Cranelift's settings: optimised for speed; calls by absolute address (cranelift-jit's
-/// requirement); the IR verifier only in debug builds (it costs time at each compilation).
-const SETTINGS: [(&str, &str); 4] = [
+/// requirement); stack probes inline (the frame of a large program, its spilled values, may pass a
+/// guard page); the IR verifier only in debug builds (it costs time at each compilation).
+const SETTINGS: [(&str, &str); 6] = [
     ("opt_level", "speed"),
     ("use_colocated_libcalls", "false"),
     ("is_pic", "false"),
+    ("enable_probestack", "true"),
+    ("probestack_strategy", "inline"),
     (
         "enable_verifier",
         if cfg!(debug_assertions) { "true" } else { "false" },
