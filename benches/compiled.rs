@@ -4,16 +4,17 @@
 //! heavy symmetric top, chains of 10 and 40 links; `crates/testkit/src/systems.rs`): the time of one
 //! q̈ by the hand-written closed form; by the compiled model's equations emitted as Rust source
 //! (`rust_source`, committed in `benches/generated/` and checked by noether-compile's test
-//! `generated`: ahead-of-time compilation by LLVM); by the compiled model run by its interpreter; and
-//! by `EulerLagrange` (dual numbers). Each time is the minimum per call over interleaved rounds (the
-//! machine is shared: interference only adds time). One line per model:
+//! `generated`: ahead-of-time compilation by LLVM); by the compiled model run by its interpreter; with
+//! the feature `jit`, by the compiled model run as native code (Cranelift); and by `EulerLagrange`
+//! (dual numbers). Each time is the minimum per call over interleaved rounds (the machine is shared:
+//! interference only adds time). One line per model:
 //!
 //! ```text
 //! ratio <model> <compiled / hand>   (then each time, and the construction time and operation counts)
 //! ```
 //!
-//! where "compiled" is the ahead-of-time code where it is generated (not for the 40-link chain: 34 000
-//! lines) and the interpreter otherwise.
+//! where "compiled" is the native code with the feature `jit`, else the ahead-of-time code where it is
+//! generated (not for the 40-link chain: 34 000 lines) and the interpreter otherwise.
 //!
 //! Then Hamilton's equations of the double pendulum's H built from L (`LegendreTransform::new(l)
 //! .compile()`: the transform in closed form on the graph) against the same equations written by
@@ -25,11 +26,11 @@
 //! `Natural` and on `Natural` by dual numbers, per stage (`ratio henon_heiles_kl8 <compiled / hand>`,
 //! with the distance of each end point to the hand loop's).
 //!
-//! `cargo bench --bench compiled`; results in docs/benchmarks.md.
+//! `cargo bench --bench compiled [--features jit]`; results in docs/benchmarks.md.
 
 #![allow(missing_docs)]
 
-use noether::compile::Compile;
+use noether::compile::{Backend, Compile, CompiledEulerLagrange};
 use noether::core::integrators::Composition;
 use noether::core::{
     Dynamics, EulerLagrange, HamiltonEquations, Lagrangian, LegendreTransform, Natural, State, Stepper,
@@ -84,11 +85,16 @@ fn model<
         x[N + 1..=2 * N].copy_from_slice(&v);
     }
     let t0 = Instant::now();
-    let compiled = EulerLagrange::new(l.clone()).compile().unwrap();
+    let compiled = CompiledEulerLagrange::interpreted(EulerLagrange::new(l.clone())).unwrap();
     let build = t0.elapsed();
+    // Native code with the feature `jit` (the interpreter again without it).
+    let t0 = Instant::now();
+    let native = EulerLagrange::new(l.clone()).compile().unwrap();
+    let build_native = t0.elapsed();
+    let jit = native.backend() == Backend::Native;
     let dual = EulerLagrange::new(l);
-    let (mut a, mut b) = ([0.0; N], [0.0; N]);
-    let [th, ta, tc, td] = race(
+    let (mut a, mut b, mut c) = ([0.0; N], [0.0; N], [0.0; N]);
+    let [th, ta, tc, tn, td] = race(
         15,
         calls,
         [
@@ -107,6 +113,14 @@ fn model<
                 black_box(&a);
             },
             &mut || {
+                if jit {
+                    native
+                        .accelerations(0.0, black_box(&q), black_box(&v), &mut c)
+                        .unwrap();
+                    black_box(&c);
+                }
+            },
+            &mut || {
                 dual.accelerations(0.0, black_box(&q), black_box(&v), &mut b)
                     .unwrap();
                 black_box(&b);
@@ -114,15 +128,22 @@ fn model<
         ],
     );
     let ops = compiled.operations();
-    let best = if aot.is_some() { ta } else { tc };
+    let best = match (jit, aot.is_some()) {
+        (true, _) => tn,
+        (false, true) => ta,
+        (false, false) => tc,
+    };
     println!(
-        "ratio {name} {:.2}   (hand {th:.1} ns; ahead-of-time {}; interpreter {tc:.1} ns = {:.2}×; \
-         dual numbers {td:.1} ns = {:.2}×; built in {:.2} ms; {} operations from {} requested, L recorded in {})",
+        "ratio {name} {:.2}   (hand {th:.1} ns; ahead-of-time {}; interpreter {tc:.1} ns = {:.2}×; native {}; \
+         dual numbers {td:.1} ns = {:.2}×; built in {:.2} ms (native: {}); {} operations from {} requested, \
+         L recorded in {})",
         best / th,
         if aot.is_some() { format!("{ta:.1} ns") } else { "not generated".into() },
         tc / th,
+        if jit { format!("{tn:.1} ns = {:.2}×", tn / th) } else { "not built (feature jit)".into() },
         td / th,
         build.as_secs_f64() * 1e3,
+        if jit { format!("{:.2} ms", build_native.as_secs_f64() * 1e3) } else { "—".into() },
         ops.accelerations,
         ops.requested,
         ops.recorded

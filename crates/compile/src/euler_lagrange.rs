@@ -14,7 +14,7 @@
 
 use crate::derive::{directional, gradient};
 use crate::graph::{sign, Graph, Id};
-use crate::program::{Outputs, Program};
+use crate::program::{Backend, Outputs, Program};
 use crate::trace::{Guard, Recorded};
 use crate::{ldlt, Compile, Result};
 use nalgebra::DMatrix;
@@ -60,6 +60,7 @@ pub struct CompiledEulerLagrange<L> {
     operations: Operations,
     terms: (Vec<Id>, Vec<Vec<Id>>),
     jacobian: OnceLock<Program>,
+    backend: Backend,
 }
 
 /// The largest number of degrees of freedom whose solve M q̈ = b is unrolled into the graph (n³/6
@@ -191,6 +192,24 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// Compiles `system`, recording L at (t, q, q̇): where L branches (compares values), the compiled
     /// code follows the branches taken there and falls back to dual numbers elsewhere.
     pub fn at(system: EulerLagrange<L>, t: f64, q: &[f64], v: &[f64]) -> Result<Self> {
+        Self::build(system, (t, q, v), Backend::Native)
+    }
+
+    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
+    /// feature `jit` (no time spent in Cranelift; the same results bit for bit).
+    pub fn interpreted(system: EulerLagrange<L>) -> Result<Self> {
+        let (q, v) = default_point(system.dof());
+        Self::build(system, (0.0, &q, &v), Backend::Interpreter)
+    }
+
+    /// What runs the programs ([`Backend::Native`] with the feature `jit`, unless built by
+    /// [`interpreted`](Self::interpreted) or Cranelift failed).
+    pub fn backend(&self) -> Backend {
+        self.accelerations.backend()
+    }
+
+    /// Records at (t, q, q̇), derives, and builds the programs for `backend`.
+    fn build(system: EulerLagrange<L>, (t, q, v): (f64, &[f64], &[f64]), backend: Backend) -> Result<Self> {
         let n = system.dof();
         check_phase_point(n, t, q, v, "q̇")?;
         let forced = system.lagrangian().has_generalized_force();
@@ -205,8 +224,8 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
         let mut energy_outputs = vec![h];
         energy_outputs.extend(guards.iter().map(|g| g.node));
         let inputs = 1 + 2 * n + if forced { n } else { 0 };
-        let accelerations = Program::new(&r.rec.graph, inputs, &outputs);
-        let energy = Program::new(&r.rec.graph, 1 + 2 * n, &energy_outputs);
+        let accelerations = Program::with_backend(&r.rec.graph, inputs, &outputs, backend);
+        let energy = Program::with_backend(&r.rec.graph, 1 + 2 * n, &energy_outputs, backend);
         let operations = Operations {
             recorded,
             requested: r.rec.graph.requested(),
@@ -225,7 +244,14 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             operations,
             terms,
             jacobian: OnceLock::new(),
+            backend,
         })
+    }
+
+    /// The program of q̈ (for the measurements of the tests).
+    #[cfg(all(test, feature = "jit"))]
+    pub(crate) fn accelerations_program(&self) -> &Program {
+        &self.accelerations
     }
 
     /// The dual-number system it was compiled from (and falls back to).
@@ -342,7 +368,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             }
             outputs.extend(d.into_iter().chain((0..n).map(|i| m[i][i])));
             outputs.extend(&self.outputs[self.outputs.len() - self.guards.len()..]);
-            Program::new(&g, 1 + 2 * n, &outputs)
+            Program::with_backend(&g, 1 + 2 * n, &outputs, self.backend)
         })
     }
 

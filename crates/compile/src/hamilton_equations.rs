@@ -10,7 +10,7 @@
 use crate::derive::gradient;
 use crate::euler_lagrange::{default_point, guards_hold, mass_usable};
 use crate::graph::{Graph, Id};
-use crate::program::{Outputs, Program};
+use crate::program::{Backend, Outputs, Program};
 use crate::trace::{Guard, Recorded};
 use crate::{Compile, Result};
 use nalgebra::DMatrix;
@@ -49,6 +49,28 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
 
     /// Compiles `system`, recording H at (t, q, p).
     pub fn at(system: HamiltonEquations<H>, t: f64, q: &[f64], p: &[f64]) -> Result<Self> {
+        Self::build(system, (t, q, p), Backend::Native)
+    }
+
+    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
+    /// feature `jit`.
+    pub fn interpreted(system: HamiltonEquations<H>) -> Result<Self> {
+        let (q, p) = default_point(system.dof());
+        Self::build(system, (0.0, &q, &p), Backend::Interpreter)
+    }
+
+    /// What runs the programs ([`Backend::Native`] with the feature `jit`, unless built by
+    /// [`interpreted`](Self::interpreted) or Cranelift failed).
+    pub fn backend(&self) -> Backend {
+        self.rates.backend()
+    }
+
+    /// Records at (t, q, p), derives, and builds the programs for `backend`.
+    fn build(
+        system: HamiltonEquations<H>,
+        (t, q, p): (f64, &[f64], &[f64]),
+        backend: Backend,
+    ) -> Result<Self> {
         let n = system.dof();
         check_phase_point(n, t, q, p, "p")?;
         let model = system.hamiltonian();
@@ -58,12 +80,17 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
             diagonal: Vec::new(),
             guards: r.rec.guards.clone(),
         };
-        Ok(Self::assemble(system, r, checks))
+        Ok(Self::assemble(system, r, checks, backend))
     }
 
     /// The compiled system of the recording `r` whose value is H (inputs t, q, p), its rates from
-    /// one reverse accumulation, and `checks` after the rates and after H.
-    pub(crate) fn assemble(system: HamiltonEquations<H>, mut r: Recorded, checks: Checks) -> Self {
+    /// one reverse accumulation, and `checks` after the rates and after H; programs for `backend`.
+    pub(crate) fn assemble(
+        system: HamiltonEquations<H>,
+        mut r: Recorded,
+        checks: Checks,
+        backend: Backend,
+    ) -> Self {
         let n = r.q.len();
         let g = &mut r.rec.graph;
         let vars: Vec<Id> = r.q.iter().chain(&r.v).copied().collect();
@@ -77,8 +104,8 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
         let mut energy = vec![r.value];
         energy.extend(&check_nodes);
         CompiledHamiltonEquations {
-            rates: Program::new(g, 1 + 2 * n, &outputs),
-            energy: Program::new(g, 1 + 2 * n, &energy),
+            rates: Program::with_backend(g, 1 + 2 * n, &outputs, backend),
+            energy: Program::with_backend(g, 1 + 2 * n, &energy, backend),
             dual: system,
             graph: r.rec.graph,
             vars,
@@ -130,7 +157,7 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
                 outputs.extend(gradient(&mut g, rate, &self.vars));
             }
             outputs.extend(&self.outputs[n2..]);
-            Program::new(&g, 1 + n2, &outputs)
+            Program::with_backend(&g, 1 + n2, &outputs, self.rates.backend())
         })
     }
 }

@@ -89,7 +89,7 @@ impl<L: Lagrangian> CompiledHamiltonEquations<LegendreTransform<L>> {
             guards: r.rec.guards.clone(),
         };
         let system = HamiltonEquations::new(LegendreTransform::new(lagrangian));
-        Ok(Self::assemble(system, r, checks))
+        Ok(Self::assemble(system, r, checks, crate::Backend::Native))
     }
 }
 

@@ -8,7 +8,8 @@
 //! for derivatives along the flow), the linear solve is unrolled into it ([`ldlt`]), and every node
 //! is simplified and shared as it is built (constant folding, algebraic identities, one node per
 //! common subexpression across all outputs). The outputs then run as a flat [`Program`] over
-//! registers. This is automatic differentiation done once, as CasADi and JAX do it, not derivatives
+//! registers: interpreted, or with the feature `jit` compiled once to native code by Cranelift
+//! (bit for bit the same results; [`Backend`] tells which). This is automatic differentiation done once, as CasADi and JAX do it, not derivatives
 //! by hand.
 //!
 //! A compiled system implements the same system traits as the one it came from, so every integrator
@@ -41,6 +42,8 @@ pub mod graph;
 pub mod hamilton_equations;
 pub mod ldlt;
 pub mod legendre;
+#[cfg(feature = "jit")]
+mod native;
 pub mod natural;
 mod program;
 pub mod show;
@@ -51,7 +54,7 @@ pub use euler_lagrange::{CompiledEulerLagrange, Operations, UNROLL_MAX};
 pub use graph::Graph;
 pub use hamilton_equations::CompiledHamiltonEquations;
 pub use natural::CompiledNatural;
-pub use program::{Outputs, Program};
+pub use program::{Backend, Outputs, Program};
 pub use show::{Equations, Notation, Term};
 pub use trace::{record, Guard, Recording, Traced};
 

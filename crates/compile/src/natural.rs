@@ -98,6 +98,12 @@ impl<P: Potential> CompiledNatural<P> {
         &self.dual
     }
 
+    /// What runs the programs ([`Backend::Native`](crate::Backend::Native) with the feature `jit`,
+    /// unless Cranelift failed).
+    pub fn backend(&self) -> crate::Backend {
+        self.accelerations.backend()
+    }
+
     /// The number of operations of the accelerations' program.
     pub fn operations(&self) -> usize {
         self.accelerations.operations()
@@ -178,7 +184,7 @@ impl<P: Potential> CompiledNatural<P> {
                 outputs.extend(apply_inverse_mass(&mut g, &inverse, &column));
             }
             outputs.extend(&self.guard_nodes);
-            Program::new(&g, 1 + n, &outputs)
+            Program::with_backend(&g, 1 + n, &outputs, self.accelerations.backend())
         })
     }
 }

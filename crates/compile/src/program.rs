@@ -1,19 +1,27 @@
-//! The interpreter: the nodes that the outputs need (dead code eliminated), in order, as a flat
-//! program over a file of f64 registers, with registers reused once a value is dead.
+//! The program of a list of outputs: the nodes that the outputs need (dead code eliminated), in
+//! order, as a flat program over a file of f64 registers, with registers reused once a value is dead;
+//! run by one of two backends ([`Backend`]).
 //!
-//! Running it is one pass over the instructions — no dual parts, no allocation (the register file is
-//! a per-thread scratch buffer). The inputs occupy the first registers; each instruction reads its
-//! arguments before it writes its result, so a result may take the register of an argument that dies
-//! with it.
+//! - **The interpreter** (always available; the fallback): one pass over the instructions — no dual
+//!   parts, no allocation (the register file is a per-thread scratch buffer). The inputs occupy the
+//!   first registers; each instruction reads its arguments before it writes its result, so a result
+//!   may take the register of an argument that dies with it.
+//! - **Native code** (feature `jit`: `noether-compile = { features = ["jit"] }`, or the facade's
+//!   `noether = { features = ["jit"] }`): the same instructions compiled once, when the program is
+//!   built, to one machine-code function by Cranelift (`native`), which gives the interpreter's
+//!   results bit for bit. [`Program::new`] builds it (the interpreter where Cranelift fails, e.g. on a
+//!   host it does not support); [`Program::interpreted`] builds the interpreter in any case.
 
 use crate::graph::{Binary, Graph, Id, Node, Unary};
 use noether_core::error::check_len;
 use noether_core::{Error, Result};
 use std::cell::RefCell;
+#[cfg(feature = "jit")]
+use std::sync::Arc;
 
 /// One instruction: `d` is the register written, `a`, `b` the registers read.
 #[derive(Clone, Copy, Debug)]
-enum Instr {
+pub(crate) enum Instr {
     Const { d: u32, c: f64 },
     Add { d: u32, a: u32, b: u32 },
     Sub { d: u32, a: u32, b: u32 },
@@ -26,14 +34,42 @@ enum Instr {
     Powf { d: u32, a: u32, e: f64 },
 }
 
-/// A compiled list of outputs of a graph: the instructions, the number of inputs and registers, and
-/// the register of each output.
+/// What runs a [`Program`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The interpreter of the instructions.
+    Interpreter,
+    /// Machine code compiled by Cranelift (feature `jit`).
+    Native,
+}
+
+/// A compiled list of outputs of a graph: the nodes that the outputs need (dead code eliminated), in
+/// order, as a flat program over a file of f64 registers (reused once a value is dead), the register
+/// of each output, and with the feature `jit` the native code.
+///
+/// - **The interpreter** (always available; the fallback): one pass over the instructions, no
+///   allocation (the register file is a per-thread scratch buffer).
+/// - **Native code** (feature `jit` of noether-compile, or of the facade `noether`): the same
+///   instructions compiled once, when the program is built, to one machine-code function by
+///   Cranelift, which gives the interpreter's results bit for bit: only correctly rounded IEEE
+///   operations (+, −, ·, /, √) and sign-bit operations (−x, |x|) as instructions, every other
+///   function a call of the Rust function the interpreter calls. [`new`](Self::new) builds it (the
+///   interpreter where Cranelift fails, e.g. on a host it does not support);
+///   [`interpreted`](Self::interpreted) builds the interpreter in any case; [`backend`](Self::backend)
+///   tells which runs.
+///
+/// Cloning shares the native code. A program is `Send` and `Sync`: threads run it at once, each with
+/// its own scratch buffer.
 #[derive(Clone, Debug)]
 pub struct Program {
     instrs: Vec<Instr>,
     inputs: usize,
     registers: usize,
     outputs: Vec<u32>,
+    /// The native code, where it is built: it reads the inputs from the scratch buffer and writes
+    /// output i to its slot `inputs + i`.
+    #[cfg(feature = "jit")]
+    native: Option<(Arc<crate::native::Code>, Vec<u32>)>,
 }
 
 thread_local! {
@@ -42,8 +78,50 @@ thread_local! {
 
 impl Program {
     /// The program that computes `outputs` of `graph` from its first `inputs` inputs (every
-    /// [`Node::Input`] k of the graph must have k < `inputs`).
+    /// [`Node::Input`] k of the graph must have k < `inputs`): native code with the feature `jit` (the
+    /// interpreter where Cranelift cannot compile it), else the interpreter.
     pub fn new(graph: &Graph, inputs: usize, outputs: &[Id]) -> Self {
+        Self::with_backend(graph, inputs, outputs, Backend::Native)
+    }
+
+    /// The program of [`new`](Self::new) run by `backend` where it is available: [`Backend::Native`]
+    /// is the interpreter without the feature `jit` or where Cranelift fails.
+    pub fn with_backend(graph: &Graph, inputs: usize, outputs: &[Id], backend: Backend) -> Self {
+        #[allow(unused_mut)]
+        let mut program = Self::interpreted(graph, inputs, outputs);
+        #[cfg(feature = "jit")]
+        if backend == Backend::Native {
+            program.compile_native(&[]);
+        }
+        #[cfg(not(feature = "jit"))]
+        let _ = backend;
+        program
+    }
+
+    /// The native code of the program, compiled by Cranelift (with `settings` in place of the
+    /// defaults of [`native`](crate::native)), where it compiles; the program stays with the
+    /// interpreter otherwise.
+    #[cfg(feature = "jit")]
+    fn compile_native(&mut self, settings: &[(&str, &str)]) {
+        if let Ok(code) = crate::native::compile(&self.instrs, self.inputs, &self.outputs, settings) {
+            let slots = (self.inputs..self.inputs + self.outputs.len())
+                .map(|k| k as u32)
+                .collect();
+            self.native = Some((Arc::new(code), slots));
+        }
+    }
+
+    /// The program compiled again by Cranelift with `settings` (for the measurements of the tests).
+    #[cfg(all(test, feature = "jit"))]
+    pub(crate) fn with_settings(&self, settings: &[(&str, &str)]) -> Program {
+        let mut program = self.clone();
+        program.native = None;
+        program.compile_native(settings);
+        program
+    }
+
+    /// The program of [`new`](Self::new) run by the interpreter, with or without the feature `jit`.
+    pub fn interpreted(graph: &Graph, inputs: usize, outputs: &[Id]) -> Self {
         let (needed, last_use) = liveness(graph, outputs);
         let mut is_output = vec![false; needed.len()];
         outputs.iter().for_each(|&y| is_output[y as usize] = true);
@@ -77,7 +155,18 @@ impl Program {
             inputs,
             registers,
             outputs: outputs.iter().map(|&y| reg[y as usize]).collect(),
+            #[cfg(feature = "jit")]
+            native: None,
         }
+    }
+
+    /// What runs the program.
+    pub fn backend(&self) -> Backend {
+        #[cfg(feature = "jit")]
+        if self.native.is_some() {
+            return Backend::Native;
+        }
+        Backend::Interpreter
     }
 
     /// The number of instructions (constants included).
@@ -109,7 +198,7 @@ impl Program {
         self.outputs.len()
     }
 
-    /// The size of the register file.
+    /// The size of the interpreter's register file.
     pub fn registers(&self) -> usize {
         self.registers
     }
@@ -133,13 +222,31 @@ impl Program {
     }
 
     fn execute<R>(&self, r: &mut Vec<f64>, parts: &[&[f64]], f: impl FnOnce(Outputs<'_>) -> R) -> R {
-        if r.len() < self.registers {
-            r.resize(self.registers, 0.0);
+        #[cfg(feature = "jit")]
+        let size = match &self.native {
+            Some(_) => self.inputs + self.outputs.len(),
+            None => self.registers,
+        };
+        #[cfg(not(feature = "jit"))]
+        let size = self.registers;
+        if r.len() < size {
+            r.resize(size, 0.0);
         }
         let mut at = 0;
         for p in parts {
             r[at..at + p.len()].copy_from_slice(p);
             at += p.len();
+        }
+        #[cfg(feature = "jit")]
+        if let Some((code, slots)) = &self.native {
+            let base = r.as_mut_ptr();
+            // SAFETY: `r` holds the inputs in its first `inputs` values and room for the outputs after
+            // them (resized above); the two ranges do not overlap.
+            unsafe { code.call(base, base.add(self.inputs)) };
+            return f(Outputs {
+                registers: r,
+                map: slots,
+            });
         }
         execute(&self.instrs, r);
         f(Outputs {
@@ -251,7 +358,7 @@ fn execute(instrs: &[Instr], r: &mut [f64]) {
 mod tests {
     use super::*;
 
-    /// The program gives the graph's own evaluation bit for bit, and reuses registers.
+    /// The program gives the graph's own evaluation bit for bit (both backends), and reuses registers.
     #[test]
     fn matches_the_graph_and_reuses_registers() {
         let mut g = Graph::new();
@@ -263,12 +370,16 @@ mod tests {
             acc = g.add(s, c);
         }
         let outputs = [acc, g.mul(acc, x)];
-        let p = Program::new(&g, 2, &outputs);
-        let mut out = [0.0; 2];
-        p.run(&[0.3, -0.8], &mut out).unwrap();
+        let p = Program::interpreted(&g, 2, &outputs);
+        assert_eq!(p.backend(), Backend::Interpreter);
         let v = g.evaluate(&[0.3, -0.8], outputs[1]);
-        assert_eq!(out[0].to_bits(), v[outputs[0] as usize].to_bits());
-        assert_eq!(out[1].to_bits(), v[outputs[1] as usize].to_bits());
+        // Both backends where the feature `jit` is on (the first is native then).
+        for p in [Program::new(&g, 2, &outputs), p.clone()] {
+            let mut out = [0.0; 2];
+            p.run(&[0.3, -0.8], &mut out).unwrap();
+            assert_eq!(out[0].to_bits(), v[outputs[0] as usize].to_bits());
+            assert_eq!(out[1].to_bits(), v[outputs[1] as usize].to_bits());
+        }
         assert!(
             p.registers() < 8,
             "{} registers for a chain of 80 nodes",

@@ -13,7 +13,7 @@
 //! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta |
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
 //! | [`analysis`] | noether-analysis | equilibria and normal modes, Lyapunov spectra, sensitivities, periodic orbits |
-//! | [`compile`] | noether-compile | compiled models: the model recorded once, its equations derived and simplified on the graph, run without dual numbers (dual numbers as the guarded fallback) |
+//! | [`compile`] | noether-compile | compiled models: the model recorded once, its equations derived and simplified on the graph, run without dual numbers (dual numbers as the guarded fallback): by an interpreter, or as native code compiled by Cranelift with the feature `jit` |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
 //! | `ensemble` (feature `ensemble`) | noether-ensemble | many runs on every core, and across MPI ranks (feature `mpi`): grids, random samples, reductions bit-identical for any thread count |
