@@ -21,7 +21,7 @@
 //!
 //! Run: `cargo run --release --features examples --example compiled_chain`.
 
-use noether::compile::Compile;
+use noether::compile::{Backend, Compile};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use noether_testkit::systems::Chain;
@@ -115,14 +115,12 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         time_c * 1e3,
         time_d * 1e3,
         time_d / time_c,
-        backend_name(&compiled)
+        match compiled.backend() {
+            Backend::Native => "native",
+            Backend::Interpreter => "interpreter",
+        }
     ));
     Ok(report)
-}
-
-/// The backend the compiled system runs on.
-fn backend_name<L>(_c: &noether::compile::CompiledEulerLagrange<L>) -> &'static str {
-    "interpreter"
 }
 
 fn main() -> ExitCode {

@@ -256,6 +256,11 @@ fn textbook_equations_of_motion() {
 }
 
 #[test]
+fn compiled_and_dual_agree_compiled_chain() {
+    assert_example_passes("compiled_chain");
+}
+
+#[test]
 fn closed_form_charged_particle() {
     assert_example_passes("charged_particle");
 }

@@ -143,6 +143,7 @@ pub(crate) fn default_point(n: usize) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// `true` when every guard holds: the outputs from `offset` on have the signs recorded.
+#[inline]
 pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool {
     signs
         .iter()
@@ -155,6 +156,7 @@ pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool
 /// [`linalg::positive_pivots_regular`](noether_core::linalg::positive_pivots_regular), the test of the
 /// dual-number path's stack LDLᵀ (the pivot ratio against the largest pivot or diagonal entry, which
 /// bounds every entry of a positive definite M).
+#[inline]
 pub(crate) fn mass_usable(o: &Outputs<'_>, at: usize, n: usize) -> bool {
     let norm = (at + n..at + 2 * n).fold(0.0_f64, |m, j| m.max(o.get(j).abs()));
     positive_pivots_regular((at..at + n).map(|j| o.get(j)), norm)

@@ -72,6 +72,24 @@ pub struct Program {
     native: Option<(Arc<crate::native::Code>, Vec<u32>)>,
 }
 
+/// Inputs and outputs of native code up to this many together run in a buffer on the stack (a
+/// double pendulum's q̈ takes 11, a heavy top's 16).
+#[cfg(feature = "jit")]
+const STACK: usize = 16;
+
+/// The inputs `parts`, one after the other, into the first values of `r` (an element loop: a few
+/// values each, no call of `memcpy`).
+#[inline]
+fn gather(r: &mut [f64], parts: &[&[f64]]) {
+    let mut at = 0;
+    for p in parts {
+        for (d, x) in r[at..at + p.len()].iter_mut().zip(p.iter()) {
+            *d = *x;
+        }
+        at += p.len();
+    }
+}
+
 thread_local! {
     static REGISTERS: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
 }
@@ -205,6 +223,7 @@ impl Program {
 
     /// Runs the program on the inputs given as consecutive `parts` (together exactly
     /// [`inputs`](Self::inputs) values) and hands the outputs to `f`.
+    #[inline]
     pub fn run_with<R>(&self, parts: &[&[f64]], f: impl FnOnce(Outputs<'_>) -> R) -> Result<R> {
         let given: usize = parts.iter().map(|p| p.len()).sum();
         if given != self.inputs {
@@ -214,6 +233,22 @@ impl Program {
                 got: given,
             });
         }
+        // Native code of a small model: inputs and outputs in a buffer on the stack (no thread-local
+        // look-up, no borrow flag), the common case of a few degrees of freedom.
+        #[cfg(feature = "jit")]
+        if let Some((code, slots)) = &self.native {
+            if self.inputs + slots.len() <= STACK {
+                let mut r = [0.0; STACK];
+                gather(&mut r, parts);
+                // SAFETY: `r` holds the inputs in its first `inputs` values and room for the outputs
+                // after them (checked just above); the two ranges do not overlap.
+                unsafe { code.call(r.as_mut_ptr(), r.as_mut_ptr().add(self.inputs)) };
+                return Ok(f(Outputs {
+                    registers: &r,
+                    map: slots,
+                }));
+            }
+        }
         // The thread's register file, or a fresh one when it is in use (`f` running a program).
         REGISTERS.with(|cell| match cell.try_borrow_mut() {
             Ok(mut r) => Ok(self.execute(&mut r, parts, f)),
@@ -221,6 +256,7 @@ impl Program {
         })
     }
 
+    #[inline]
     fn execute<R>(&self, r: &mut Vec<f64>, parts: &[&[f64]], f: impl FnOnce(Outputs<'_>) -> R) -> R {
         #[cfg(feature = "jit")]
         let size = match &self.native {
@@ -232,11 +268,7 @@ impl Program {
         if r.len() < size {
             r.resize(size, 0.0);
         }
-        let mut at = 0;
-        for p in parts {
-            r[at..at + p.len()].copy_from_slice(p);
-            at += p.len();
-        }
+        gather(r, parts);
         #[cfg(feature = "jit")]
         if let Some((code, slots)) = &self.native {
             let base = r.as_mut_ptr();

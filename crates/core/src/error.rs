@@ -356,6 +356,12 @@ pub fn check_finite(what: &'static str, x: &[f64]) -> Result<()> {
     if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
         return Ok(());
     }
+    not_finite(what, x)
+}
+
+/// The error of [`check_finite`], out of the way of the fast path.
+#[cold]
+fn not_finite(what: &'static str, x: &[f64]) -> Result<()> {
     match x.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(Error::NonFinite { what, index }),
         None => Ok(()),

@@ -53,6 +53,7 @@ pub const SINGULAR_PIVOT: f64 = 1e-13;
 /// the smallest and largest pivot magnitudes and `norm` the largest entry magnitude; 0 for the zero
 /// matrix, NaN when any of them is not finite. The matrix is singular when this is at most
 /// [`SINGULAR_PIVOT`] ([`is_singular`]).
+#[inline]
 pub fn pivot_ratio(lo: f64, hi: f64, norm: f64) -> f64 {
     if !(lo.is_finite() && hi.is_finite() && norm.is_finite()) {
         return f64::NAN;
@@ -66,12 +67,14 @@ pub fn pivot_ratio(lo: f64, hi: f64, norm: f64) -> f64 {
 }
 
 /// `true` when a [`pivot_ratio`] says singular: at most [`SINGULAR_PIVOT`], or NaN.
+#[inline]
 pub fn is_singular(ratio: f64) -> bool {
     ratio.is_nan() || ratio <= SINGULAR_PIVOT
 }
 
 /// (smallest, largest) magnitude of a sequence of pivots (NaN, NaN when one is NaN), for
 /// [`pivot_ratio`].
+#[inline]
 pub fn pivot_range(pivots: impl Iterator<Item = f64>) -> (f64, f64) {
     pivots.fold((f64::INFINITY, 0.0_f64), |(lo, hi), p| {
         if p.is_nan() || lo.is_nan() {
@@ -342,6 +345,7 @@ pub fn factor_positive_parameter(m: DMatrix<f64>, name: &'static str) -> crate::
 /// Cholesky factor, so this is the test [`DenseFactor::symmetric`] applies to its Cholesky pivots. The
 /// acceptance of every square-root-free LDLᵀ solve of the workspace: [`solve_positive_fixed`] and the
 /// unrolled solve of compiled models (noether-compile).
+#[inline]
 pub fn positive_pivots_regular(pivots: impl Iterator<Item = f64>, norm: f64) -> bool {
     let mut positive = true;
     let (lo, hi) = pivot_range(pivots.inspect(|&d| positive &= d > 0.0));
