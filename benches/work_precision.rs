@@ -32,21 +32,9 @@ use noether::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
 
+use noether_testkit::henon_heiles::{composition_by_hand, HenonHeiles};
 use noether_testkit::kepler::{start as kepler_start, Kepler};
 use noether_testkit::peer::{ode_solvers_end, KeplerRhs};
-
-/// Hénon-Heiles: V = ½(x² + y²) + x²y − y³/3.
-struct HenonHeiles;
-impl Potential for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
-    }
-}
 
 const ORBITS: f64 = 100.0;
 
@@ -229,33 +217,11 @@ fn hh_noether(steps: usize) -> f64 {
 }
 
 fn hh_hand(steps: usize, gammas: &[f64]) -> f64 {
-    let accel = |q: &[f64; 2]| [-q[0] - 2.0 * q[0] * q[1], -q[1] - q[0] * q[0] + q[1] * q[1]];
-    let energy = |q: &[f64; 2], v: &[f64; 2]| {
-        0.5 * (v[0] * v[0] + v[1] * v[1]) + 0.5 * (q[0] * q[0] + q[1] * q[1]) + q[0] * q[0] * q[1]
-            - q[1] * q[1] * q[1] / 3.0
-    };
-    // Kick-drift-kick steps of sizes γᵢh with adjacent half kicks merged and the last force reused:
-    // as noether's `Composition`, s force evaluations per step.
-    let mut kicks = vec![0.0; gammas.len() + 1];
-    for (i, g) in gammas.iter().enumerate() {
-        kicks[i] += 0.5 * g;
-        kicks[i + 1] += 0.5 * g;
-    }
-    let (mut q, mut v) = ([0.1, 0.0], [0.0, 0.5]);
-    let e0 = energy(&q, &v);
-    let h = 0.01;
-    let mut a = accel(&q);
-    for _ in 0..steps {
-        for (i, &g) in gammas.iter().enumerate() {
-            let c = kicks[i] * h;
-            v = [v[0] + c * a[0], v[1] + c * a[1]];
-            q = [q[0] + g * h * v[0], q[1] + g * h * v[1]];
-            a = accel(&q);
-        }
-        let c = kicks[gammas.len()] * h;
-        v = [v[0] + c * a[0], v[1] + c * a[1]];
-    }
-    ((energy(&q, &v) - e0) / e0).abs()
+    let nat = Natural::unit(HenonHeiles);
+    let energy = |q: &[f64; 2], v: &[f64; 2]| nat.energy(q, v).expect("energy");
+    let (q0, v0) = ([0.1, 0.0], [0.0, 0.5]);
+    let (q, v) = composition_by_hand(gammas, steps, 0.01, q0, v0);
+    ((energy(&q, &v) - energy(&q0, &v0)) / energy(&q0, &v0)).abs()
 }
 
 fn henon_heiles_table() {

@@ -21,6 +21,7 @@
 use noether::compile::{Compile, Equations};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::agreement::uniform;
 use noether_testkit::henon_heiles::HenonHeiles;
 use noether_testkit::systems::{DoublePendulum, HeavyTop};
 use std::process::ExitCode;
@@ -90,17 +91,6 @@ fn check_printed(report: &mut Report, what: &str, equations: &Equations, names: 
         0.0,
         0.0,
     ));
-}
-
-/// A uniform random number in [lo, hi) (a fixed LCG, so the run is reproducible).
-fn uniform(seed: u64) -> impl FnMut(f64, f64) -> f64 {
-    let mut s = seed;
-    move |lo, hi| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
-    }
 }
 
 /// The double pendulum's M (lower triangle) and b in Taylor's form, Δ = θ₁ − θ₂:

@@ -141,6 +141,31 @@ impl<P: Potential> CompiledNatural<P> {
         self.dual.accelerations(q, a)
     }
 
+    /// q̈ by the native code alone, on the stack, for W = n < 16 coordinates: `None` where there is
+    /// no native code, V has guards, or an entry is not finite (the callers then take the checked
+    /// path).
+    #[inline]
+    #[allow(clippy::needless_range_loop, clippy::manual_memcpy)] // a few values: no call of memcpy
+    fn fixed_accelerations<const W: usize>(&self, q: [f64; W]) -> Option<[f64; W]> {
+        if W >= 16 || !self.guards.is_empty() {
+            return None;
+        }
+        // Element loops (a few values: no call of memcpy, no iterator adapters).
+        let mut x = [0.0; 16];
+        for i in 0..W {
+            x[1 + i] = q[i];
+        }
+        let mut a = [0.0; W];
+        if !self.accelerations.call(&x[..=W], &mut a) {
+            return None;
+        }
+        let mut finite = true;
+        for i in 0..W {
+            finite &= q[i].is_finite() & a[i].is_finite();
+        }
+        finite.then_some(a)
+    }
+
     /// V(q).
     pub fn potential_energy(&self, q: &[f64]) -> noether_core::Result<f64> {
         check_len("q", q, self.dual.dof())?;
@@ -218,6 +243,25 @@ impl<P: Potential> Dynamics for CompiledNatural<P> {
         dq.copy_from_slice(v);
         Ok(())
     }
+    /// q̇ = v and q̈ from the native code on the stack where it can take the call (see
+    /// [`kick_rate_fixed`](SplitDynamics::kick_rate_fixed)), else through [`rates`](Self::rates).
+    #[inline]
+    fn rates_fixed<const N: usize>(
+        &self,
+        t: f64,
+        q: [f64; N],
+        v: [f64; N],
+    ) -> noether_core::Result<([f64; N], [f64; N])> {
+        let v_finite = v.iter().fold(true, |ok, x| ok & x.is_finite());
+        match self.fixed_accelerations(q) {
+            Some(a) if v_finite => Ok((v, a)),
+            _ => {
+                let (mut dq, mut dv) = ([0.0; N], [0.0; N]);
+                self.rates(t, &q, &v, &mut dq, &mut dv)?;
+                Ok((dq, dv))
+            }
+        }
+    }
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         CompiledNatural::energy(self, q, v).map_err(|e| e.at_time(t))
     }
@@ -241,6 +285,19 @@ impl<P: Potential> SplitDynamics for CompiledNatural<P> {
     #[inline]
     fn kick_rate(&self, q: &[f64], dv: &mut [f64]) -> noether_core::Result<()> {
         self.accelerations(q, dv)
+    }
+    /// The kick of the fixed-size loops of the splitting methods: the native code called on a copy
+    /// of q on the stack, its result returned when it has no guards to check and every entry is
+    /// finite; otherwise (and without native code) through [`kick_rate`](Self::kick_rate), which
+    /// gives the same values and the errors.
+    #[inline]
+    fn kick_rate_fixed<const W: usize>(&self, q: [f64; W]) -> noether_core::Result<[f64; W]> {
+        if let Some(a) = self.fixed_accelerations(q) {
+            return Ok(a);
+        }
+        let mut a = [0.0; W];
+        self.kick_rate(&q, &mut a)?;
+        Ok(a)
     }
     fn drift_is_identity(&self) -> bool {
         true

@@ -80,11 +80,12 @@ const STACK: usize = 16;
 /// The inputs `parts`, one after the other, into the first values of `r` (an element loop: a few
 /// values each, no call of `memcpy`).
 #[inline]
+#[allow(clippy::needless_range_loop, clippy::manual_memcpy)] // a few values: no call of memcpy
 fn gather(r: &mut [f64], parts: &[&[f64]]) {
     let mut at = 0;
     for p in parts {
-        for (d, x) in r[at..at + p.len()].iter_mut().zip(p.iter()) {
-            *d = *x;
+        for i in 0..p.len() {
+            r[at + i] = p[i];
         }
         at += p.len();
     }
@@ -285,6 +286,26 @@ impl Program {
             registers: r,
             map: &self.outputs,
         })
+    }
+
+    /// Runs the native code on `inputs` into `outputs` directly (no scratch buffer, no copy): the
+    /// fast path of small compiled models, which gather their inputs on the stack. `false`, with
+    /// `outputs` untouched, where the program has no native code or the lengths are not the
+    /// program's.
+    #[inline]
+    pub fn call(&self, inputs: &[f64], outputs: &mut [f64]) -> bool {
+        #[cfg(feature = "jit")]
+        if let Some((code, slots)) = &self.native {
+            if inputs.len() != self.inputs || outputs.len() != slots.len() {
+                return false;
+            }
+            // SAFETY: `inputs` holds the program's number of inputs and `outputs` room for its
+            // outputs (checked just above); the native code reads and writes only those.
+            unsafe { code.call(inputs.as_ptr(), outputs.as_mut_ptr()) };
+            return true;
+        }
+        let _ = (inputs, outputs);
+        false
     }
 
     /// Runs the program: `inputs` in, the outputs written into `out` (both of the program's lengths,

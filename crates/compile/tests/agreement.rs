@@ -4,16 +4,11 @@
 
 use noether_compile::{Compile, CompiledEulerLagrange, Error};
 use noether_core::{hamiltonian, lagrangian, Dynamics, EulerLagrange, HamiltonEquations, Lagrangian, Scalar};
+use noether_testkit::agreement::{relative, uniform};
 use noether_testkit::systems::{
     Chain, ChargeInField, DoublePendulum, DrivenOscillator, HeavyTop, KeplerPolar, SphericalPendulum,
 };
 use proptest::prelude::*;
-
-/// max_i |a_i − b_i| / max_i |b_i|: the error of a vector relative to its size.
-fn relative(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs())) / scale
-}
 
 /// q̈ and h of the compiled system and of the dual-number system at (t, q, q̇).
 fn both<L: Lagrangian + Clone>(l: &L, t: f64, q: &[f64], v: &[f64]) -> ((Vec<f64>, f64), (Vec<f64>, f64)) {
@@ -105,13 +100,8 @@ fn hamilton_equations_agree() {
     });
     let compiled = HamiltonEquations::new(h).compile().unwrap();
     let dual = HamiltonEquations::new(h);
-    let mut s: u64 = 7;
-    let mut rnd = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        4.0 * ((s >> 11) as f64 / (1u64 << 53) as f64) - 2.0
-    };
+    let mut uniform = uniform(7);
+    let mut rnd = || uniform(-2.0, 2.0);
     for _ in 0..200 {
         let (t, q, p) = (rnd() + 2.0, [rnd(), rnd()], [rnd(), rnd()]);
         let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
@@ -240,13 +230,7 @@ fn jacobian_difference<L: Lagrangian>(
 /// its M worse conditioned, as for q̈). Bounds: AGREE and AGREE_CHAIN.
 #[test]
 fn jacobians_agree() {
-    let mut s: u64 = 99;
-    let mut rnd = |lo: f64, hi: f64| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
-    };
+    let mut rnd = uniform(99);
     let (dp, top, chain) = (
         (
             EulerLagrange::new(DoublePendulum::default()).compile().unwrap(),

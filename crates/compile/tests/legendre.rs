@@ -6,24 +6,8 @@ use nalgebra::DMatrix;
 use noether_compile::{Compile, CompiledHamiltonEquations, Error};
 use noether_core::system::LinearizedDynamics;
 use noether_core::{lagrangian, Dynamics, HamiltonEquations, Lagrangian, LegendreTransform};
+use noether_testkit::agreement::{relative, uniform};
 use noether_testkit::systems::{ChargeInField, DoublePendulum, DoublePendulumH, HeavyTop};
-
-/// max_i |a_i − b_i| / max_i |b_i|.
-fn relative(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs())) / scale
-}
-
-/// A uniform random number in [lo, hi) (a fixed LCG: the tests are reproducible).
-fn uniform(seed: u64) -> impl FnMut(f64, f64) -> f64 {
-    let mut s = seed;
-    move |lo, hi| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// The rates (q̇, ṗ) of a system at (t, q, p), as one vector.
 fn rates<S: Dynamics>(s: &S, t: f64, q: &[f64], p: &[f64]) -> Vec<f64> {

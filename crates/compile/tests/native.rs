@@ -10,21 +10,9 @@ use noether_compile::graph::{Binary, Graph, Id, Unary};
 use noether_compile::{Backend, Compile, CompiledEulerLagrange, CompiledHamiltonEquations, Program};
 use noether_core::system::LinearizedDynamics;
 use noether_core::{hamiltonian, Dynamics, EulerLagrange, HamiltonEquations, Lagrangian};
+use noether_testkit::agreement::uniform;
 use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 use std::time::Instant;
-
-/// A seeded generator of uniform numbers in [lo, hi).
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// Equal bits, or both NaN (a NaN's payload is the hardware's or the library's, the same on both
 /// paths here, but not part of the contract).
@@ -91,7 +79,7 @@ fn every_operation_bit_for_bit() {
         1e-310,
         710.0,
     ];
-    let mut rng = Rng(5);
+    let mut rng = uniform(5);
     let mut points: Vec<[f64; 2]> = Vec::new();
     for a in special {
         for b in special {
@@ -100,7 +88,7 @@ fn every_operation_bit_for_bit() {
     }
     for scale in [1e-8, 0.5, 1.0, 3.0, 1e3, 1e300] {
         for _ in 0..200 {
-            points.push([rng.uniform(-scale, scale), rng.uniform(-scale, scale)]);
+            points.push([rng(-scale, scale), rng(-scale, scale)]);
         }
     }
     let (mut a, mut b) = (vec![0.0; outputs.len()], vec![0.0; outputs.len()]);
@@ -148,34 +136,30 @@ fn lagrangian_bit_for_bit<L: Lagrangian + Clone>(
 
 #[test]
 fn double_pendulum_bit_for_bit() {
-    let mut rng = Rng(11);
+    let mut rng = uniform(11);
     lagrangian_bit_for_bit(&DoublePendulum::default(), 300, &mut || {
-        let q = vec![rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0)];
-        let v = vec![rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0)];
+        let q = vec![rng(-3.0, 3.0), rng(-3.0, 3.0)];
+        let v = vec![rng(-3.0, 3.0), rng(-3.0, 3.0)];
         (q, v)
     });
 }
 
 #[test]
 fn heavy_top_bit_for_bit() {
-    let mut rng = Rng(12);
+    let mut rng = uniform(12);
     lagrangian_bit_for_bit(&HeavyTop::default(), 300, &mut || {
-        let q = vec![
-            rng.uniform(0.3, 2.8),
-            rng.uniform(-3.0, 3.0),
-            rng.uniform(-3.0, 3.0),
-        ];
-        let v = (0..3).map(|_| rng.uniform(-3.0, 3.0)).collect();
+        let q = vec![rng(0.3, 2.8), rng(-3.0, 3.0), rng(-3.0, 3.0)];
+        let v = (0..3).map(|_| rng(-3.0, 3.0)).collect();
         (q, v)
     });
 }
 
 #[test]
 fn chain_of_ten_bit_for_bit() {
-    let mut rng = Rng(13);
+    let mut rng = uniform(13);
     lagrangian_bit_for_bit(&Chain::<10>::default(), 100, &mut || {
-        let q = (0..10).map(|_| rng.uniform(-1.0, 1.0)).collect();
-        let v = (0..10).map(|_| rng.uniform(-1.0, 1.0)).collect();
+        let q = (0..10).map(|_| rng(-1.0, 1.0)).collect();
+        let v = (0..10).map(|_| rng(-1.0, 1.0)).collect();
         (q, v)
     });
 }
@@ -193,13 +177,10 @@ fn hamilton_equations_bit_for_bit() {
     let interpreted = CompiledHamiltonEquations::interpreted(HamiltonEquations::new(h)).unwrap();
     assert_eq!(native.backend(), Backend::Native);
     assert_eq!(interpreted.backend(), Backend::Interpreter);
-    let mut rng = Rng(14);
+    let mut rng = uniform(14);
     for _ in 0..300 {
-        let t = rng.uniform(0.0, 4.0);
-        let (q, p) = (
-            [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)],
-            [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)],
-        );
+        let t = rng(0.0, 4.0);
+        let (q, p) = ([rng(-2.0, 2.0), rng(-2.0, 2.0)], [rng(-2.0, 2.0), rng(-2.0, 2.0)]);
         let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
         let (dq, dp) = a.split_at_mut(2);
         native.rates(t, &q, &p, dq, dp).unwrap();

@@ -7,25 +7,9 @@ use noether_compile::{Compile, CompiledNatural};
 use noether_core::integrators::DefaultMethod;
 use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, HamiltonEquations, Natural, Potential, Scalar, State, Stepper};
+use noether_testkit::agreement::{relative, uniform};
 use noether_testkit::henon_heiles::{HenonHeiles, UnitDoublePendulum};
 use noether_testkit::kepler::Kepler;
-
-/// max_i |a_i − b_i| / max_i |b_i|.
-fn relative(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs())) / scale
-}
-
-/// A uniform random number in [lo, hi) (a fixed LCG: the tests are reproducible).
-fn uniform(seed: u64) -> impl FnMut(f64, f64) -> f64 {
-    let mut s = seed;
-    move |lo, hi| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + (hi - lo) * ((s >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// The agreement bound: the compiled gradient and the dual-number gradient round in a different
 /// order, so they agree to a few ulps of the largest term: measured (printed below) 8.9e-16 relative

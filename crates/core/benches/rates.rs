@@ -28,7 +28,7 @@ fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-use noether_testkit::henon_heiles::composition_by_hand;
+use noether_testkit::henon_heiles::{composition_by_hand, HenonHeiles};
 use noether_testkit::kepler::Kepler;
 
 /// The same V without the hint.
@@ -39,34 +39,6 @@ impl Potential for KeplerPlain {
     }
     fn potential<D: Scalar>(&self, q: &[D]) -> D {
         -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
-
-/// V = ½(x² + y²) + x²y − y³/3, with `#[inline]`.
-struct HenonHeiles;
-impl Potential for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
-    }
-}
-
-/// H = ½|p|² + V(q) on (q, p), for the composition on `SeparableHamiltonian`.
-impl Separable for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
-        (p[0] * p[0] + p[1] * p[1]) * 0.5
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        Potential::potential(self, q)
     }
 }
 

@@ -4,7 +4,7 @@
 //! Used by noether-core's tangent tests (`tests/tangent/`), noether-analysis' Lyapunov tests, and the
 //! gallery's `symplecticity_check` and `lyapunov_spectrum` examples.
 
-use noether_core::{Hamiltonian, Potential, Scalar};
+use noether_core::{Hamiltonian, Potential, Scalar, Separable};
 
 /// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3: nonlinear, with third derivatives of
 /// unit size; chaotic above E ≈ 1/8.
@@ -30,6 +30,21 @@ impl Potential for HenonHeiles {
     fn potential<D: Scalar>(&self, q: &[D]) -> D {
         let (x, y) = (q[0], q[1]);
         (x * x + y * y) * 0.5 + x * x * y - y * y * y / 3.0
+    }
+}
+
+/// H = ½|p|² + V(q) as T(p) + V(q), for `SeparableHamiltonian(HenonHeiles)` on (q, p).
+impl Separable for HenonHeiles {
+    fn dof(&self) -> usize {
+        2
+    }
+    #[inline]
+    fn kinetic<D: Scalar>(&self, p: &[D]) -> D {
+        (p[0] * p[0] + p[1] * p[1]) * 0.5
+    }
+    #[inline]
+    fn potential<D: Scalar>(&self, q: &[D]) -> D {
+        Potential::potential(self, q)
     }
 }
 

@@ -16,11 +16,13 @@
 //! | [`three_body`] | the figure-eight (and its shooting problem), the restricted problem, L1 and its continuation | analysis' periodic-orbit tests, discrete's boundary tests, `figure_eight`, `periodic_orbits`, `boundary_value` |
 //! | [`top`] | the heavy top in Euler angles, Kepler in polar coordinates | canonical's Routh tests, `heavy_top`, `routh_reduction` |
 //! | [`pendulum`] | the pendulum of the ensembles and its quarter period | ensemble's tests and `mpi_scan` |
+//! | [`agreement`] | the relative difference of two vectors, reproducible uniform random numbers | noether-compile's tests, `equations_of_motion` |
 //! | [`closed_form`] | K, E, sn, cn, dn, Kepler's equation, the free top's Ω(t) | the gallery (`noether_gallery::closed_form`), rigid's tests |
 //! | `gibbs_appell` | the four-particle top, the rolling disk and sphere, their closed forms (feature `constraints`) | constraints' tests, `gibbs_appell`, `rolling_sphere` |
 //! | `boundary` | the boundary-value problems (feature `discrete`) | discrete's tests, `boundary_value` |
 //! | `canonical`, `hamilton_jacobi` | canonical maps, generating and phase functions, complete integrals (feature `canonical`) | canonical's tests, `canonical_transformation`, `poisson_brackets`, `action_angle`, `hamilton_jacobi` |
 
+pub mod agreement;
 #[cfg(feature = "discrete")]
 pub mod boundary;
 #[cfg(feature = "canonical")]
