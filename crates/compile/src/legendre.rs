@@ -16,11 +16,11 @@
 //!
 //! On the graph of L: M = ∂²L/∂q̇² (its rows by reverse accumulation from p), a = p at q̇ = 0 and
 //! L₀ = L at q̇ = 0 (the graph rebuilt with q̇ set to zero, every term with a factor q̇ folding away);
-//! then y = p − a, q̇ = M⁻¹y by the unrolled LDLᵀ solve of [`ldlt`](crate::ldlt), H = ½ y·q̇ − L₀,
+//! then y = p − a, q̇ = M⁻¹y by the unrolled LDLᵀ solve of [`ldlt`], H = ½ y·q̇ − L₀,
 //! and Hamilton's equations q̇ = ∂H/∂p (which is that q̇), ṗ = −∂H/∂q by reverse accumulation
 //! through the solve. A Lagrangian is quadratic in q̇ exactly when M does not depend on q̇ — checked
 //! on the graph; otherwise, and for comparisons of q̇ in L, compiling refuses
-//! ([`Error::NotQuadratic`](crate::Error::NotQuadratic)) and `LegendreTransform`'s Newton path is the
+//! ([`Error::NotQuadratic`]) and `LegendreTransform`'s Newton path is the
 //! one to use.
 
 use crate::derive::{dependents, gradient};
