@@ -26,8 +26,7 @@
 //! `Natural` and on `Natural` by dual numbers, per stage (`ratio henon_heiles_kl8 <compiled / hand>`,
 //! with the distance of each end point to the hand loop's).
 //!
-//! `cargo bench --bench compiled` (the root package's dev-dependency on the facade turns its feature
-//! `jit` on for benchmarks and tests, so the native column is always there); results in
+//! `cargo bench --bench compiled --features jit` (the native column needs the feature); results in
 //! docs/benchmarks.md.
 
 #![allow(missing_docs)]
