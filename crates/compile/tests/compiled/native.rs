@@ -245,7 +245,7 @@ fn per_call(calls: usize, mut f: impl FnMut()) -> f64 {
 
 /// Construction and per-call times of the two backends, printed: the double pendulum and the 40-link
 /// chain (record + derive + simplify + compile), and q̈ per call. Not an assertion (the machine is
-/// shared); `cargo test -p noether-compile --release --features jit --test native -- --ignored
+/// shared); `cargo test -p noether-compile --release --features jit --test compiled -- --ignored
 /// --nocapture timings`.
 #[test]
 #[ignore]
