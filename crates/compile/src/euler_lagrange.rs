@@ -120,15 +120,15 @@ fn energy_output(r: &mut Recorded) -> Id {
     g.sub(s, r.value)
 }
 
-/// The value of a one-output `program` (the energy) at (t, q, v) when every guard holds and it is
-/// finite, else `fallback()` (the dual-number path: the right value or the right error).
-fn value_or(
+/// The value of a one-output `program` (an energy) at the inputs `parts` when every guard holds and it
+/// is finite, else `fallback()` (the dual-number path: the right value or the right error).
+pub(crate) fn value_or(
     program: &Program,
     guards: &[f64],
-    (t, q, v): (f64, &[f64], &[f64]),
+    parts: &[&[f64]],
     fallback: impl FnOnce() -> noether_core::Result<f64>,
 ) -> noether_core::Result<f64> {
-    let compiled = program.run_with(&[&[t], q, v], |o| {
+    let compiled = program.run_with(parts, |o| {
         (guards_hold(&o, 1, guards) && o.get(0).is_finite()).then(|| o.get(0))
     })?;
     compiled.map_or_else(fallback, Ok)
@@ -398,7 +398,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// The energy h = p·q̇ − L.
     pub fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         check_phase_point(self.dual.dof(), t, q, v, "q̇")?;
-        value_or(&self.energy, &self.guards, (t, q, v), || {
+        value_or(&self.energy, &self.guards, &[&[t], q, v], || {
             self.dual.energy(t, q, v)
         })
     }

@@ -10,7 +10,7 @@
 //! splitting method: [`SplitDynamics::kick_rate`] runs the program and nothing else.
 
 use crate::derive::gradient;
-use crate::euler_lagrange::{default_point, guards_hold};
+use crate::euler_lagrange::{default_point, guards_hold, value_or};
 use crate::graph::{Graph, Id};
 use crate::program::Program;
 use crate::trace::{Guard, Recorded};
@@ -169,10 +169,9 @@ impl<P: Potential> CompiledNatural<P> {
     /// V(q).
     pub fn potential_energy(&self, q: &[f64]) -> noether_core::Result<f64> {
         check_len("q", q, self.dual.dof())?;
-        let value = self.potential.run_with(&[&[0.0], q], |o| {
-            (guards_hold(&o, 1, &self.guards) && o.get(0).is_finite()).then(|| o.get(0))
-        })?;
-        value.map_or_else(|| self.dual.potential_energy(q), Ok)
+        value_or(&self.potential, &self.guards, &[&[0.0], q], || {
+            self.dual.potential_energy(q)
+        })
     }
 
     /// The energy ½ q̇ᵀ M q̇ + V(q).
