@@ -72,22 +72,22 @@ fn noether_dop853(tol: f64) -> f64 {
     let dp = Dop853::new(Natural::unit(Kepler))
         .tolerances(tol, tol)
         .expect("tolerances");
-    kepler_run(dp.with_dense_output(false))
+    kepler_run(dp.dense_interpolant(false))
 }
 
 fn noether_dprkn8(tol: f64) -> f64 {
     let m = Dprkn8::new(Natural::unit(Kepler)).and_then(|m| m.tolerances(tol, tol));
-    kepler_run(m.expect("DPRKN8").with_dense_output(false))
+    kepler_run(m.expect("DPRKN8").dense_interpolant(false))
 }
 
 fn noether_dprkn12(tol: f64) -> f64 {
     let m = Dprkn12::new(Natural::unit(Kepler)).and_then(|m| m.tolerances(tol, tol));
-    kepler_run(m.expect("DPRKN12").with_dense_output(false))
+    kepler_run(m.expect("DPRKN12").dense_interpolant(false))
 }
 
 fn noether_ias15(eps: f64) -> f64 {
     let m = Ias15::new(Natural::unit(Kepler)).and_then(|m| m.epsilon(eps));
-    kepler_run(m.expect("IAS15").with_dense_output(false))
+    kepler_run(m.expect("IAS15").dense_interpolant(false))
 }
 
 /// Kahan-Li 8 with a fixed step of T/`per_orbit`.
@@ -287,7 +287,7 @@ fn solar_system() -> (Gravitating, State) {
     let q: Vec<Vec3> = SOLAR.iter().map(|b| b.1).collect();
     let v: Vec<Vec3> = SOLAR.iter().map(|b| b.2).collect();
     let s0 = sys.state(0.0, &q, &v).expect("state");
-    (sys.with_parallel(Parallel::Serial), s0)
+    (sys.parallel(Parallel::Serial), s0)
 }
 
 /// The end positions of a run of `stepper` to 200 000 days.
@@ -355,28 +355,28 @@ fn solar_noether(method: &str, x: f64, reference: &[f64]) -> f64 {
             Dop853::new(sys)
                 .tolerances(x, x)
                 .expect("tol")
-                .with_dense_output(false),
+                .dense_interpolant(false),
             s0,
         ),
         "DPRKN8" => solar_run(
             Dprkn8::new(sys)
                 .and_then(|m| m.tolerances(x, x))
                 .expect("DPRKN8")
-                .with_dense_output(false),
+                .dense_interpolant(false),
             s0,
         ),
         "DPRKN12" => solar_run(
             Dprkn12::new(sys)
                 .and_then(|m| m.tolerances(x, x))
                 .expect("DPRKN12")
-                .with_dense_output(false),
+                .dense_interpolant(false),
             s0,
         ),
         "IAS15" => solar_run(
             Ias15::new(sys)
                 .and_then(|m| m.epsilon(x))
                 .expect("IAS15")
-                .with_dense_output(false),
+                .dense_interpolant(false),
             s0,
         ),
         _ => {
@@ -487,7 +487,7 @@ fn chain_noether(tol: f64) -> Vec<f64> {
     let dp = Dop853::new(el)
         .tolerances(tol, tol)
         .expect("tol")
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let sol = Driver::new(dp, State::new(0.0, chain_start(), [0.0; LINKS]))
         .and_then(|d| d.save(Save::End))
         .and_then(|mut d| d.run_until(CHAIN_T))
@@ -614,7 +614,7 @@ fn long_runs() {
         let e0 = sys.energy(&q0, &v0).expect("energy");
         let ias = Ias15::new(Natural::unit(Kepler))
             .expect("IAS15")
-            .with_dense_output(false);
+            .dense_interpolant(false);
         let mut d = Driver::new(ias, State::new(0.0, q0, v0))
             .and_then(|d| d.save(Save::End))
             .expect("driver")
@@ -664,7 +664,7 @@ fn long_runs() {
         let m = Dprkn12::new(sys)
             .and_then(|m| m.tolerances(1e-12, 1e-12))
             .expect("DPRKN12")
-            .with_dense_output(false);
+            .dense_interpolant(false);
         let (sys, _) = solar_system();
         let mut d = Driver::new(m, s0)
             .and_then(|d| d.save(Save::End))

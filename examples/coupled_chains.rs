@@ -6,7 +6,7 @@
 //! all 400 top/bottom pairs, k2 = 0.001 (repulsive), σ = 0.1. Integrator: the midpoint discrete
 //! Lagrangian L_d = h L((q₀+q₁)/2, (q₁−q₀)/h) solved by Newton, as in the paper's Matlab `model11`: the
 //! paper stops Newton at ‖F‖∞ ≤ 1e-8 for F = M(q_{k+1} − 2q_k + q_{k−1})/h² + ½[∇V(m_{k+½}) + ∇V(m_{k−½})];
-//! noether's residual is h·F, so the same stop is `tol_residual(h·1e-8)`. Step h = min(2π/(10√k1), 0.1)
+//! noether's residual is h·F, so the same stop is `residual_tolerance(h·1e-8)`. Step h = min(2π/(10√k1), 0.1)
 //! = 0.1, 999 steps (the paper's `step_max = 1000` positions). Start as in `model11(0.1)`: each chain at
 //! spring equilibrium, the top chain shifted by −3, q₁ = q₀ + h v0 for the top chain and q₁ = q₀ for the
 //! bottom one; the driver's state (q₀, p₀) takes p₀ = −D₁L_d(q₀, q₁), so it produces the paper's q₁.
@@ -61,8 +61,8 @@ pub fn paper_run(k2: f64, q0: &[f64], q1: &[f64], steps: usize) -> Result<Soluti
     p0.iter_mut()
         .zip(q0.iter().zip(q1))
         .for_each(|(p, (a, b))| *p = (b - a) / h + 0.5 * h * *p);
-    let newton = Newton::default().tol_residual(h * PAPER_NEWTON_TOL)?;
-    let vi = MechanicalMidpoint::new(sys).with_newton(newton);
+    let newton = Newton::default().residual_tolerance(h * PAPER_NEWTON_TOL)?;
+    let vi = MechanicalMidpoint::new(sys).newton(newton);
     Ok(
         Driver::with_step(vi, State::with_momenta(0.0, q0.to_vec(), p0), h)?
             .save(Save::Steps)?

@@ -39,7 +39,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
 
     // The equilibrium by weak damping; checked by the equilibrium condition ‖∇V‖∞ ≤ 1e-15 (measured
     // 2.0e-16: the damped motion has decayed to rounding).
-    let damped = system(K2)?.with_damping(vec![0.5; 40])?;
+    let damped = system(K2)?.damping(vec![0.5; 40])?;
     let mut q = ch.collision_start();
     q.iter_mut().take(20).for_each(|x| *x += 3.0 + 0.025); // top chain between the bottom masses
     let settled = Driver::with_step(

@@ -51,7 +51,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     // 5.5 periods, Ω saved at every step, Ω₂ = 0 upwards as an event (at T, 2T, ...).
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
     let sol = Driver::new(Lgvi::new(body)?, start.clone())?
-        .step(H)?
+        .step_size(H)?
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .run_until(5.5 * top.period())?;
     let mut worst: f64 = 0.0;

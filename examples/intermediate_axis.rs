@@ -49,7 +49,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let start = body.state(0.0, &UnitQuaternion::identity(), &w0);
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
     let sol = Driver::new(Lgvi::new(body)?, start)?
-        .step(H)?
+        .step_size(H)?
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .event(Event::new("Ω₂ = 0 down", omega2).falling())
         .run_until(3.2 * period)?;

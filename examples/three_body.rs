@@ -91,7 +91,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     // Newton converges quadratically: asking ‖∇Ω‖ ≤ 1e-14 of its scale costs one more iteration and takes
     // the points to the rounding floor, so that positions can be checked to 1e-12 even where the
     // Hessian is ill-conditioned (L4 at μ = 0.05: condition ≈ 27).
-    let finder = EquilibriumFinder::default().tol_gradient(1e-14)?;
+    let finder = EquilibriumFinder::default().gradient_tolerance(1e-14)?;
     let routh = 0.5 * (1.0 - (23.0f64 / 27.0).sqrt());
 
     for mu in [0.01, 0.05] {

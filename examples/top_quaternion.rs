@@ -88,7 +88,7 @@ fn run_top(
 ) -> Result<Solution<Momenta>, BoxError> {
     let ud = move |s: &State<Momenta>| u_dot(&b, s);
     Ok(Driver::new(Lgvi::new(b)?, s)?
-        .step(H)?
+        .step_size(H)?
         .save(Save::Every(50))?
         .event(Event::new(THETA_MAX, ud).rising())
         .event(Event::new(THETA_MIN, ud).falling())

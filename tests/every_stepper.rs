@@ -39,7 +39,7 @@ fn measure<S: Stepper>(stepper: S, start: State<S::Partner>, h: Option<f64>) -> 
     let times: Vec<f64> = (0..=40).map(|i| 0.25 * i as f64).collect();
     let mut driver = Driver::new(stepper, start).expect("valid start");
     if let Some(h) = h {
-        driver = driver.step(h).expect("valid step");
+        driver = driver.step_size(h).expect("valid step");
     }
     let sol = driver
         .save(Save::Times(times.clone()))

@@ -139,20 +139,16 @@ pub fn classify<P: Potential + ?Sized>(pot: &P, q: &[f64], zero_tolerance: f64) 
 
 /// Finds and classifies equilibria. Builder-style setters; `Default` gives sensible tolerances.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
 pub struct EquilibriumFinder {
-    /// Converged when ‖∇V‖∞ ≤ `tol_gradient` · ‖H(q₀)‖max · (1 + ‖q₀‖∞).
-    pub tol_gradient: f64,
-    /// Iteration cap (trust-region iterations or Newton iterations).
-    pub max_iterations: u64,
-    /// Relative size below which a Hessian eigenvalue counts as zero.
-    pub zero_tolerance: f64,
+    gradient_tolerance: f64,
+    max_iterations: usize,
+    zero_tolerance: f64,
 }
 
 impl Default for EquilibriumFinder {
     fn default() -> Self {
         EquilibriumFinder {
-            tol_gradient: 1e-12,
+            gradient_tolerance: 1e-12,
             max_iterations: 200,
             zero_tolerance: 1e-9,
         }
@@ -160,13 +156,14 @@ impl Default for EquilibriumFinder {
 }
 
 impl EquilibriumFinder {
-    /// Sets the relative gradient tolerance (finite and positive).
-    pub fn tol_gradient(mut self, tol: f64) -> Result<Self> {
-        self.tol_gradient = check_positive("tol_gradient", tol)?;
+    /// Sets the relative gradient tolerance (default 1e-12): converged when
+    /// ‖∇V‖∞ ≤ this · ‖H(q₀)‖max · (1 + ‖q₀‖∞). Finite and positive.
+    pub fn gradient_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.gradient_tolerance = check_positive("gradient_tolerance", tol)?;
         Ok(self)
     }
-    /// Sets the iteration cap (at least 1).
-    pub fn max_iterations(mut self, n: u64) -> Result<Self> {
+    /// Sets the iteration cap of the trust-region or Newton iterations (default 200; at least 1).
+    pub fn max_iterations(mut self, n: usize) -> Result<Self> {
         if n == 0 {
             return Err(noether_core::Error::InvalidParameter {
                 name: "max_iterations",
@@ -178,17 +175,15 @@ impl EquilibriumFinder {
         self.max_iterations = n;
         Ok(self)
     }
-    /// Sets the relative zero-eigenvalue tolerance (finite and positive).
+    /// Sets the relative size below which a Hessian eigenvalue counts as zero (default 1e-9; finite
+    /// and positive).
     pub fn zero_tolerance(mut self, tol: f64) -> Result<Self> {
         self.zero_tolerance = check_positive("zero_tolerance", tol)?;
         Ok(self)
     }
 
     fn tolerance<P: Potential + ?Sized>(&self, pot: &P, q0: &[f64]) -> Result<f64> {
-        // The fields are public: a value written directly is checked here.
-        check_positive("tol_gradient", self.tol_gradient)?;
-        check_positive("zero_tolerance", self.zero_tolerance)?;
-        Ok(self.tol_gradient * gradient_scale(&potential::hessian(pot, q0)?, q0))
+        Ok(self.gradient_tolerance * gradient_scale(&potential::hessian(pot, q0)?, q0))
     }
 
     /// A local minimum of V from `q0` by argmin's trust-region method (Steihaug subproblem, exact
@@ -198,12 +193,12 @@ impl EquilibriumFinder {
     /// [`Error::NotConverged`].
     ///
     /// A cost-based method cannot resolve ∇V much below sqrt(ε)·scale (the decrease of V is lost in
-    /// rounding), so argmin stops at ‖∇V‖∞ ≤ sqrt(`tol_gradient`)·scale and Newton's method on ∇V = 0
+    /// rounding), so argmin stops at ‖∇V‖∞ ≤ sqrt(`gradient_tolerance`)·scale and Newton's method on ∇V = 0
     /// polishes the last digits (quadratic convergence, no comparison of V values).
     pub fn minimize<P: Potential + ?Sized>(&self, pot: &P, q0: &[f64]) -> Result<Equilibrium> {
         check_point(q0, pot.dof())?;
         let tol = self.tolerance(pot, q0)?;
-        let coarse = tol * self.tol_gradient.sqrt().recip().max(1.0);
+        let coarse = tol * self.gradient_tolerance.sqrt().recip().max(1.0);
         let solver = UntilGradient {
             inner: TrustRegion::new(Steihaug::new().with_max_iters(10 * pot.dof().max(1) as u64)),
             tol: coarse,
@@ -211,7 +206,7 @@ impl EquilibriumFinder {
         let res = Executor::new(ArgminPotential(pot), solver)
             .configure(|s| {
                 s.param(DVector::from_column_slice(q0))
-                    .max_iters(self.max_iterations)
+                    .max_iters(self.max_iterations as u64)
             })
             .ctrlc(false)
             .run()
@@ -248,8 +243,8 @@ impl EquilibriumFinder {
 
     fn newton(&self, tol: f64) -> noether_core::Result<Newton> {
         Newton::default()
-            .tol_residual(tol)?
-            .max_iterations(self.max_iterations as usize)
+            .residual_tolerance(tol)?
+            .max_iterations(self.max_iterations)
     }
 
     /// A stationary point ∇V = 0 near `q0` of any kind (minimum, saddle, maximum) by Newton's method

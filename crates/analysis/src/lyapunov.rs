@@ -110,7 +110,7 @@ impl<S: TangentStepper> Lyapunov<S> {
     ///
     /// The initial tangent vectors are a fixed, generic orthonormal frame (QR of a deterministic
     /// pseudo-random matrix) so that no vector starts in a special subspace (the flow direction, a
-    /// symmetry plane); [`with_vectors`](Self::with_vectors) sets one's own.
+    /// symmetry plane); [`initial_vectors`](Self::initial_vectors) sets one's own.
     pub fn new(stepper: S, state: State<S::Partner>, vectors: usize, h: f64, every: usize) -> Result<Self> {
         let n = stepper.dof();
         state.validate(n)?;
@@ -140,7 +140,7 @@ impl<S: TangentStepper> Lyapunov<S> {
 
     /// Replaces the tangent vectors by the columns of `w` (2n × k, orthonormalised here) and restarts
     /// the sums at the current time.
-    pub fn with_vectors(mut self, w: DMatrix<f64>) -> Result<Self> {
+    pub fn initial_vectors(mut self, w: DMatrix<f64>) -> Result<Self> {
         let dim = 2 * self.stepper.dof();
         if w.nrows() != dim {
             return Err(noether_core::Error::Dimension {

@@ -92,21 +92,17 @@ pub struct LinearStability {
 
 /// Settings of the linearisation: the time at which L is frozen and the tolerances.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
 pub struct SmallOscillations {
-    /// Time t at which L(t, q, q̇) is evaluated (irrelevant for autonomous L).
-    pub t: f64,
-    /// A point is accepted as an equilibrium when ‖∂L/∂q(q₀, 0)‖∞ ≤ this · ‖K‖max · (1 + ‖q₀‖∞).
-    pub tol_equilibrium: f64,
-    /// Relative size below which ω² (or Re λ) counts as zero.
-    pub zero_tolerance: f64,
+    t: f64,
+    equilibrium_tolerance: f64,
+    zero_tolerance: f64,
 }
 
 impl Default for SmallOscillations {
     fn default() -> Self {
         SmallOscillations {
             t: 0.0,
-            tol_equilibrium: 1e-8,
+            equilibrium_tolerance: 1e-8,
             zero_tolerance: 1e-9,
         }
     }
@@ -139,18 +135,21 @@ struct Linearised {
 }
 
 impl SmallOscillations {
-    /// Sets the time (finite).
+    /// Sets the time t at which L(t, q, q̇) is evaluated (default 0, irrelevant for an autonomous L;
+    /// finite).
     pub fn t(mut self, t: f64) -> Result<Self> {
         noether_core::error::check_finite("t", &[t])?;
         self.t = t;
         Ok(self)
     }
-    /// Sets the equilibrium tolerance (finite and positive).
-    pub fn tol_equilibrium(mut self, tol: f64) -> Result<Self> {
-        self.tol_equilibrium = check_positive("tol_equilibrium", tol)?;
+    /// Sets the equilibrium tolerance (default 1e-8; finite and positive): a point is accepted as an
+    /// equilibrium when ‖∂L/∂q(q₀, 0)‖∞ ≤ this · ‖K‖max · (1 + ‖q₀‖∞).
+    pub fn equilibrium_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.equilibrium_tolerance = check_positive("equilibrium_tolerance", tol)?;
         Ok(self)
     }
-    /// Sets the zero tolerance (finite and positive).
+    /// Sets the relative size below which ω² (or Re λ) counts as zero (default 1e-9; finite and
+    /// positive).
     pub fn zero_tolerance(mut self, tol: f64) -> Result<Self> {
         self.zero_tolerance = check_positive("zero_tolerance", tol)?;
         Ok(self)
@@ -159,14 +158,13 @@ impl SmallOscillations {
     fn linearise<L: Lagrangian>(&self, lagrangian: &L, q0: &[f64]) -> Result<Linearised> {
         let n = lagrangian.dof();
         check_point(q0, n)?;
-        noether_core::error::check_finite("t", &[self.t])?;
         let pot = EffectivePotential {
             lagrangian,
             t: self.t,
         };
         let (_, grad) = potential::gradient(&pot, q0)?;
         let stiffness = potential::hessian(&pot, q0)?;
-        let tolerance = self.tol_equilibrium * gradient_scale(&stiffness, q0);
+        let tolerance = self.equilibrium_tolerance * gradient_scale(&stiffness, q0);
         let gradient_norm = grad.amax();
         if gradient_norm.is_nan() || gradient_norm > tolerance {
             return Err(Error::NotEquilibrium {

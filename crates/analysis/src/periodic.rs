@@ -335,10 +335,11 @@ impl<S: TangentStepper> Shooting<S> {
         self
     }
 
-    /// Sets the tolerance on |μ| of the stability verdict (finite, > 0; checked at `solve`).
-    pub fn floquet_tolerance(mut self, tol: f64) -> Self {
-        self.floquet_tol = tol;
-        self
+    /// Sets the tolerance on |μ| of the stability verdict (default 1e-6; finite, > 0, else
+    /// `InvalidParameter`).
+    pub fn floquet_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.floquet_tol = noether_core::error::check_positive("Floquet tolerance", tol)?;
+        Ok(self)
     }
 
     /// Declares a first integral held at the level I(y₀) = `value` (e.g. the energy), with its
@@ -458,16 +459,13 @@ impl<S: TangentStepper> Shooting<S> {
         })
     }
 
-    /// Checks the input of [`solve`](Self::solve): the period, the guess, the Floquet tolerance, the
-    /// Newton settings, the symmetry generators' lengths (2n), and that the unknowns (y₀, T unless
-    /// fixed, one unfolding parameter per integral) balance the equations (closure, phase, the
-    /// integrals' levels, one per symmetry).
+    /// Checks the input of [`solve`](Self::solve): the period, the guess, the symmetry generators'
+    /// lengths (2n), and that the unknowns (y₀, T unless fixed, one unfolding parameter per integral)
+    /// balance the equations (closure, phase, the integrals' levels, one per symmetry).
     fn check_setup(&self, guess: &State<S::Partner>, period: f64) -> Result<()> {
         let n = self.stepper.dof();
         check_period(period)?;
         guess.validate(n)?;
-        noether_core::error::check_positive("Floquet tolerance", self.floquet_tol)?;
-        self.newton.validate()?;
         for g in &self.symmetries {
             noether_core::error::check_len("symmetry generator (length 2n)", g, 2 * n)?;
         }

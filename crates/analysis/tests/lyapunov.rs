@@ -258,7 +258,7 @@ fn bad_settings() {
     let own = |w| {
         Lyapunov::new(rk4(), hh_state(1.0 / 12.0, 0.1, 0.0), 2, 0.05, 10)
             .unwrap()
-            .with_vectors(w)
+            .initial_vectors(w)
     };
     assert!(matches!(own(nalgebra::DMatrix::zeros(3, 2)), Err(Error::Core(_))));
     assert!(matches!(

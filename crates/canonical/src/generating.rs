@@ -218,7 +218,7 @@ impl<G: GeneratingFunction> Generated<G> {
     }
 
     /// Sets the Newton solver of the implicit relations.
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }

@@ -153,10 +153,8 @@ pub fn canonicity<M: CanonicalMap>(m: &M, t: f64, q: &[f64], p: &[f64]) -> Resul
 /// default of [`Generated`](crate::generating::Generated) and what the tests and examples pass to
 /// [`invert`] and the Hamilton-Jacobi solves. (Core's default, residual 1e-12, leaves errors ~1e-12.)
 pub fn newton_to_rounding() -> Newton {
-    let mut newton = Newton::default();
-    newton.tol_residual = 1e-15;
-    newton.tol_step = 1e-16;
-    newton
+    let limits = |n: Newton| n.residual_tolerance(1e-15)?.step_tolerance(1e-16);
+    limits(Newton::default()).expect("positive tolerances")
 }
 
 /// φ(z) − Z* = 0 for z, with the AD Jacobian.

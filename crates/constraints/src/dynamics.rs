@@ -120,13 +120,13 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
 
     /// Sets the largest constraint residual (max-norm of φ and of A q̇ + a) accepted in the state at the
     /// start of a step; finite and positive.
-    pub fn with_violation_tolerance(mut self, tol: f64) -> Result<Self> {
+    pub fn violation_tolerance(mut self, tol: f64) -> Result<Self> {
         self.violation = check_positive("violation tolerance", tol)?;
         Ok(self)
     }
 
     /// The largest constraint residual accepted in the state at the start of a step.
-    pub fn violation_tolerance(&self) -> f64 {
+    pub fn get_violation_tolerance(&self) -> f64 {
         self.violation
     }
 

@@ -27,34 +27,32 @@ use noether_core::{Error as CoreError, State, StepInfo, Stepper, Velocities};
 
 /// Settings of a projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
 pub struct Projection {
-    /// Newton stops when ‖φ‖∞ ≤ this (or when its step reaches rounding level).
-    pub tol: f64,
-    /// Newton iteration cap.
-    pub max_iterations: usize,
-    /// [`Projected`] refuses an incoming state whose residual exceeds this (a state that was never on
-    /// the manifold); project it explicitly with [`project`] first.
-    pub violation: f64,
+    tolerance: f64,
+    max_iterations: usize,
+    violation_tolerance: f64,
 }
 
 impl Default for Projection {
     fn default() -> Self {
         Projection {
-            tol: 1e-14,
+            tolerance: 1e-14,
             max_iterations: 20,
-            violation: 1e-8,
+            violation_tolerance: 1e-8,
         }
     }
 }
 
 impl Projection {
-    /// An error unless the tolerances are finite and positive and at least one iteration is allowed
-    /// (the fields are public: [`project`] checks them again).
-    pub fn validate(&self) -> Result<()> {
-        check_positive("projection tolerance", self.tol)?;
-        check_positive("violation tolerance", self.violation)?;
-        if self.max_iterations == 0 {
+    /// Sets the tolerance (default 1e-14): Newton stops when ‖φ‖∞ ≤ this (or when its step reaches
+    /// rounding level). Finite and positive, else `InvalidParameter`.
+    pub fn tolerance(mut self, tol: f64) -> Result<Self> {
+        self.tolerance = check_positive("projection tolerance", tol)?;
+        Ok(self)
+    }
+    /// Sets the Newton iteration cap (default 20; at least 1, else `InvalidParameter`).
+    pub fn max_iterations(mut self, n: usize) -> Result<Self> {
+        if n == 0 {
             return Err(CoreError::InvalidParameter {
                 name: "max_iterations",
                 value: 0.0,
@@ -62,7 +60,15 @@ impl Projection {
             }
             .into());
         }
-        Ok(())
+        self.max_iterations = n;
+        Ok(self)
+    }
+    /// Sets the violation tolerance (default 1e-8): [`Projected`] refuses an incoming state whose
+    /// residual exceeds it (a state that was never on the manifold; project it explicitly with
+    /// [`project`] first). Finite and positive, else `InvalidParameter`.
+    pub fn violation_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.violation_tolerance = check_positive("violation tolerance", tol)?;
+        Ok(self)
     }
 }
 
@@ -122,7 +128,6 @@ impl<K: ConstraintSet> DenseProblem for PositionProblem<'_, K> {
 /// Projects `state` (a Lagrangian state, v = q̇) onto the constraints of `set` in place and reports
 /// the correction. On error the state is unchanged.
 pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) -> Result<ProjectionReport> {
-    opts.validate()?;
     let (n, m) = (set.dof(), set.count());
     state.validate(n)?;
     let t = state.t;
@@ -143,8 +148,8 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
         };
         let mut mu = vec![0.0; m];
         let newton = Newton::default()
-            .tol_residual(opts.tol)?
-            .tol_step(1e-15)?
+            .residual_tolerance(opts.tolerance)?
+            .step_tolerance(1e-15)?
             .max_iterations(opts.max_iterations)?;
         let mut sys = noether_core::newton::Dense::new(prob);
         let info = newton.solve(&mut sys, &mut mu).map_err(|e| match e {
@@ -191,7 +196,7 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
 /// Any continuous stepper followed by a projection onto the constraints after every step.
 ///
 /// Before a step the incoming state must satisfy the constraints to within
-/// [`Projection::violation`] (otherwise [`Error::ConstraintViolated`] names the residual); after the
+/// [`Projection::violation_tolerance`] (otherwise [`Error::ConstraintViolated`] names the residual); after the
 /// step positions and velocities are projected back, and the report of the last projection and the
 /// largest residual left over the run are kept. On any error the state is unchanged.
 pub struct Projected<S, K> {
@@ -215,11 +220,10 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Projected<S, K> {
         }
     }
 
-    /// Sets the projection options (checked: tolerances finite and positive, at least one iteration).
-    pub fn options(mut self, options: Projection) -> Result<Self> {
-        options.validate()?;
+    /// Sets the projection settings (default [`Projection::default`]).
+    pub fn options(mut self, options: Projection) -> Self {
         self.options = options;
-        Ok(self)
+        self
     }
 
     /// The wrapped stepper.
@@ -253,12 +257,12 @@ impl<S: Stepper<Partner = Velocities>, K: ConstraintSet> Stepper for Projected<S
                 true
             };
             let res = max_abs(&r);
-            if has && !within(res, self.options.violation) {
+            if has && !within(res, self.options.violation_tolerance) {
                 return Err(Error::ConstraintViolated {
                     what,
                     t,
                     residual: res,
-                    tolerance: self.options.violation,
+                    tolerance: self.options.violation_tolerance,
                 }
                 .into());
             }

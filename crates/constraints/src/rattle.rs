@@ -105,8 +105,8 @@ pub struct Rattle<Ld, C> {
 
 type Lu = DenseFactor;
 
-/// Absolute Newton tolerance on the (scaled) residual; raised to the rounding floor ε·scale. In
-/// practice Newton stops when its step reaches rounding level (‖Δx‖∞ ≤ 1e-15 (1 + ‖x‖∞)): a residual
+/// Absolute Newton tolerance on the (scaled) residual, below what rounding allows on purpose: Newton
+/// stops when its step reaches rounding level (‖Δx‖∞ ≤ 1e-15 (1 + ‖x‖∞)): a residual
 /// merely below a tolerance would leave its component along a symmetry in the discrete Noether momenta.
 const DEFAULT_TOL: f64 = 1e-20;
 
@@ -136,7 +136,9 @@ where
         Ok(Rattle {
             ld,
             constraints,
-            newton: Newton::default().tol_residual(DEFAULT_TOL)?.tol_step(1e-15)?,
+            newton: Newton::default()
+                .residual_tolerance(DEFAULT_TOL)?
+                .step_tolerance(1e-15)?,
             violation: 1e-9,
             last: RattleInfo::default(),
             worst: (0.0, 0.0),
@@ -150,14 +152,14 @@ where
     }
 
     /// Replaces the Newton settings of both stages.
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }
 
     /// Sets the largest constraint residual accepted in an incoming state (default 1e-9; finite and
     /// positive).
-    pub fn with_violation_tolerance(mut self, tol: f64) -> Result<Self> {
+    pub fn violation_tolerance(mut self, tol: f64) -> Result<Self> {
         self.violation = check_positive("violation tolerance", tol)?;
         Ok(self)
     }
@@ -240,15 +242,6 @@ where
         Ok(v)
     }
 
-    /// Newton settings for a residual whose terms have size `scale`: the tolerance is raised to the
-    /// rounding floor ε·scale when the requested one is below it.
-    fn newton_for(&self, scale: f64) -> Newton {
-        let floor = 0.0 * scale;
-        let mut newton = self.newton;
-        newton.tol_residual = newton.tol_residual.max(floor);
-        newton
-    }
-
     /// The size of the largest mass-matrix entry (computed at the first step and kept: it only scales
     /// the momentum residual, whose difference quotient (q₁ − q₀)/h loses ε‖q‖/h and is multiplied by
     /// M, to position units).
@@ -315,7 +308,6 @@ where
         // Momentum rows scaled by w = h/s (s: mass scale) and Λ' = wΛ: both blocks then read in units
         // of q, with rounding floor ~ε‖q‖, so the constraint rows converge to rounding as well.
         let w = h / self.mass_scale(t0, q0, v0.as_slice())?;
-        let floor1 = max_abs(q0) + (w * max_abs(p0)).abs();
         let mut x = vec![0.0; n + m];
         for i in 0..n {
             x[i] = q0[i] + h * v0[i];
@@ -334,8 +326,9 @@ where
             d12: DMatrix::zeros(n, n),
             g1: DMatrix::zeros(m, n),
         };
-        let newton1 = self.newton_for(floor1);
-        let reuse = self.newton.reuse_jacobian && self.stage1_lu.as_ref().is_some_and(|(hh, _)| *hh == h);
+        let newton1 = self.newton;
+        let reuse =
+            self.newton.get_reuse_jacobian() && self.stage1_lu.as_ref().is_some_and(|(hh, _)| *hh == h);
         let mut sys = AcrossSteps {
             problem: stage1,
             jac: DMatrix::zeros(n + m, n + m),
@@ -396,7 +389,7 @@ where
         };
         let mut sys = Dense::new(stage2);
         let info2 = self
-            .newton_for(max_abs(&d2))
+            .newton
             .solve(&mut sys, &mut y)
             .map_err(|e| singular_as_rank(e, &g1, t1))?;
         let v1 = DVector::from_column_slice(&y[..n]);

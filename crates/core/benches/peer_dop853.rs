@@ -22,7 +22,7 @@ fn noether(tol: f64) -> Result<(f64, usize)> {
     let (q0, v0) = start();
     let dp = Dop853::new(Natural::unit(Kepler))
         .tolerances(tol, tol)?
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let sol = Driver::new(dp, State::new(0.0, q0, v0))?
         .save(Save::End)?
         .run_until(T_END)?;

@@ -20,7 +20,7 @@
 //! let guarded = ChartGuard::new(Rk4::new(EulerLagrange::new(Slide)), |s: &State| {
 //!     (s.q[0] <= 0.1).then(|| format!("x = {} left the chart x > 0.1", s.q[0]))
 //! });
-//! let mut run = Driver::new(guarded, State::new(0.0, [1.0], [-1.0])).unwrap().step(0.01).unwrap();
+//! let mut run = Driver::new(guarded, State::new(0.0, [1.0], [-1.0])).unwrap().step_size(0.01).unwrap();
 //! let err = run.run_until(2.0).unwrap_err();
 //! assert!(matches!(err, Error::CoordinateSingularity { .. }));
 //! assert!(run.state().q[0] > 0.1 && (run.state().t - 0.9).abs() < 0.011);
@@ -142,7 +142,7 @@ mod tests {
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2).unwrap();
         let mut traj = Driver::new(guarded, State::new(0.0, [0.5, 0.0], [0.0, 0.0]))
             .unwrap()
-            .step(1e-3)
+            .step_size(1e-3)
             .unwrap();
         let err = traj.run_until(10.0).unwrap_err();
         match &err {
@@ -158,7 +158,7 @@ mod tests {
         let guarded = ChartGuard::polar_angle(Rk4::new(EulerLagrange::new(Spherical)), 0, "θ", 1e-2).unwrap();
         let mut traj = Driver::new(guarded, State::new(0.0, [0.0, 0.0], [0.1, 0.0]))
             .unwrap()
-            .step(1e-3)
+            .step_size(1e-3)
             .unwrap();
         assert!(matches!(
             traj.run_steps(1),

@@ -112,7 +112,7 @@ struct StepStart {
 
 impl<'a, S: Stepper> Driver<'a, S> {
     /// A driver for `stepper` from `state` (checked against the stepper's dimension and for finite
-    /// values). Fixed-step methods need a step size ([`step`](Self::step)); adaptive ones choose their
+    /// values). Fixed-step methods need a step size ([`step_size`](Self::step_size)); adaptive ones choose their
     /// own (Hairer's initial-step rule) unless given one.
     pub fn new(stepper: S, state: State<S::Partner>) -> Result<Self> {
         state.validate(stepper.dof())?;
@@ -133,13 +133,13 @@ impl<'a, S: Stepper> Driver<'a, S> {
         })
     }
 
-    /// `Driver::new(stepper, state)?.step(h)`: the common start of a fixed-step run.
+    /// `Driver::new(stepper, state)?.step_size(h)`: the common start of a fixed-step run.
     pub fn with_step(stepper: S, state: State<S::Partner>, h: f64) -> Result<Self> {
-        Self::new(stepper, state)?.step(h)
+        Self::new(stepper, state)?.step_size(h)
     }
 
     /// The step size (fixed-step methods), or the first step tried (adaptive methods): finite, > 0.
-    pub fn step(mut self, h: f64) -> Result<Self> {
+    pub fn step_size(mut self, h: f64) -> Result<Self> {
         check_step(h)?;
         self.h = Some(h);
         self.h_proposal = None;
@@ -281,7 +281,7 @@ impl<'a, S: Stepper> Driver<'a, S> {
         self.h.ok_or(Error::InvalidParameter {
             name: "h",
             value: f64::NAN,
-            reason: "a fixed-step method needs a step size: call Driver::step(h)",
+            reason: "a fixed-step method needs a step size: call Driver::step_size(h)",
         })
     }
 

@@ -369,7 +369,7 @@ impl<L: Lagrangian> EulerLagrange<L> {
             }
         }
         let scale = 1.0 + crate::newton::max_norm(p);
-        let newton = Newton::default().tol_residual(1e-13 * scale)?;
+        let newton = Newton::default().residual_tolerance(1e-13 * scale)?;
         let (v, _) = crate::newton::solve_dense(&newton, InverseLegendre { el: self, t, q, p }, v0)?;
         Ok(v)
     }

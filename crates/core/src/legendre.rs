@@ -81,7 +81,7 @@
 //! // Gauss-Legendre on the Hamiltonian of a Lagrangian: one period of small oscillations.
 //! let small = State::with_momenta(0.0, [1e-3], [0.0]);
 //! let period = 2.0 * std::f64::consts::PI / 9.81f64.sqrt();
-//! let mut run = Driver::new(Gauss::gauss4(h), small).unwrap().step(period / 200.0).unwrap();
+//! let mut run = Driver::new(Gauss::gauss4(h), small).unwrap().step_size(period / 200.0).unwrap();
 //! assert!((run.run_until(period).unwrap().last().q[0] - 1e-3).abs() < 1e-9);
 //! ```
 

@@ -22,7 +22,7 @@
 //! assert!((a[0] - (-8.0 * 0.5 / 2.0)).abs() < 1e-14); // q̈ = −(k/m) q
 //!
 //! // One period 2π sqrt(m/k) = π with RK4 returns to the start.
-//! let mut run = Driver::new(Rk4::new(el), State::new(0.0, [0.5], [0.0])).unwrap().step(1e-3).unwrap();
+//! let mut run = Driver::new(Rk4::new(el), State::new(0.0, [0.5], [0.0])).unwrap().step_size(1e-3).unwrap();
 //! let sol = run.run_until(std::f64::consts::PI).unwrap();
 //! assert!((sol.last().q[0] - 0.5).abs() < 1e-10);
 //! ```

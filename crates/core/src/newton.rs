@@ -84,19 +84,19 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 
 /// Newton's method with tolerances, an iteration cap and Jacobian reuse.
 ///
-/// Build it from [`Newton::default`] and the validating setters; the fields are public (and checked
-/// again at the start of every solve: a NaN, zero or negative tolerance, a contraction outside (0, 1) or
-/// an iteration cap of 0 is [`Error::InvalidParameter`]).
+/// Build it from [`Newton::default`] and the setters, which refuse a NaN, zero or negative tolerance,
+/// a contraction outside (0, 1) or an iteration cap of 0 with [`Error::InvalidParameter`]; read the
+/// settings back by `get_` and the setting's name.
 ///
 /// **Stopping rule** (round-off aware, after Hairer-Wanner's RADAU5, *Solving ODEs II* IV.8, and
 /// GeometricIntegrators.jl). At least one correction Δₖ = J⁻¹F(xₖ₋₁) is always made (unless F(x₀)
 /// is exactly zero): a guess that already meets the tolerance is still corrected, so the unconverged
 /// remainder of a good predictor does not pile up over many solves. After correction k the iterate is
 /// converged when
-/// 1. ‖F(xₖ)‖∞ ≤ `tol_residual`; or
-/// 2. ‖Δₖ‖∞ ≤ `tol_step`·(1 + ‖xₖ‖∞) (and ‖F(xₖ)‖∞ ≤ √`tol_residual`); or
+/// 1. ‖F(xₖ)‖∞ ≤ `residual_tolerance`; or
+/// 2. ‖Δₖ‖∞ ≤ `step_tolerance`·(1 + ‖xₖ‖∞) (and ‖F(xₖ)‖∞ ≤ √`residual_tolerance`); or
 /// 3. the increments have stopped decreasing (θ ≥ 1) under a Jacobian factored at the previous
-///    iterate, at the rounding level: ‖Δₖ‖∞ ≤ √`tol_step`·(1 + ‖xₖ‖∞) and ‖F(xₖ)‖∞ ≤ √`tol_residual`.
+///    iterate, at the rounding level: ‖Δₖ‖∞ ≤ √`step_tolerance`·(1 + ‖xₖ‖∞) and ‖F(xₖ)‖∞ ≤ √`residual_tolerance`.
 ///    Newton with an exact Jacobian cannot improve such an iterate further: the residual is at the
 ///    rounding floor of its evaluation, above a tolerance set below what rounding allows, and that is
 ///    not divergence.
@@ -115,26 +115,19 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// contract's non-finite result, not a divergence). [`Dense`] reports a NaN or infinite Jacobian
 /// entry the same way (`what` = "Newton Jacobian").
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
 pub struct Newton {
-    /// Converged when ‖F(x)‖∞ ≤ this after a correction (finite, > 0).
-    pub tol_residual: f64,
-    /// Converged when a correction Δ, or the estimated distance θ/(1 − θ)‖Δ‖ to the root, satisfies
-    /// ‖·‖∞ ≤ this · (1 + ‖x‖∞) (finite, > 0; near the machine precision for a solve to rounding).
-    pub tol_step: f64,
-    /// Iteration cap (≥ 1).
-    pub max_iterations: usize,
-    /// Reuse the last Jacobian factor while ‖F‖ contracts at least by `contraction` per iteration.
-    pub reuse_jacobian: bool,
-    /// Required contraction factor for reusing a Jacobian factor, in (0, 1).
-    pub contraction: f64,
+    residual_tolerance: f64,
+    step_tolerance: f64,
+    max_iterations: usize,
+    reuse_jacobian: bool,
+    contraction: f64,
 }
 
 impl Default for Newton {
     fn default() -> Self {
         Newton {
-            tol_residual: 1e-12,
-            tol_step: 1e-14,
+            residual_tolerance: 1e-12,
+            step_tolerance: 1e-14,
             max_iterations: 50,
             reuse_jacobian: true,
             contraction: 0.25,
@@ -154,40 +147,73 @@ pub struct NewtonInfo {
 }
 
 impl Newton {
-    /// Sets the residual tolerance: finite and positive, else [`Error::InvalidParameter`].
-    pub fn tol_residual(mut self, tol: f64) -> Result<Self> {
-        self.tol_residual = check_positive("Newton tol_residual", tol)?;
+    /// Sets the residual tolerance (default 1e-12): converged when ‖F(x)‖∞ ≤ this after a correction.
+    /// Finite and positive, else [`Error::InvalidParameter`].
+    pub fn residual_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.residual_tolerance = check_positive("Newton residual_tolerance", tol)?;
         Ok(self)
     }
-    /// Sets the step tolerance: finite and positive, else [`Error::InvalidParameter`].
-    pub fn tol_step(mut self, tol: f64) -> Result<Self> {
-        self.tol_step = check_positive("Newton tol_step", tol)?;
+    /// Sets the step tolerance (default 1e-14): converged when a correction Δ, or the estimated
+    /// distance θ/(1 − θ)‖Δ‖ to the root, satisfies ‖·‖∞ ≤ this · (1 + ‖x‖∞) (near the machine
+    /// precision for a solve to rounding). Finite and positive, else [`Error::InvalidParameter`].
+    pub fn step_tolerance(mut self, tol: f64) -> Result<Self> {
+        self.step_tolerance = check_positive("Newton step_tolerance", tol)?;
         Ok(self)
     }
-    /// Sets the iteration cap: at least 1, else [`Error::InvalidParameter`].
+    /// Sets the iteration cap (default 50): at least 1, else [`Error::InvalidParameter`].
     pub fn max_iterations(mut self, n: usize) -> Result<Self> {
         self.max_iterations = check_iterations(n)?;
         Ok(self)
     }
-    /// Sets the contraction factor required to keep a Jacobian factor: in (0, 1), else
-    /// [`Error::InvalidParameter`].
+    /// Sets the contraction factor (default 0.25) that ‖F‖ must show per iteration for a Jacobian
+    /// factor to be kept: in (0, 1), else [`Error::InvalidParameter`].
     pub fn contraction(mut self, factor: f64) -> Result<Self> {
         self.contraction = check_contraction(factor)?;
         Ok(self)
     }
-    /// Enables or disables Jacobian reuse.
+    /// Enables (default) or disables the reuse of the last Jacobian factor while ‖F‖ contracts.
     pub fn reuse_jacobian(mut self, reuse: bool) -> Self {
         self.reuse_jacobian = reuse;
         self
     }
+    /// The settings with the residual tolerance raised to at least `floor` (what the caller knows
+    /// rounding allows for its residual, e.g. a few ε times its scale); a `floor` that is not finite
+    /// and positive changes nothing.
+    pub fn residual_floor(mut self, floor: f64) -> Self {
+        if floor.is_finite() && floor > 0.0 {
+            self.residual_tolerance = self.residual_tolerance.max(floor);
+        }
+        self
+    }
+    /// The settings with both tolerances multiplied by `factor` (finite and positive, else
+    /// unchanged): the tolerances of a residual measured in units `factor` times larger.
+    pub(crate) fn scaled(mut self, factor: f64) -> Self {
+        if factor.is_finite() && factor > 0.0 {
+            self.residual_tolerance *= factor;
+            self.step_tolerance *= factor;
+        }
+        self
+    }
 
-    /// Checks the settings (the fields are public, so they are checked again at every solve).
-    pub fn validate(&self) -> Result<()> {
-        check_positive("Newton tol_residual", self.tol_residual)?;
-        check_positive("Newton tol_step", self.tol_step)?;
-        check_iterations(self.max_iterations)?;
-        check_contraction(self.contraction)?;
-        Ok(())
+    /// The residual tolerance.
+    pub fn get_residual_tolerance(&self) -> f64 {
+        self.residual_tolerance
+    }
+    /// The step tolerance.
+    pub fn get_step_tolerance(&self) -> f64 {
+        self.step_tolerance
+    }
+    /// The iteration cap.
+    pub fn get_max_iterations(&self) -> usize {
+        self.max_iterations
+    }
+    /// Whether a Jacobian factor is reused while ‖F‖ contracts.
+    pub fn get_reuse_jacobian(&self) -> bool {
+        self.reuse_jacobian
+    }
+    /// The contraction factor required to keep a Jacobian factor.
+    pub fn get_contraction(&self) -> f64 {
+        self.contraction
     }
 
     /// Solves `sys` starting from `x` (overwritten by the solution). On failure `x` holds the last
@@ -207,7 +233,6 @@ impl Newton {
         x: &mut [f64],
         factored: bool,
     ) -> Result<NewtonInfo> {
-        self.validate()?;
         let n = sys.dim();
         crate::error::check_len("Newton initial guess", x, n)?;
         let mut r = vec![0.0; n];
@@ -266,15 +291,15 @@ impl Newton {
             info.residual = rnorm;
             let step = max_norm(&dx);
             let scale = 1.0 + max_norm(x);
-            let small_residual = rnorm <= self.tol_residual.sqrt();
+            let small_residual = rnorm <= self.residual_tolerance.sqrt();
             // 1. and 2. of the stopping rule.
-            if rnorm <= self.tol_residual || (step <= self.tol_step * scale && small_residual) {
+            if rnorm <= self.residual_tolerance || (step <= self.step_tolerance * scale && small_residual) {
                 return Ok(info);
             }
             if let Some(previous) = last_step {
                 let theta = step / previous;
                 // 3. Stalled at the rounding floor under an exact Jacobian.
-                if theta >= 1.0 && exact && small_residual && step <= self.tol_step.sqrt() * scale {
+                if theta >= 1.0 && exact && small_residual && step <= self.step_tolerance.sqrt() * scale {
                     return Ok(info);
                 }
             }
@@ -287,7 +312,7 @@ impl Newton {
         Error::NewtonDiverged {
             iterations,
             residual,
-            tolerance: self.tol_residual,
+            tolerance: self.residual_tolerance,
             t: f64::NAN,
         }
     }
@@ -381,9 +406,9 @@ mod tests {
         // ‖F‖ ≤ 1e-15 puts x within 1e-15/(2√2) of the root, plus rounding (the step tolerance is set
         // below it, so that the residual criterion ends the solves).
         let newton = Newton::default()
-            .tol_residual(1e-15)
+            .residual_tolerance(1e-15)
             .unwrap()
-            .tol_step(1e-16)
+            .step_tolerance(1e-16)
             .unwrap();
         let mut sys = Dense::new(Square { c: 2.0 });
         let mut x = [1.5];

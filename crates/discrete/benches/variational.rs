@@ -97,7 +97,7 @@ fn coupled_chains(c: &mut Criterion) {
     let p0: Vec<f64> = (0..40).map(|k| if k < 20 { 0.1 } else { 0.0 }).collect();
     // Start in the collision (t = 20), where the coupling acts.
     let sys = Mechanical::new(Mass::Diagonal(vec![1.0; 40]), ch.clone()).unwrap();
-    let mut vi = MechanicalMidpoint::new(sys).with_newton(Newton::default().tol_residual(1e-8).unwrap());
+    let mut vi = MechanicalMidpoint::new(sys).newton(Newton::default().residual_tolerance(1e-8).unwrap());
     let mut s = State::with_momenta(0.0, ch.collision_start(), p0);
     for _ in 0..200 {
         vi.step(&mut s, h).unwrap();
@@ -120,10 +120,10 @@ fn coupled_chains(c: &mut Criterion) {
     // The same algorithm as the hand-written step: a fresh Jacobian at every step.
     let sys = Mechanical::new(Mass::Diagonal(vec![1.0; 40]), ch.clone()).unwrap();
     let newton = Newton::default()
-        .tol_residual(1e-8)
+        .residual_tolerance(1e-8)
         .unwrap()
         .reuse_jacobian(false);
-    let mut fresh = MechanicalMidpoint::new(sys).with_newton(newton);
+    let mut fresh = MechanicalMidpoint::new(sys).newton(newton);
     group.bench_function("noether_fresh_jacobian", |b| {
         let mut st = start.clone();
         b.iter(|| {

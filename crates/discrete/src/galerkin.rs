@@ -135,14 +135,14 @@ impl<L: Lagrangian> Galerkin<L> {
             weights: w,
             basis,
             dbasis,
-            newton: Newton::default().tol_residual(DEFAULT_TOL)?,
+            newton: Newton::default().residual_tolerance(DEFAULT_TOL)?,
             last: NewtonInfo::default(),
         })
     }
 
     /// Replaces the Newton settings (see
-    /// [`VariationalIntegrator::with_newton`](crate::VariationalIntegrator::with_newton)).
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    /// [`VariationalIntegrator::newton`](crate::VariationalIntegrator::newton)).
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }

@@ -66,16 +66,14 @@ pub(crate) const DEFAULT_TOL: f64 = 1e-16;
 /// 2ε‖p‖∞ when the requested one is below it.
 pub(crate) fn effective_newton(newton: &Newton, p: &[f64]) -> Newton {
     let floor = 2.0 * f64::EPSILON * noether_core::newton::max_norm(p);
-    let mut newton = *newton;
-    newton.tol_residual = newton.tol_residual.max(floor);
-    newton
+    newton.residual_floor(floor)
 }
 
 /// `Newton::default()` with the residual tolerance [`DEFAULT_TOL`].
 pub(crate) fn default_newton() -> Newton {
-    let mut newton = Newton::default();
-    newton.tol_residual = DEFAULT_TOL;
-    newton
+    Newton::default()
+        .residual_tolerance(DEFAULT_TOL)
+        .expect("DEFAULT_TOL is finite and positive")
 }
 
 /// The discrete Euler-Lagrange equation of one step as a Newton system in the increment
@@ -158,7 +156,7 @@ pub struct VariationalIntegrator<Ld> {
 
 impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
     /// The integrator of `ld`, with Newton solved to rounding: residual ‖p_k + D₁L_d + f⁻‖∞ at most
-    /// max(1e-16, 2ε‖p_k‖∞) (see [`with_newton`](Self::with_newton)), at most 50 iterations.
+    /// max(1e-16, 2ε‖p_k‖∞) (see [`newton`](Self::newton)), at most 50 iterations.
     pub fn new(ld: Ld) -> Self {
         let n = ld.dof();
         VariationalIntegrator {
@@ -182,7 +180,7 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
     /// Replaces the relative tolerance τ of the check of a starting state's momenta against the primary
     /// constraint of a degenerate Lagrangian (default [`primary::DEFAULT_TOLERANCE`](crate::primary::DEFAULT_TOLERANCE)
     /// = 1e-8; see [`primary`](crate::primary)). `InvalidParameter` unless τ is finite and positive.
-    pub fn with_primary_tolerance(mut self, tol: f64) -> Result<Self> {
+    pub fn primary_tolerance(mut self, tol: f64) -> Result<Self> {
         if !(tol.is_finite() && tol > 0.0) {
             return Err(Error::InvalidParameter {
                 name: "primary-constraint tolerance",
@@ -195,7 +193,7 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
     }
 
     /// The relative tolerance of the primary-constraint check.
-    pub fn primary_tolerance(&self) -> f64 {
+    pub fn get_primary_tolerance(&self) -> f64 {
         self.primary_tol
     }
 
@@ -205,13 +203,13 @@ impl<Ld: DiscreteLagrangian> VariationalIntegrator<Ld> {
     /// R·ξ(Δ) (module docs), so a loose τ (the paper uses 1e-8) lets an angular momentum drift by up to
     /// τ|Δ| per step; for translations (ξ constant) one Newton iteration already removes the residual's
     /// component along ξ, which is linear in Δ.
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }
 
     /// The Newton settings.
-    pub fn newton(&self) -> &Newton {
+    pub fn get_newton(&self) -> &Newton {
         &self.newton
     }
 

@@ -236,7 +236,7 @@ impl<P: LocalPotential> Mechanical<P> {
 
     /// Adds linear damping Q = −diag(c) q̇ (each c_i finite and ≥ 0): a Rayleigh dissipation function
     /// ½ q̇ᵀ diag(c) q̇.
-    pub fn with_damping(mut self, c: Vec<f64>) -> Result<Self> {
+    pub fn damping(mut self, c: Vec<f64>) -> Result<Self> {
         check_len("damping", &c, self.dof())?;
         check_finite("damping", &c)?;
         if let Some(bad) = c.iter().find(|v| **v < 0.0) {
@@ -266,7 +266,7 @@ impl<P: LocalPotential> Mechanical<P> {
     }
 
     /// The damping coefficients, if any.
-    pub fn damping(&self) -> Option<&[f64]> {
+    pub fn get_damping(&self) -> Option<&[f64]> {
         self.damping.as_deref()
     }
 
@@ -405,7 +405,7 @@ impl<P: LocalPotential> Mechanical<P> {
         self.mass_solve(dq);
         self.gradient(q, dp);
         dp.iter_mut().for_each(|g| *g = -*g);
-        if let Some(c) = self.damping() {
+        if let Some(c) = self.get_damping() {
             dp.iter_mut()
                 .zip(c)
                 .zip(dq.iter())
@@ -506,7 +506,7 @@ impl<P: LocalPotential> noether_core::integrators::SplitDynamics for Mechanical<
         Ok(())
     }
     fn kick_rate(&self, q: &[f64], dp: &mut [f64]) -> Result<()> {
-        if self.damping().is_some() {
+        if self.get_damping().is_some() {
             return Err(Error::Unsupported(
                 "a split (kick-drift) method on a damped Mechanical system: the damping force depends on p; use Verlet or MechanicalMidpoint",
             ));

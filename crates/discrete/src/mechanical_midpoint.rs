@@ -76,7 +76,7 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
         for ((ri, gi), pi) in r.iter_mut().zip(self.grad.iter()).zip(self.p0) {
             *ri += hh * gi - pi;
         }
-        if let Some(c) = self.sys.damping() {
+        if let Some(c) = self.sys.get_damping() {
             for ((ri, ci), di) in r.iter_mut().zip(c).zip(d) {
                 *ri += 0.5 * ci * di;
             }
@@ -88,7 +88,7 @@ impl<P: LocalPotential> NewtonSystem for MidpointSystem<'_, P> {
         self.midpoint(d);
         *self.factor_h = f64::NAN;
         let (h, n) = (self.h, self.q0.len());
-        let damping = self.sys.damping();
+        let damping = self.sys.get_damping();
         match self.jac {
             Jacobian::Dense(m, lu) => {
                 m.fill(0.0);
@@ -154,7 +154,7 @@ pub struct MechanicalMidpoint<P> {
 impl<P: LocalPotential> MechanicalMidpoint<P> {
     /// The integrator; the Jacobian is banded when 3·bandwidth < dof, dense otherwise. Newton is
     /// solved to rounding by default (see
-    /// [`VariationalIntegrator::with_newton`](crate::VariationalIntegrator::with_newton)).
+    /// [`VariationalIntegrator::newton`](crate::VariationalIntegrator::newton)).
     pub fn new(sys: Mechanical<P>) -> Self {
         let n = sys.dof();
         let bw = sys.bandwidth();
@@ -177,8 +177,8 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
         }
     }
 
-    /// Replaces the Newton settings (the paper: `Newton::default().tol_residual(1e-8)?`).
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    /// Replaces the Newton settings (the paper: `Newton::default().residual_tolerance(1e-8)?`).
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }
@@ -261,7 +261,7 @@ impl<P: LocalPotential> MechanicalMidpoint<P> {
         for (pi, gi) in p1.iter_mut().zip(&self.grad) {
             *pi -= 0.5 * h * gi;
         }
-        if let Some(c) = self.sys.damping() {
+        if let Some(c) = self.sys.get_damping() {
             for ((pi, ci), di) in p1.iter_mut().zip(c).zip(&self.d) {
                 *pi -= 0.5 * ci * di;
             }

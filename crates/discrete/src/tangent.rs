@@ -165,7 +165,7 @@ impl<Ld: DiscreteLagrangian> SignedTangentStepper for VariationalIntegrator<Ld> 
 fn damping_matrix<P: LocalPotential>(sys: &Mechanical<P>, s: f64) -> DMatrix<f64> {
     let n = sys.dof();
     let mut c = DMatrix::zeros(n, n);
-    if let Some(d) = sys.damping() {
+    if let Some(d) = sys.get_damping() {
         d.iter().enumerate().for_each(|(i, ci)| c[(i, i)] = s * ci);
     }
     c

@@ -51,7 +51,7 @@ impl<P: LocalPotential> Verlet<P> {
     /// Störmer-Verlet for `sys`.
     pub fn new(sys: Mechanical<P>) -> Self {
         let n = sys.dof();
-        let path = if sys.damping().is_none() {
+        let path = if sys.get_damping().is_none() {
             Path::Split(StormerVerlet::new(sys))
         } else {
             Path::Damped(Damped {
@@ -79,7 +79,7 @@ impl<P: LocalPotential> Verlet<P> {
 impl<P: LocalPotential> Damped<P> {
     /// Overwrites `b` with (M + (h/2)C)⁻¹ b.
     fn solve_velocity(&mut self, h: f64, b: &mut [f64]) -> Result<()> {
-        match (self.sys.damping(), self.sys.mass()) {
+        match (self.sys.get_damping(), self.sys.mass()) {
             (None, _) => self.sys.mass_solve(b),
             (Some(c), Mass::Diagonal(m)) => {
                 // A diagonal matrix: its pivots are its entries, tested as every factorization is.
@@ -136,7 +136,7 @@ impl<P: LocalPotential> Damped<P> {
         for (pi, gi) in p1.iter_mut().zip(&self.g1) {
             *pi -= 0.5 * h * gi;
         }
-        if let Some(c) = self.sys.damping() {
+        if let Some(c) = self.sys.get_damping() {
             for ((pi, ci), vi) in p1.iter_mut().zip(c).zip(&self.v) {
                 *pi -= 0.5 * h * ci * vi;
             }

@@ -34,7 +34,7 @@ fn model() -> Model {
 /// `steps` Gauss-4 steps of 0.05 from θ = a, p = 0.3: the bits of the end state.
 fn gauss4_end(h: &Model, a: f64, steps: usize) -> Result<[u64; 3], noether_core::Error> {
     let sol = Driver::new(Gauss::gauss4(h), State::with_momenta(0.0, [a], [0.3]))?
-        .step(0.05)?
+        .step_size(0.05)?
         .save(Save::End)?
         .run_until(0.05 * steps as f64)?;
     let s = sol.last();

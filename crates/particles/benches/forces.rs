@@ -41,7 +41,7 @@ fn chain_system(n: usize) -> System<impl noether_particles::Interaction> {
             0..n,
         ))
         .unwrap()
-        .with_parallel(Parallel::Serial)
+        .parallel(Parallel::Serial)
 }
 
 /// The same forces written by hand: springs −k (r − re) r̂ between neighbours, on-site −(k2 + k4 d²) d.
@@ -140,7 +140,7 @@ fn gravity(c: &mut Criterion) {
         .unwrap()
         .with(AllPairs::new(Gravity { g: 1.0 }))
         .unwrap()
-        .with_parallel(Parallel::Serial);
+        .parallel(Parallel::Serial);
     let mut f = vec![0.0; 3 * n];
     g.bench_function("noether", |b| {
         b.iter(|| sys.potential_forces(0.0, black_box(&x), &mut f).unwrap())
@@ -174,7 +174,7 @@ fn lennard_jones(c: &mut Criterion) {
                 .unwrap()
                 .with(ShortRange::new(LennardJones::with_cutoff(1.0, 1.0, rc)).unwrap())
                 .unwrap()
-                .with_parallel(par);
+                .parallel(par);
             g.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
                 b.iter(|| sys.potential_forces(0.0, black_box(&x), &mut f).unwrap())
             });

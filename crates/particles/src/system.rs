@@ -77,7 +77,7 @@ impl<I: Interaction> System<I> {
     }
 
     /// Sets the parallel policy.
-    pub fn with_parallel(mut self, parallel: Parallel) -> Self {
+    pub fn parallel(mut self, parallel: Parallel) -> Self {
         self.parallel = parallel;
         self
     }

@@ -284,7 +284,7 @@ fn regress_cell_list_matches_all_pairs() {
         .unwrap()
         .with(AllPairs::new(lj))
         .unwrap()
-        .with_parallel(Parallel::Serial);
+        .parallel(Parallel::Serial);
     let b = System::new(vec![Particle::new(1.0); n])
         .unwrap()
         .with(ShortRange::new(lj).unwrap())
@@ -329,7 +329,7 @@ fn regress_parallel_is_bit_identical() {
             .unwrap()
             .with(ShortRange::new(LennardJones::with_cutoff(0.5, 0.8, 2.0)).unwrap())
             .unwrap()
-            .with_parallel(par)
+            .parallel(par)
     };
     let serial = forces_of(&build(Parallel::Serial), &x);
     for threads in [1, 2, 3] {
@@ -348,7 +348,7 @@ fn regress_parallel_is_bit_identical() {
             .unwrap()
             .with(AllPairs::new(Gravity { g: 1.0 }))
             .unwrap()
-            .with_parallel(par)
+            .parallel(par)
     };
     let serial = forces_of(&grav(Parallel::Serial), &y);
     let par = in_pool(3, || forces_of(&grav(Parallel::Rayon), &y));
@@ -381,7 +381,7 @@ fn regress_streaming_chain_matches_list() {
             .unwrap()
             .with(External::new(trap, sites))
             .unwrap()
-            .with_parallel(par)
+            .parallel(par)
     };
     // Pairs (3,4) … (8,9) and sites 2 … 6: a chain and a range away from both ends.
     let chain: Vec<_> = (3..9).map(|i| (i, i + 1)).collect();

@@ -84,10 +84,10 @@ impl<V: OrientationPotential> Lgvi<V> {
     /// failing every step.
     pub fn new(body: RigidBody<V>) -> Result<Self> {
         body.potential.check()?;
-        let mut newton = Newton::default();
-        newton.tol_residual = 1e-14;
-        newton.tol_step = 1e-15;
-        newton.reuse_jacobian = false;
+        let newton = Newton::default()
+            .residual_tolerance(1e-14)?
+            .step_tolerance(1e-15)?
+            .reuse_jacobian(false);
         Ok(Lgvi { body, newton })
     }
 

@@ -15,7 +15,7 @@
 //! let body = RigidBody::free(1.0, 2.0, 3.0).unwrap();
 //! let start = body.state(0.0, &UnitQuaternion::identity(), &Vector3::new(1e-3, 1.0, 0.0));
 //! let l0 = body.spatial_angular_momentum(&start).unwrap();
-//! let mut run = Driver::new(Lgvi::new(body).unwrap(), start).unwrap().step(1e-2).unwrap();
+//! let mut run = Driver::new(Lgvi::new(body).unwrap(), start).unwrap().step_size(1e-2).unwrap();
 //! let sol = run.run_until(20.0).unwrap();
 //! let l1 = body.spatial_angular_momentum(sol.last()).unwrap();
 //! assert!((l1.norm() - l0.norm()).abs() < 1e-13);

@@ -81,9 +81,9 @@ fn failed_newton_leaves_the_state() {
     let newton = Newton::default()
         .max_iterations(1)
         .unwrap()
-        .tol_residual(1e-300)
+        .residual_tolerance(1e-300)
         .unwrap()
-        .tol_step(1e-300)
+        .step_tolerance(1e-300)
         .unwrap();
     let mut lgvi = Lgvi::new(body).unwrap().newton(newton);
     let mut s = body.state(0.0, &UnitQuaternion::identity(), &Vector3::new(1.0, 0.5, 0.8));

@@ -56,7 +56,7 @@ fn closed_form_free_asymmetric_top_period() {
     let omega2 = move |s: &State<Momenta>| body.body_angular_velocity(s).map(|w| w[1]).unwrap_or(f64::NAN);
     let mut run = Driver::new(Lgvi::new(body).unwrap(), free_start(&body))
         .unwrap()
-        .step(1e-3)
+        .step_size(1e-3)
         .unwrap()
         .event(noether_core::Event::new("Ω₂ = 0 up", omega2).rising());
     let sol = run.run_until(5.5 * top.period()).unwrap();

@@ -149,10 +149,10 @@ fn regress_plain_integrator_from_a_state_off_the_constraints() {
     }
     // The tolerance is the user's to set, and is validated when set.
     assert!(matches!(
-        pendulum(1).with_violation_tolerance(f64::NAN),
+        pendulum(1).violation_tolerance(f64::NAN),
         Err(Error::Core(CoreError::InvalidParameter { .. }))
     ));
-    let loose = pendulum(1).with_violation_tolerance(0.2).unwrap();
+    let loose = pendulum(1).violation_tolerance(0.2).unwrap();
     let mut run = Driver::with_step(Rk4::new(&loose), off, 1e-3).unwrap();
     assert!(run.run_until(0.01).is_ok());
 }

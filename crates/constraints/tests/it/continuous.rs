@@ -61,7 +61,7 @@ fn conserves_constraint_with_projection() {
     let rep = run.stepper().last_projection();
     assert!(rep.position_correction > 0.0 && rep.position_correction < 1e-6);
     // Without projection, RK4 drifts off the circle (the index-1 system only fixes accelerations) ...
-    let loose = pendulum().with_violation_tolerance(1.0).unwrap();
+    let loose = pendulum().violation_tolerance(1.0).unwrap();
     let mut free = Driver::with_step(Rk4::new(&loose), pendulum_state(1.0, 2.5, 0.0), 1e-2).unwrap();
     let end = free.run_until(20.0).unwrap().last().clone();
     let drift = (end.q.norm() - 1.0).abs();

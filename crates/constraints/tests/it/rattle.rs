@@ -207,7 +207,7 @@ fn bad_input_rattle_violating_state_redundant_and_newton_failure() {
         Rod { d: 2, l, copies: 1 },
     )
     .unwrap()
-    .with_newton(Newton::default().max_iterations(1).unwrap());
+    .newton(Newton::default().max_iterations(1).unwrap());
     let s0 = s.clone();
     assert!(matches!(
         capped.step(&mut s, 0.1),

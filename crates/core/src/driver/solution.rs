@@ -65,7 +65,7 @@ pub struct EventRecord<K = Velocities> {
 /// }
 /// let el = EulerLagrange::new(Oscillator);
 /// let sol = Driver::new(Rk4::new(&el), State::new(0.0, [1.0], [0.0]))?
-///     .step(1e-3)?
+///     .step_size(1e-3)?
 ///     .save(Save::Times(vec![0.0, 0.5, 1.0]))?
 ///     .observe("energy", |s: &State| el.energy(s.t, s.q.as_slice(), s.v.as_slice()))
 ///     .run_until(1.0)?;

@@ -7,7 +7,7 @@
 //! | [`HamiltonEquations`] (any H) | [`Gauss::gauss6`] | not separable: the implicit Gauss-Legendre method of order 6 is symplectic for any H |
 //! | [`EulerLagrange`] (any L) | [`Dop853`], atol = rtol = 1e-9 (its default) | velocities are not canonical, so no symplectic method applies to q̇ directly: error control at a stated tolerance (Legendre-transform the model for a long run) |
 //!
-//! A fixed-step default needs a step size (`Driver::step`); the adaptive one chooses its own. To ask for
+//! A fixed-step default needs a step size (`Driver::step_size`); the adaptive one chooses its own. To ask for
 //! a tolerance instead, name the method: `Dop853::new(system).tolerances(atol, rtol)?`. Every default is
 //! overridden by naming the method directly.
 //!
@@ -27,7 +27,7 @@
 //! let sys = Natural::diagonal(Spring, &[1.0])?;
 //! // Borrowed: the energy observer uses `sys` after the stepper was built on it.
 //! let sol = Driver::new((&sys).default_method(), State::new(0.0, [1.0], [0.0]))?
-//!     .step(0.1)?
+//!     .step_size(0.1)?
 //!     .observe("energy", |s: &State| sys.energy(s.q.as_slice(), s.v.as_slice()))
 //!     .run_until(100.0)?;
 //! assert_eq!(sol.method(), "Kahan-Li 8 (17 stages)");
@@ -35,7 +35,7 @@
 //! // h = ½ q̇² + ½ q² = ½ stays within the symplectic method's bounded error.
 //! assert!(sol.observed("energy")?.iter().all(|h| (h - 0.5).abs() < 1e-9));
 //! // Owned: the stepper keeps the system.
-//! let moved = Driver::new(sys.default_method(), State::new(0.0, [1.0], [0.0]))?.step(0.1)?.run_until(1.0)?;
+//! let moved = Driver::new(sys.default_method(), State::new(0.0, [1.0], [0.0]))?.step_size(0.1)?.run_until(1.0)?;
 //! assert!((moved.last().q[0] - 1.0f64.cos()).abs() < 1e-12);
 //! # Ok::<(), noether_core::Error>(())
 //! ```

@@ -19,7 +19,7 @@
 //! (t, y₀, h) alone: a stepper continuing a run and a fresh one from the same state then agree to the
 //! last bit, so a run restarted from a saved state continues bit for bit (Newton's converged iterate
 //! depends on its start in the last bits). The tolerances of the solver are relative:
-//! ‖residual‖∞ ≤ tol_residual · (1 + ‖y₀‖∞), and the step tolerance likewise; by default both are
+//! ‖residual‖∞ ≤ residual_tolerance · (1 + ‖y₀‖∞), and the step tolerance likewise; by default both are
 //! 1e-15, a solve to rounding (Newton's round-off-aware stopping rule ends it when the increments stop
 //! decreasing), so that quadratic invariants are kept to rounding at every step size.
 //!
@@ -134,7 +134,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
         Self::new(system, 3).expect("three stages are supported")
     }
 
-    /// Sets the Newton solver (its `tol_residual` and `tol_step` are relative to 1 + ‖y₀‖∞).
+    /// Sets the Newton solver (its `residual_tolerance` and `step_tolerance` are relative to 1 + ‖y₀‖∞).
     pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
@@ -209,12 +209,12 @@ impl<S: LinearizedDynamics> Gauss<S> {
 /// 4.5 ε: the stage values are solved to rounding, so that the quadratic invariants are kept to
 /// rounding at every step size), at most 20 iterations.
 fn default_newton() -> Newton {
-    Newton {
-        tol_residual: 1e-15,
-        tol_step: 1e-15,
-        max_iterations: 20,
-        ..Newton::default()
-    }
+    let limits = |n: Newton| {
+        n.residual_tolerance(1e-15)?
+            .step_tolerance(1e-15)?
+            .max_iterations(20)
+    };
+    limits(Newton::default()).expect("positive tolerances and a cap of 20")
 }
 
 /// The stage equations of one step as a Newton problem in Z.
@@ -314,10 +314,7 @@ impl<S: LinearizedDynamics> Gauss<S> {
         y0.extend_from_slice(state.v.as_slice());
         let mut z = vec![0.0; s * m];
         // Both tolerances relative to 1 + ‖y₀‖∞ (Z is an increment of y₀).
-        let mut newton = self.newton;
-        let scale = 1.0 + max_norm(&y0);
-        newton.tol_residual *= scale;
-        newton.tol_step *= scale;
+        let newton = self.newton.scaled(1.0 + max_norm(&y0));
         let mut sys = Dense::new(self.stage_problem(t, h, &y0));
         let (mut iterations, mut failures) = (0, 0);
         if self.warm_guess(t, &y0, h, &mut z) {

@@ -39,7 +39,7 @@ pub(in crate::integrators) struct Settings<C> {
     pub(in crate::integrators) h_min: f64,
     /// Fixed steps: no error control.
     pub(in crate::integrators) fixed: bool,
-    /// The user allows a dense output (`with_dense_output`), and the driver asks for one.
+    /// The user allows a dense output (`dense_interpolant`), and the driver asks for one.
     pub(in crate::integrators) dense_allowed: bool,
     pub(in crate::integrators) dense_requested: bool,
     /// The method's own control.
@@ -126,7 +126,7 @@ macro_rules! settings_methods {
         }
         /// Allows (default) or forbids the dense output; without it the driver interpolates output
         /// times and events by cubic Hermite (order 3) instead of the method's own extension.
-        pub fn with_dense_output(mut self, on: bool) -> Self {
+        pub fn dense_interpolant(mut self, on: bool) -> Self {
             self.settings.dense_allowed = on;
             self
         }

@@ -233,7 +233,7 @@ fn run_gauss6<H: Hamiltonian>(
 ) -> Solution<Momenta> {
     Driver::new(Gauss::gauss6(HamiltonEquations::new(h)), start.clone())
         .unwrap()
-        .step(step)
+        .step_size(step)
         .unwrap()
         .save(Save::Every(every))
         .unwrap()
@@ -369,7 +369,7 @@ fn bad_input_legendre_transform_typed_errors() {
         .is_nan());
     let mut run = Driver::new(Gauss::gauss6(h), State::with_momenta(0.0, [0.1, 0.2], [1.0, 1.0]))
         .unwrap()
-        .step(0.01)
+        .step_size(0.01)
         .unwrap();
     let err = run.run_until(1.0).unwrap_err();
     assert!(matches!(err, Error::SingularMassMatrix { .. }), "{err}");

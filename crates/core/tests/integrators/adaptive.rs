@@ -261,7 +261,7 @@ fn closed_form_driver_uses_adaptive_steps() {
         .unwrap();
     let sol = Driver::new(s, State::new(0.0, [0.01], [0.0]))
         .unwrap()
-        .step(1e-3)
+        .step_size(1e-3)
         .unwrap()
         .run_until(3.0)
         .unwrap();

@@ -226,7 +226,7 @@ fn check_adaptive<S: Dynamics>(name: &str, sys: &S, q: &[f64], v: &[f64]) {
     let m = Dop853::new(sys)
         .tolerances(tol, tol)
         .unwrap()
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let root: fn(f64) -> f64 = |e| e.sqrt().sqrt().sqrt();
     let info = check_accepted(&format!("{name} DOP853"), m, &start, h, reference, Some(root));
     assert_eq!(info.evaluations, 13, "{name}");
@@ -235,7 +235,7 @@ fn check_adaptive<S: Dynamics>(name: &str, sys: &S, q: &[f64], v: &[f64]) {
     let m = Dopri5::new(sys)
         .tolerances(tol, tol)
         .unwrap()
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let info = check_accepted(&format!("{name} DOPRI5"), m, &start, h, reference, None);
     assert_eq!(info.evaluations, 7, "{name}");
 }
@@ -323,7 +323,7 @@ fn regress_nystrom_fixed_trial_same_bits() {
         let root: fn(f64) -> f64 = |e| e.powf(1.0 / 7.0);
         check_accepted(
             &format!("{name} DPRKN8"),
-            m.with_dense_output(false),
+            m.dense_interpolant(false),
             &start,
             h,
             reference,
@@ -335,7 +335,7 @@ fn regress_nystrom_fixed_trial_same_bits() {
         let root: fn(f64) -> f64 = |e| e.powf(1.0 / 11.0);
         check_accepted(
             &format!("{name} DPRKN12"),
-            m.with_dense_output(false),
+            m.dense_interpolant(false),
             &start,
             h,
             reference,

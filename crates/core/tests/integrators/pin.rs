@@ -116,7 +116,7 @@ fn pin_dop853_arenstorf() {
     let dp = Dop853::new(Arenstorf)
         .tolerances(1e-7, 1e-7)
         .unwrap()
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let r = hairer_run(dp, |s| s.evaluations());
     eprintln!(
         "DOP853 Arenstorf: y = {:?} {:?}, fcn {} step {} accpt {} rejct {}",
@@ -162,7 +162,7 @@ fn pin_dop853_van_der_pol() {
     let dp = Dop853::new(VanDerPol)
         .tolerances(1e-9, 1e-9)
         .unwrap()
-        .with_dense_output(false);
+        .dense_interpolant(false);
     let r = hairer_loop(dp, State::new(0.0, [2.0], [0.0]), Some(1e-6), 2.0, |s| {
         s.evaluations()
     });

@@ -126,10 +126,13 @@ fn regress_gauss_order_down_to_rounding_floor() {
 #[test]
 fn regress_gauss6_pendulum_large_steps_converge() {
     let sys = HamiltonEquations::new(PendulumH);
-    let mut tight = Newton::default();
-    tight.tol_residual = 1e-20;
-    tight.tol_step = 1e-20;
-    tight.max_iterations = 20;
+    let tight = Newton::default()
+        .residual_tolerance(1e-20)
+        .unwrap()
+        .step_tolerance(1e-20)
+        .unwrap()
+        .max_iterations(20)
+        .unwrap();
     let mut worst = 0.0_f64;
     for i in 0..40 {
         let th0 = 3.0 * (i as f64 + 0.5) / 40.0;
@@ -166,7 +169,7 @@ impl DenseProblem for Noisy {
 /// decreasing under an exact Jacobian), not `NewtonDiverged` (the old rule iterated to the cap).
 #[test]
 fn regress_newton_residual_floor_above_tolerance_is_converged() {
-    let newton = Newton::default().tol_residual(1e-14).unwrap();
+    let newton = Newton::default().residual_tolerance(1e-14).unwrap();
     for x0 in [3.0, 1.0 + 1e-12, 1.0 - 3e-13] {
         let (x, info) = solve_dense(&newton, Noisy, &[x0]).unwrap();
         eprintln!("from {x0}: x − 1 = {:.2e} in {info:?}", x[0] - 1.0);

@@ -80,11 +80,10 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
             t0,
             h,
         };
-        let mut newton = self.newton;
         let scale = problem.momentum_scale(y0);
-        newton.tol_residual = newton
-            .tol_residual
-            .max(8.0 * f64::EPSILON * scale * (d as f64).sqrt());
+        let newton = self
+            .newton
+            .residual_floor(8.0 * f64::EPSILON * scale * (d as f64).sqrt());
         let mut sys = noether_core::newton::Dense::new(problem);
         let mut y = y0.to_vec();
         let info = newton.solve(&mut sys, &mut y)?;

@@ -185,24 +185,24 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
     /// The solver for `ld`, Newton solved to rounding (residual tolerance 1e-14 raised to the
     /// rounding floor 8ε max_k |D₁L_d|), at most 50 iterations.
     pub fn new(ld: Ld) -> Self {
-        let mut newton = Newton::default();
-        newton.tol_residual = 1e-14;
         BoundaryValue {
             ld,
-            newton,
+            newton: Newton::default()
+                .residual_tolerance(1e-14)
+                .expect("a positive tolerance"),
             conjugate_tolerance: DEFAULT_CONJUGATE_TOLERANCE,
         }
     }
 
     /// Replaces the Newton settings (the residual tolerance is still raised to the rounding floor).
-    pub fn with_newton(mut self, newton: Newton) -> Self {
+    pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
     }
 
     /// Replaces the conjugate-point tolerance on the margin (finite and positive, else
     /// `InvalidParameter`; default [`DEFAULT_CONJUGATE_TOLERANCE`]).
-    pub fn with_conjugate_tolerance(mut self, tol: f64) -> Result<Self> {
+    pub fn conjugate_tolerance(mut self, tol: f64) -> Result<Self> {
         self.conjugate_tolerance = noether_core::error::check_positive("conjugate tolerance", tol)?;
         Ok(self)
     }

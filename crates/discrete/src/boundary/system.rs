@@ -30,10 +30,9 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
         }
         let mut sys = System::new(&self.ld, c, t0, t1, nodes)?;
         let mut x = sys.initial_unknowns(nodes);
-        let mut newton = self.newton;
-        newton.tol_residual = newton
-            .tol_residual
-            .max(8.0 * f64::EPSILON * sys.momentum_scale(&x));
+        let newton = self
+            .newton
+            .residual_floor(8.0 * f64::EPSILON * sys.momentum_scale(&x));
         let constrained = c.count() > 0;
         let info = match newton.solve(&mut sys, &mut x) {
             Ok(info) => info,

@@ -49,7 +49,7 @@ fn bad_input_dimensions_and_nan() {
 #[test]
 fn bad_input_newton_not_converging_keeps_state() {
     let mut vi = VariationalIntegrator::new(Midpoint::new(Kepler))
-        .with_newton(Newton::default().max_iterations(5).unwrap());
+        .newton(Newton::default().max_iterations(5).unwrap());
     let mut s = vi.state_from_velocities(0.0, &[0.1, 0.0], &[0.0, 4.2]).unwrap();
     let before = s.clone();
     match vi.step(&mut s, 50.0) {
@@ -79,7 +79,7 @@ fn bad_input_newton_not_converging_keeps_state() {
 fn bad_input_galerkin() {
     let mut g = Galerkin::order6(Kepler)
         .unwrap()
-        .with_newton(Newton::default().max_iterations(1).unwrap());
+        .newton(Newton::default().max_iterations(1).unwrap());
     let mut s = State::with_momenta(0.0, [0.1, 0.0], [0.0, 4.2]);
     let before = s.clone();
     for h in [0.0, -0.1, f64::NAN] {

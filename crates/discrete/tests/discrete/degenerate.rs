@@ -90,19 +90,16 @@ fn bad_input_degenerate_momenta_off_primary_constraint() {
 fn bad_input_primary_tolerance_boundary() {
     let bound = primary::DEFAULT_TOLERANCE * 0.5;
     let mut vi = VariationalIntegrator::new(Midpoint::new(Vortex { omega: 1.0 }));
-    assert_eq!(vi.primary_tolerance(), 1e-8);
+    assert_eq!(vi.get_primary_tolerance(), 1e-8);
     vi.step(&mut vortex_start(0.5 * bound), 0.01).unwrap();
     let mut vi = VariationalIntegrator::new(Midpoint::new(Vortex { omega: 1.0 }));
     assert!(vi.step(&mut vortex_start(2.0 * bound), 0.01).is_err());
-    let mut vi = vi.with_primary_tolerance(1e-6).unwrap();
+    let mut vi = vi.primary_tolerance(1e-6).unwrap();
     vi.step(&mut vortex_start(2.0 * bound), 0.01).unwrap();
     for tol in [0.0, -1e-8, f64::NAN, f64::INFINITY] {
         let vi = VariationalIntegrator::new(Midpoint::new(Vortex { omega: 1.0 }));
         assert!(
-            matches!(
-                vi.with_primary_tolerance(tol),
-                Err(Error::InvalidParameter { .. })
-            ),
+            matches!(vi.primary_tolerance(tol), Err(Error::InvalidParameter { .. })),
             "tol {tol}"
         );
     }

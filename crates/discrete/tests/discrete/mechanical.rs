@@ -104,7 +104,7 @@ fn conserves_chains_total_momentum() {
     let h = chains.paper_step();
     let mut s = paper_state(&chains, 0.1);
     let mut vi = MechanicalMidpoint::new(unit_mass(chains))
-        .with_newton(noether_core::Newton::default().tol_residual(1e-8).unwrap());
+        .newton(noether_core::Newton::default().residual_tolerance(1e-8).unwrap());
     let p0: f64 = s.v.iter().sum();
     let mut worst = 0.0_f64;
     for _ in 0..100_000 {
@@ -176,7 +176,7 @@ fn order_damped_oscillator_lagrange_dalembert() {
             x[0] * x[0] * 0.5
         }
     }
-    let sys = || unit_mass(Spring).with_damping(vec![0.2]).unwrap();
+    let sys = || unit_mass(Spring).damping(vec![0.2]).unwrap();
     let (g, t_end) = (0.1_f64, 10.0);
     let wd = (1.0 - g * g).sqrt();
     let exact = (-g * t_end).exp() * ((wd * t_end).cos() + g / wd * (wd * t_end).sin());
@@ -271,7 +271,7 @@ fn bad_input_mechanical_system() {
     let indefinite = nalgebra::DMatrix::from_row_slice(3, 3, &[1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0]);
     assert!(Mechanical::new(Mass::Dense(indefinite), chain()).is_err());
     assert!(matches!(
-        unit_mass(chain()).with_damping(vec![0.1, -0.1, 0.0]),
+        unit_mass(chain()).damping(vec![0.1, -0.1, 0.0]),
         Err(Error::InvalidParameter { .. })
     ));
     struct OutOfRange;
@@ -306,7 +306,7 @@ fn bad_input_mechanical_newton_failure_keeps_state() {
         b: 50.0,
     };
     let mut vi = MechanicalMidpoint::new(unit_mass(chain))
-        .with_newton(noether_core::Newton::default().max_iterations(3).unwrap());
+        .newton(noether_core::Newton::default().max_iterations(3).unwrap());
     let mut s = State::with_momenta(0.0, vec![1.0; 10], vec![5.0; 10]);
     let before = s.clone();
     match vi.step(&mut s, 20.0) {

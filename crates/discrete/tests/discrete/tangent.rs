@@ -119,7 +119,7 @@ fn variational_integrator_tangents_match_central_differences() {
 #[test]
 fn mechanical_tangents_match_central_differences() {
     let s = &anharmonic_states()[0];
-    let damped = || anharmonic().with_damping(vec![0.3, 0.0, 0.1]).unwrap();
+    let damped = || anharmonic().damping(vec![0.3, 0.0, 0.1]).unwrap();
     let errs = [
         tangent_vs_differences(&mut MechanicalMidpoint::new(anharmonic()), s, 0.1),
         tangent_vs_differences(&mut Verlet::new(anharmonic()), s, 0.1),
