@@ -25,7 +25,7 @@
 //! at the same time. The grid's centres are mirrored only to rounding (~10⁻¹⁶), which the chaos
 //! amplifies over time, so the check takes the mirror pairs that flip early (t < 10 √(l/g)).
 //!
-//! Run: `cargo run --release --features examples --example flip_map` (a 120 × 120 grid to t = 30 √(l/g); the picture goes to
+//! Run: `cargo run --release --features examples --example flip_map` (a 90 × 90 grid to t = 30 √(l/g); the picture goes to
 //! `gallery-out/`). The test runs a 40 × 40 grid to t = 20.
 
 use noether::ensemble::{Axis, Ensemble, Grid, Members};
@@ -184,9 +184,9 @@ pub fn run_grid(n: usize, t_end: f64, opts: &Options) -> Result<Report, BoxError
     Ok(report)
 }
 
-/// Runs the example (120 × 120 to t = 30).
+/// Runs the example (90 × 90 to t = 30).
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
-    run_grid(120, 30.0, opts)
+    run_grid(90, 30.0, opts)
 }
 
 fn main() -> ExitCode {

@@ -32,7 +32,7 @@
 //! straight asymptotes are missed by 2ε = κb/(2ER²) ≤ 2.5·10⁻⁸ rad, and DOP853 at tolerance 10⁻¹⁰ adds
 //! about 10⁻¹⁰: both far below the spread of angles a bin's edge could feel.
 //!
-//! Run: `cargo run --release --features examples --example scattering_monte_carlo` (4·10⁵ members; the picture goes to
+//! Run: `cargo run --release --features examples --example scattering_monte_carlo` (10⁵ members; the picture goes to
 //! `gallery-out/`). The test runs 5·10⁴.
 
 use noether::ensemble::{Ensemble, Histogram, Map, Max, Sampler};
@@ -61,7 +61,7 @@ const BINS: usize = 12;
 /// The seed of the beam.
 const SEED: u64 = 1911;
 /// Members of the gallery run.
-pub const MEMBERS: usize = 400_000;
+pub const MEMBERS: usize = 100_000;
 
 /// The deflection angle of the orbit at impact parameter `b`: from distance R on the incoming
 /// asymptote until the particle is back at R (a terminal event), the angle of the final velocity.
@@ -186,7 +186,7 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
     Ok(report)
 }
 
-/// Runs the example (4·10⁵ members).
+/// Runs the example (10⁵ members).
 pub fn run(opts: &Options) -> Result<Report, BoxError> {
     run_members(MEMBERS, opts)
 }

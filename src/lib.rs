@@ -200,7 +200,7 @@ examples! {
     sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
     symplecticity_check: "self-checks of integrators: ‖ΨᵀΩΨ − Ω‖ (RK4 h⁶/72 on the oscillator, O(h⁵)), observed orders, reversibility",
     boundary_value: "boundary-value problems by the discrete Hamilton principle: projectile, oscillator conjugate points, sphere geodesic, figure-eight",
-    scattering_monte_carlo: "Rutherford scattering as a Monte Carlo ensemble: 4·10⁵ random impact parameters, dσ/dΩ per bin vs (κ/4E)²/sin⁴(Θ/2), χ²",
+    scattering_monte_carlo: "Rutherford scattering as a Monte Carlo ensemble: 10⁵ random impact parameters, dσ/dΩ per bin vs (κ/4E)²/sin⁴(Θ/2), χ²",
     flip_map: "double pendulum: time to first flip over a grid of (θ₁, θ₂) (an ensemble), none where the energy forbids it",
 }
 

@@ -435,7 +435,7 @@ fn closed_form_boundary_value() {
     assert_example_passes("boundary_value");
 }
 
-/// The gallery example counts 4·10⁵ particles (`cargo run --release --example scattering_monte_carlo`);
+/// The gallery example counts 10⁵ particles (`cargo run --release --example scattering_monte_carlo`);
 /// the test counts 5·10⁴, the same checks (their statistical bounds scale with the counts).
 #[test]
 fn closed_form_scattering_monte_carlo() {
@@ -447,7 +447,7 @@ fn closed_form_scattering_monte_carlo() {
     assert_report_passes("scattering_monte_carlo", &report);
 }
 
-/// The gallery example maps a 120 × 120 grid to t = 30 (`cargo run --release --example flip_map`); the
+/// The gallery example maps a 90 × 90 grid to t = 30 (`cargo run --release --example flip_map`); the
 /// test maps 40 × 40 to t = 20, the same checks.
 #[test]
 fn energy_bound_flip_map() {
