@@ -54,22 +54,8 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .step_size(H)?
         .event(Event::new("Ω₂ = 0 up", omega2).rising())
         .run_until(5.5 * top.period())?;
-    let mut worst: f64 = 0.0;
-    let mut computed: Vec<Vec<(f64, f64)>> = vec![vec![]; 3];
-    let mut exact = computed.clone();
-    for (i, &t) in sol.times().iter().enumerate() {
-        let w = body.body_angular_velocity(&sol.state(i))?;
-        let e = top.omega(t);
-        if t <= top.period() {
-            worst = worst.max((0..3).map(|j| (w[j] - e[j]).abs()).fold(0.0, f64::max));
-        }
-        if i % 20 == 0 && t <= 1.5 * top.period() {
-            for j in 0..3 {
-                computed[j].push((t, w[j]));
-                exact[j].push((t, e[j]));
-            }
-        }
-    }
+    let title = "Free asymmetric top: body angular velocity (LGVI) and Jacobi's sn, cn, dn";
+    let (worst, fig) = omega_against_jacobi(&body, &top, &sol, 0.0, 20, 1.5 * top.period(), title)?;
     report.checks.push(Check::abs(
         NAME,
         "max |Ω − Ω(sn, cn, dn)| over one period",
@@ -139,16 +125,46 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         1.3e-5,
     ));
 
-    let mut fig = Figure::new("Free asymmetric top: body angular velocity (LGVI) and Jacobi's sn, cn, dn")
-        .x_label("t")
-        .y_label("Ω_i");
+    report.save(opts, &fig, "free_rigid_body_omega.svg")?;
+    Ok(report)
+}
+
+/// Ω of the run `sol` of the free `body` against Jacobi's solution `top.omega(t + t0)` (t0 places
+/// the run's start on it): the largest error of a component over the first period, and the figure
+/// of the three components, computed and closed form, from every `every`-th step up to `plot_until`.
+/// Shared with the `intermediate_axis` example.
+pub fn omega_against_jacobi(
+    body: &RigidBody<Free>,
+    top: &FreeTop,
+    sol: &Solution<Momenta>,
+    t0: f64,
+    every: usize,
+    plot_until: f64,
+    title: &str,
+) -> Result<(f64, Figure), BoxError> {
+    let mut worst: f64 = 0.0;
+    let mut computed: Vec<Vec<(f64, f64)>> = vec![vec![]; 3];
+    let mut exact = computed.clone();
+    for (i, &t) in sol.times().iter().enumerate() {
+        let w = body.body_angular_velocity(&sol.state(i))?;
+        let e = top.omega(t + t0);
+        if t <= top.period() {
+            worst = worst.max((0..3).map(|j| (w[j] - e[j]).abs()).fold(0.0, f64::max));
+        }
+        if i % every == 0 && t <= plot_until {
+            for j in 0..3 {
+                computed[j].push((t, w[j]));
+                exact[j].push((t, e[j]));
+            }
+        }
+    }
+    let mut fig = Figure::new(title).x_label("t").y_label("Ω_i");
     for (j, label) in ["Ω₁", "Ω₂", "Ω₃"].iter().enumerate() {
         fig = fig
             .series(format!("{label} (LGVI)"), computed[j].clone())
             .series(format!("{label} closed form"), exact[j].clone());
     }
-    report.save(opts, &fig, "free_rigid_body_omega.svg")?;
-    Ok(report)
+    Ok((worst, fig))
 }
 
 fn main() -> ExitCode {

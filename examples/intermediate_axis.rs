@@ -10,11 +10,11 @@
 //! Run: `cargo run --release --features examples --example intermediate_axis` (the picture of Ω(t) goes to `gallery-out/`).
 
 use noether::nalgebra::{UnitQuaternion, Vector3};
-use noether::plot::Figure;
 use noether::prelude::*;
 use noether::rigid::{Lgvi, RigidBody};
 use noether_gallery::closed_form::elliptic_k_complementary;
 use noether_gallery::closed_form::FreeTop;
+use noether_gallery::examples::free_rigid_body::omega_against_jacobi;
 use noether_gallery::{BoxError, Check, Options, Report};
 use std::process::ExitCode;
 
@@ -75,22 +75,8 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         3.5e-7,
     ));
 
-    let mut worst: f64 = 0.0;
-    let mut computed: Vec<Vec<(f64, f64)>> = vec![vec![]; 3];
-    let mut exact = computed.clone();
-    for (i, &t) in sol.times().iter().enumerate() {
-        let w = body.body_angular_velocity(&sol.state(i))?;
-        let e = top.omega(t + t0);
-        if t <= period {
-            worst = worst.max((0..3).map(|j| (w[j] - e[j]).abs()).fold(0.0, f64::max));
-        }
-        if i % 25 == 0 {
-            for j in 0..3 {
-                computed[j].push((t, w[j]));
-                exact[j].push((t, e[j]));
-            }
-        }
-    }
+    let title = "Intermediate-axis flip: body angular velocity (LGVI) and the elliptic solution";
+    let (worst, fig) = omega_against_jacobi(&body, &top, &sol, t0, 25, f64::INFINITY, title)?;
     report.checks.push(Check::abs(
         NAME,
         "max |Ω − Ω(sn, cn, dn)| over one period",
@@ -99,15 +85,6 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         6e-6,
     ));
 
-    let mut fig =
-        Figure::new("Intermediate-axis flip: body angular velocity (LGVI) and the elliptic solution")
-            .x_label("t")
-            .y_label("Ω_i");
-    for (j, label) in ["Ω₁", "Ω₂", "Ω₃"].iter().enumerate() {
-        fig = fig
-            .series(format!("{label} (LGVI)"), computed[j].clone())
-            .series(format!("{label} closed form"), exact[j].clone());
-    }
     report.save(opts, &fig, "intermediate_axis_omega.svg")?;
     Ok(report)
 }

@@ -19,7 +19,7 @@ use noether::core::TangentStepper;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::henon_heiles::UnitDoublePendulum;
+use noether_testkit::henon_heiles::{HenonHeiles, UnitDoublePendulum};
 use std::process::ExitCode;
 
 const NAME: &str = "lyapunov_spectrum";
@@ -37,20 +37,6 @@ impl Hamiltonian for Oscillator {
     }
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         (p[0] * p[0] + q[0] * q[0] * self.omega.powi(2)) * 0.5
-    }
-}
-
-/// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3.
-#[derive(Debug, Clone, Copy)]
-pub struct HenonHeiles;
-
-impl Hamiltonian for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        (p[0] * p[0] + p[1] * p[1] + q[0] * q[0] + q[1] * q[1]) * 0.5 + q[0] * q[0] * q[1]
-            - q[1].powi(3) * (1.0 / 3.0)
     }
 }
 

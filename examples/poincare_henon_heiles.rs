@@ -17,23 +17,10 @@ use noether::canonical::section::{section, Plane};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::henon_heiles::HenonHeiles;
 use std::process::ExitCode;
 
 const NAME: &str = "poincare_henon_heiles";
-
-/// The Hénon-Heiles Hamiltonian.
-#[derive(Debug, Clone, Copy)]
-pub struct HenonHeiles;
-
-impl Hamiltonian for HenonHeiles {
-    fn dof(&self) -> usize {
-        2
-    }
-    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        (p[0] * p[0] + p[1] * p[1] + x * x + y * y) * 0.5 + x * x * y - y.powi(3) * (1.0 / 3.0)
-    }
-}
 
 /// Two uncoupled oscillators with frequencies 1 and sqrt 2.
 #[derive(Debug, Clone, Copy)]
