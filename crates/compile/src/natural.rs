@@ -65,6 +65,18 @@ impl<P: Potential> CompiledNatural<P> {
     /// Compiles `system`, recording V at q: where V branches (compares values), the compiled code
     /// follows the branches taken there and falls back to dual numbers elsewhere.
     pub fn at(system: Natural<P>, q: &[f64]) -> Result<Self> {
+        Self::build(system, q, crate::Backend::Native)
+    }
+
+    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
+    /// feature `jit` (no time spent in Cranelift; the same results bit for bit).
+    pub fn interpreted(system: Natural<P>) -> Result<Self> {
+        let (q, _) = default_point(system.dof());
+        Self::build(system, &q, crate::Backend::Interpreter)
+    }
+
+    /// Records V at q, derives, and builds the programs for `backend`.
+    fn build(system: Natural<P>, q: &[f64], backend: crate::Backend) -> Result<Self> {
         let n = system.dof();
         check_len("q", q, n)?;
         noether_core::error::check_finite("q", q)?;
@@ -80,8 +92,8 @@ impl<P: Potential> CompiledNatural<P> {
         let mut potential = vec![r.value];
         potential.extend(&guard_nodes);
         Ok(CompiledNatural {
-            accelerations: Program::new(g, 1 + n, &outputs),
-            potential: Program::new(g, 1 + n, &potential),
+            accelerations: Program::with_backend(g, 1 + n, &outputs, backend),
+            potential: Program::with_backend(g, 1 + n, &potential, backend),
             graph: r.rec.graph,
             q: r.q,
             gradient: grad,

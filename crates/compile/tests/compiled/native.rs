@@ -7,10 +7,13 @@
 
 use nalgebra::DMatrix;
 use noether_compile::graph::{Binary, Graph, Id, Unary};
-use noether_compile::{Backend, Compile, CompiledEulerLagrange, CompiledHamiltonEquations, Program};
+use noether_compile::{
+    Backend, Compile, CompiledEulerLagrange, CompiledHamiltonEquations, CompiledNatural, Program,
+};
 use noether_core::system::LinearizedDynamics;
-use noether_core::{hamiltonian, Dynamics, EulerLagrange, HamiltonEquations, Lagrangian};
+use noether_core::{hamiltonian, Dynamics, EulerLagrange, HamiltonEquations, Lagrangian, Natural};
 use noether_testkit::agreement::uniform;
+use noether_testkit::henon_heiles::HenonHeiles;
 use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
 use std::time::Instant;
 
@@ -192,6 +195,31 @@ fn hamilton_equations_bit_for_bit() {
             interpreted.energy(t, &q, &p).unwrap(),
         );
         assert!(same(e, f));
+    }
+}
+
+/// A natural system's accelerations and their Jacobian −M⁻¹∇²V (Hénon-Heiles, V = ½(x² + y²) + x²y −
+/// y³/3), native against interpreted, bit for bit.
+#[test]
+fn natural_bit_for_bit() {
+    let native = Natural::unit(HenonHeiles).compile().unwrap();
+    let interpreted = CompiledNatural::interpreted(Natural::unit(HenonHeiles)).unwrap();
+    assert_eq!(native.backend(), Backend::Native);
+    assert_eq!(interpreted.backend(), Backend::Interpreter);
+    let mut rng = uniform(15);
+    for _ in 0..300 {
+        let (q, v) = ([rng(-1.0, 1.0), rng(-1.0, 1.0)], [rng(-1.0, 1.0), rng(-1.0, 1.0)]);
+        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+        native.accelerations(&q, &mut a).unwrap();
+        interpreted.accelerations(&q, &mut b).unwrap();
+        assert!(a.iter().zip(&b).all(|(x, y)| same(*x, *y)), "{a:?} vs {b:?}");
+        let (mut ja, mut jb) = (DMatrix::zeros(4, 4), DMatrix::zeros(4, 4));
+        native.jacobian(0.0, &q, &v, &mut ja).unwrap();
+        interpreted.jacobian(0.0, &q, &v, &mut jb).unwrap();
+        assert!(
+            ja.iter().zip(jb.iter()).all(|(x, y)| same(*x, *y)),
+            "{ja} vs {jb}"
+        );
     }
 }
 
