@@ -96,10 +96,10 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// 1. ‖F(xₖ)‖∞ ≤ `residual_tolerance`; or
 /// 2. ‖Δₖ‖∞ ≤ `step_tolerance`·(1 + ‖xₖ‖∞) (and ‖F(xₖ)‖∞ ≤ √`residual_tolerance`); or
 /// 3. the increments have stopped decreasing (θ ≥ 1) under a Jacobian factored at the previous
-///    iterate, at the rounding level: ‖Δₖ‖∞ ≤ √`step_tolerance`·(1 + ‖xₖ‖∞) and ‖F(xₖ)‖∞ ≤ √`residual_tolerance`.
-///    Newton with an exact Jacobian cannot improve such an iterate further: the residual is at the
-///    rounding floor of its evaluation, above a tolerance set below what rounding allows, and that is
-///    not divergence.
+///    iterate, at the rounding level: ‖Δₖ‖∞ ≤ √`step_tolerance`·(1 + ‖xₖ‖∞) and
+///    ‖F(xₖ)‖∞ ≤ √`residual_tolerance`. Newton with an exact Jacobian cannot improve such an iterate
+///    further: the residual is at the rounding floor of its evaluation, above a tolerance set below
+///    what rounding allows, and that is not divergence.
 ///
 /// A kept Jacobian factor is used while the residual contracts by `contraction` per correction and
 /// refreshed at the current iterate as soon as it does not, so a stale factor never causes a failure.
