@@ -164,15 +164,7 @@ impl EquilibriumFinder {
     }
     /// Sets the iteration cap of the trust-region or Newton iterations (default 200; at least 1).
     pub fn max_iterations(mut self, n: usize) -> Result<Self> {
-        if n == 0 {
-            return Err(noether_core::Error::InvalidParameter {
-                name: "max_iterations",
-                value: 0.0,
-                reason: "must be at least 1",
-            }
-            .into());
-        }
-        self.max_iterations = n;
+        self.max_iterations = noether_core::error::check_iteration_cap("max_iterations", n)?;
         Ok(self)
     }
     /// Sets the relative size below which a Hessian eigenvalue counts as zero (default 1e-9; finite

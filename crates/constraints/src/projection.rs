@@ -52,15 +52,7 @@ impl Projection {
     }
     /// Sets the Newton iteration cap (default 20; at least 1, else `InvalidParameter`).
     pub fn max_iterations(mut self, n: usize) -> Result<Self> {
-        if n == 0 {
-            return Err(CoreError::InvalidParameter {
-                name: "max_iterations",
-                value: 0.0,
-                reason: "at least one Newton iteration is needed",
-            }
-            .into());
-        }
-        self.max_iterations = n;
+        self.max_iterations = noether_core::error::check_iteration_cap("max_iterations", n)?;
         Ok(self)
     }
     /// Sets the violation tolerance (default 1e-8): [`Projected`] refuses an incoming state whose
@@ -196,9 +188,9 @@ pub fn project<K: ConstraintSet>(set: &K, state: &mut State, opts: &Projection) 
 /// Any continuous stepper followed by a projection onto the constraints after every step.
 ///
 /// Before a step the incoming state must satisfy the constraints to within
-/// [`Projection::violation_tolerance`] (otherwise [`Error::ConstraintViolated`] names the residual); after the
-/// step positions and velocities are projected back, and the report of the last projection and the
-/// largest residual left over the run are kept. On any error the state is unchanged.
+/// [`Projection::violation_tolerance`] (otherwise [`Error::ConstraintViolated`] names the residual);
+/// after the step positions and velocities are projected back, and the report of the last projection
+/// and the largest residual left over the run are kept. On any error the state is unchanged.
 pub struct Projected<S, K> {
     stepper: S,
     set: K,

@@ -112,8 +112,8 @@ struct StepStart {
 
 impl<'a, S: Stepper> Driver<'a, S> {
     /// A driver for `stepper` from `state` (checked against the stepper's dimension and for finite
-    /// values). Fixed-step methods need a step size ([`step_size`](Self::step_size)); adaptive ones choose their
-    /// own (Hairer's initial-step rule) unless given one.
+    /// values). Fixed-step methods need a step size ([`step_size`](Self::step_size)); adaptive ones
+    /// choose their own (Hairer's initial-step rule) unless given one.
     pub fn new(stepper: S, state: State<S::Partner>) -> Result<Self> {
         state.validate(stepper.dof())?;
         Ok(Driver {

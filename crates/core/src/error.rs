@@ -441,6 +441,18 @@ pub fn check_time_resolution(t: f64, h: f64) -> Result<()> {
     }
 }
 
+/// Checks that an iteration cap allows at least one iteration; returns it.
+pub fn check_iteration_cap(name: &'static str, n: usize) -> Result<usize> {
+    if n == 0 {
+        return Err(Error::InvalidParameter {
+            name,
+            value: 0.0,
+            reason: "at least one iteration is needed",
+        });
+    }
+    Ok(n)
+}
+
 /// Checks that a setting (a tolerance, a scale) is finite and positive; returns it.
 pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {

@@ -162,7 +162,7 @@ impl Newton {
     }
     /// Sets the iteration cap (default 50): at least 1, else [`Error::InvalidParameter`].
     pub fn max_iterations(mut self, n: usize) -> Result<Self> {
-        self.max_iterations = check_iterations(n)?;
+        self.max_iterations = crate::error::check_iteration_cap("Newton max_iterations", n)?;
         Ok(self)
     }
     /// Sets the contraction factor (default 0.25) that ‖F‖ must show per iteration for a Jacobian
@@ -328,17 +328,6 @@ fn non_finite_residual() -> Error {
         t: f64::NAN,
         component: None,
     }
-}
-
-fn check_iterations(n: usize) -> Result<usize> {
-    if n == 0 {
-        return Err(Error::InvalidParameter {
-            name: "Newton max_iterations",
-            value: 0.0,
-            reason: "at least one iteration is needed",
-        });
-    }
-    Ok(n)
 }
 
 fn check_contraction(factor: f64) -> Result<f64> {

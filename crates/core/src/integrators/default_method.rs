@@ -7,9 +7,9 @@
 //! | [`HamiltonEquations`] (any H) | [`Gauss::gauss6`] | not separable: the implicit Gauss-Legendre method of order 6 is symplectic for any H |
 //! | [`EulerLagrange`] (any L) | [`Dop853`], atol = rtol = 1e-9 (its default) | velocities are not canonical, so no symplectic method applies to q̇ directly: error control at a stated tolerance (Legendre-transform the model for a long run) |
 //!
-//! A fixed-step default needs a step size (`Driver::step_size`); the adaptive one chooses its own. To ask for
-//! a tolerance instead, name the method: `Dop853::new(system).tolerances(atol, rtol)?`. Every default is
-//! overridden by naming the method directly.
+//! A fixed-step default needs a step size (`Driver::step_size`); the adaptive one chooses its own. To
+//! ask for a tolerance instead, name the method: `Dop853::new(system).tolerances(atol, rtol)?`. Every
+//! default is overridden by naming the method directly.
 //!
 //! `default_method` is implemented for each system and for a reference to it: `sys.default_method()`
 //! moves the system into the stepper, `(&sys).default_method()` borrows it, so the system stays at hand
