@@ -291,6 +291,11 @@ fn closed_form_bertrand() {
 }
 
 #[test]
+fn closed_form_driven_pendulum() {
+    assert_example_passes("driven_pendulum");
+}
+
+#[test]
 fn closed_form_cyclotron() {
     assert_example_passes("cyclotron");
 }

@@ -30,6 +30,8 @@
 
 pub mod equilibria;
 pub mod error;
+pub mod linearize;
+pub mod lqr;
 pub mod lyapunov;
 pub mod modes;
 pub mod periodic;
@@ -38,6 +40,8 @@ pub mod sensitivity;
 
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
+pub use linearize::{linearize, Linearization};
+pub use lqr::{lqr, Lqr};
 pub use lyapunov::{Lyapunov, Spectrum};
 pub use modes::{linear_stability, normal_modes, LinearStability, NormalModes, SmallOscillations};
 pub use periodic::{floquet, Floquet, PeriodicOrbit, Shooting, Stability};

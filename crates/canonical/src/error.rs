@@ -85,15 +85,18 @@ pub enum Error {
         /// The coordinate.
         q: f64,
     },
-    /// A coordinate declared cyclic is not: ∂L/∂q_c ≠ 0 at a sample point.
-    #[error("coordinate {index} is not cyclic: ∂L/∂q = {derivative:e} at t = {t}")]
+    /// A coordinate declared cyclic is not: ∂L/∂q_c ≠ 0, or a generalized force Q_c ≠ 0 acts on it,
+    /// at a sample point (either makes its momentum change).
+    #[error("coordinate {index} is not cyclic: {what} = {value:e} at t = {t}")]
     NotCyclic {
         /// The coordinate's index.
         index: usize,
         /// Time of the sample point.
         t: f64,
-        /// ∂L/∂q_c there.
-        derivative: f64,
+        /// What is not zero: "∂L/∂q" or "Q".
+        what: &'static str,
+        /// Its value there.
+        value: f64,
     },
     /// The quadrature of an orbit gave a period that is not finite and positive, or an action that is
     /// not finite: the orbit is beyond what f64 resolves (turning points or momenta that underflow or

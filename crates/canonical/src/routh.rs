@@ -27,6 +27,11 @@
 //! is quadratic in u's: values and gradients need no step, Hessians (what the integrators ask of a
 //! Lagrangian at most) one. Exact to rounding, no finite difference.
 //!
+//! **Generalized forces** of the full model carry over when they do not act on the cyclic coordinates
+//! (Q_c = 0, or p_c would change; [`Routh::check_cyclic`] checks): the reduced model's force is
+//! Q_r(t, r, 0, ṙ, q̇_c), with q̇_c exact to all of D's derivatives (D::NDERIV chord steps, since Q,
+//! unlike L_R, is not stationary in q̇_c).
+//!
 //! **Limitation.** M_cc must be regular (L strictly convex in the cyclic velocities near the solve):
 //! otherwise Newton fails and L_R is NaN (an integrator then reports a non-finite result). The values
 //! of the cyclic coordinates are irrelevant to L (that is what cyclic means) and are set to 0 when L is
@@ -102,12 +107,6 @@ impl<L: Lagrangian> Routh<L> {
                 .into());
             }
         }
-        if lagrangian.has_generalized_force() {
-            return Err(noether_core::Error::Unsupported(
-                "Routh's reduction of a Lagrangian with generalized forces",
-            )
-            .into());
-        }
         if cyclic.len() >= n {
             return Err(noether_core::Error::InvalidParameter {
                 name: "number of cyclic coordinates",
@@ -145,22 +144,30 @@ impl<L: Lagrangian> Routh<L> {
         &self.momenta
     }
 
-    /// Checks the declaration at sample points (t, q, q̇) of the full model: the largest |∂L/∂q_c| over
-    /// the points and the cyclic coordinates, or [`Error::NotCyclic`] at the first that exceeds `tol`.
+    /// Checks the declaration at sample points (t, q, q̇) of the full model: the largest |∂L/∂q_c| and
+    /// |Q_c| (a generalized force on a cyclic coordinate would change its momentum too) over the points
+    /// and the cyclic coordinates, or [`Error::NotCyclic`] at the first that exceeds `tol`.
     pub fn check_cyclic(&self, points: &[(f64, Vec<f64>, Vec<f64>)], tol: f64) -> Result<f64> {
-        let mut g = vec![0.0; self.full().dof()];
+        let n = self.full().dof();
+        let (mut g, mut force) = (vec![0.0; n], vec![0.0; n]);
         let mut worst: f64 = 0.0;
         for (t, q, v) in points {
             self.equations.gradient_q(*t, q, v, &mut g)?;
+            if self.full().has_generalized_force() {
+                self.full().generalized_force(*t, q, v, &mut force);
+            }
             for &c in &self.cyclic {
-                if g[c].abs() > tol || g[c].is_nan() {
-                    return Err(Error::NotCyclic {
-                        index: c,
-                        t: *t,
-                        derivative: g[c],
-                    });
+                for (what, value) in [("∂L/∂q", g[c]), ("Q", force[c])] {
+                    if value.abs() > tol || value.is_nan() {
+                        return Err(Error::NotCyclic {
+                            index: c,
+                            t: *t,
+                            what,
+                            value,
+                        });
+                    }
+                    worst = worst.max(value.abs());
                 }
-                worst = worst.max(g[c].abs());
             }
         }
         Ok(worst)
@@ -325,13 +332,48 @@ impl<L: Lagrangian> Lagrangian for Routh<L> {
     /// L_R = L(t, r, 0, ṙ, u) − β·u with u = q̇_c from the real solve and ⌊D::NDERIV/2⌋ chord steps in
     /// D (module docs); NaN where the solve fails.
     fn lagrangian<D: Scalar>(&self, t: D, r: &[D], dr: &[D]) -> D {
-        let re = |x: &[D]| x.iter().map(|y| y.re()).collect::<Vec<f64>>();
-        let Ok((u0, minv)) = self.solve(t.re(), &re(r), &re(dr)) else {
+        let Some(u) = self.cyclic_velocities_in(t, r, dr, D::NDERIV / 2) else {
             return r.iter().chain(dr).fold(t, |s, x| s + *x) * f64::NAN;
         };
+        let (q, v) = self.assemble(r, dr, &u);
+        let bu = u
+            .iter()
+            .zip(&self.momenta)
+            .fold(D::zero(), |s, (x, b)| s + *x * *b);
+        self.full().lagrangian(t, &q, &v) - bu
+    }
+
+    fn has_generalized_force(&self) -> bool {
+        self.full().has_generalized_force()
+    }
+
+    /// The full model's force on the remaining coordinates, Q_r(t, r, 0, ṙ, u), with u = q̇_c exact to
+    /// all of D's derivatives (D::NDERIV chord steps: Q, unlike L_R, is not stationary in u). The
+    /// forces on the cyclic coordinates must vanish, or their momenta would change
+    /// ([`check_cyclic`](Routh::check_cyclic) checks); NaN where the solve fails.
+    fn generalized_force<D: Scalar>(&self, t: D, r: &[D], dr: &[D], out: &mut [D]) {
+        let Some(u) = self.cyclic_velocities_in(t, r, dr, D::NDERIV) else {
+            out.iter_mut().for_each(|o| *o = t * f64::NAN);
+            return;
+        };
+        let (q, v) = self.assemble(r, dr, &u);
+        let mut full = vec![D::zero(); q.len()];
+        self.full().generalized_force(t, &q, &v, &mut full);
+        for (o, &i) in out.iter_mut().zip(&self.rest) {
+            *o = full[i];
+        }
+    }
+}
+
+impl<L: Lagrangian> Routh<L> {
+    /// u = q̇_c(t, r, ṙ) in the caller's scalar: the real solve, then `steps` chord steps in D, each
+    /// making u exact to one more derivative order (module docs); `None` where the solve fails.
+    fn cyclic_velocities_in<D: Scalar>(&self, t: D, r: &[D], dr: &[D], steps: usize) -> Option<Vec<D>> {
+        let re = |x: &[D]| x.iter().map(|y| y.re()).collect::<Vec<f64>>();
+        let (u0, minv) = self.solve(t.re(), &re(r), &re(dr)).ok()?;
         let m = self.cyclic.len();
         let mut u: Vec<D> = u0.iter().map(|&x| D::from(x)).collect();
-        for _ in 0..D::NDERIV / 2 {
+        for _ in 0..steps {
             // ∂L/∂q̇_c in D by nested duals, one cyclic velocity at a time.
             let lift = |x: &[D]| x.iter().map(|&y| Dual::from_re(y)).collect::<Vec<Dual<D, f64>>>();
             let mut res = vec![D::zero(); m];
@@ -345,11 +387,6 @@ impl<L: Lagrangian> Lagrangian for Routh<L> {
                 *x -= (0..m).fold(D::zero(), |s, j| s + res[j] * minv[(i, j)]);
             }
         }
-        let (q, v) = self.assemble(r, dr, &u);
-        let bu = u
-            .iter()
-            .zip(&self.momenta)
-            .fold(D::zero(), |s, (x, b)| s + *x * *b);
-        self.full().lagrangian(t, &q, &v) - bu
+        Some(u)
     }
 }

@@ -9,8 +9,9 @@
 //! each a graph: ∂L/∂q and p by one reverse accumulation from L; the mixed term (∂p/∂q) q̇ + ∂p/∂t as
 //! one derivative of p along the flow direction (δt, δq) = (1, q̇) (forward accumulation); row i of M
 //! (its lower triangle) by reverse accumulation from p_i; and q̈ by the unrolled LDLᵀ solve of
-//! [`ldlt`]. Generalized forces Q(t, q, q̇) (plain f64 functions of the model) are
-//! inputs of the program, evaluated before it runs.
+//! [`ldlt`]. Generalized forces Q(t, q, q̇) are recorded with L on the same graph (the model's
+//! generic [`generalized_force`](noether_core::Lagrangian::generalized_force)), so b, the compiled
+//! Jacobian and the printed equations include them.
 
 use crate::derive::{directional, gradient};
 use crate::graph::{sign, Graph, Id};
@@ -56,7 +57,6 @@ pub struct CompiledEulerLagrange<L> {
     accelerations: Program,
     energy: Program,
     guards: Vec<f64>,
-    forced: bool,
     operations: Operations,
     terms: (Vec<Id>, Vec<Vec<Id>>),
     jacobian: OnceLock<Program>,
@@ -69,7 +69,7 @@ pub struct CompiledEulerLagrange<L> {
 pub const UNROLL_MAX: usize = 12;
 
 /// Lagrange's equations M q̈ = b on the graph of L: b, and M by its lower triangle.
-fn lagrange_terms(r: &mut Recorded, forced: bool) -> (Vec<Id>, Vec<Vec<Id>>) {
+fn lagrange_terms(r: &mut Recorded) -> (Vec<Id>, Vec<Vec<Id>>) {
     let n = r.q.len();
     let g: &mut Graph = &mut r.rec.graph;
     let vars: Vec<Id> = r.q.iter().chain(&r.v).copied().collect();
@@ -84,11 +84,9 @@ fn lagrange_terms(r: &mut Recorded, forced: bool) -> (Vec<Id>, Vec<Vec<Id>>) {
     let b: Vec<Id> = (0..n)
         .map(|i| {
             let bi = g.sub(gq[i], mixed[i]);
-            if forced {
-                let qi = g.input((1 + 2 * n + i) as u32);
-                g.add(bi, qi)
-            } else {
-                bi
+            match r.vector.get(i) {
+                Some(&qi) => g.add(bi, qi),
+                None => bi,
             }
         })
         .collect();
@@ -214,19 +212,23 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     fn build(system: EulerLagrange<L>, (t, q, v): (f64, &[f64], &[f64]), backend: Backend) -> Result<Self> {
         let n = system.dof();
         check_phase_point(n, t, q, v, "q̇")?;
-        let forced = system.lagrangian().has_generalized_force();
         let model = system.lagrangian();
-        let mut r = Recorded::new(t, q, v, |t, q, v| model.lagrangian(t, q, v))?;
+        let forces = if model.has_generalized_force() { n } else { 0 };
+        let mut r = Recorded::with_vector(t, q, v, forces, |t, q, v, f| {
+            if forces > 0 {
+                model.generalized_force(t, q, v, f);
+            }
+            model.lagrangian(t, q, v)
+        })?;
         let recorded = r.rec.graph.len();
         let guards: Vec<Guard> = r.rec.guards.clone();
-        let terms = lagrange_terms(&mut r, forced);
+        let terms = lagrange_terms(&mut r);
         let mut outputs = accelerations_outputs(&mut r.rec.graph, (&terms.0, &terms.1));
         outputs.extend(guards.iter().map(|g| g.node));
         let h = energy_output(&mut r);
         let mut energy_outputs = vec![h];
         energy_outputs.extend(guards.iter().map(|g| g.node));
-        let inputs = 1 + 2 * n + if forced { n } else { 0 };
-        let accelerations = Program::with_backend(&r.rec.graph, inputs, &outputs, backend);
+        let accelerations = Program::with_backend(&r.rec.graph, 1 + 2 * n, &outputs, backend);
         let energy = Program::with_backend(&r.rec.graph, 1 + 2 * n, &energy_outputs, backend);
         let operations = Operations {
             recorded,
@@ -242,7 +244,6 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             accelerations,
             energy,
             guards: guards.iter().map(|g| g.sign).collect(),
-            forced,
             operations,
             terms,
             jacobian: OnceLock::new(),
@@ -267,7 +268,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     }
 
     /// The accelerations as Rust source, `pub fn <name>(x: &[f64; I]) -> [f64; O]` (see
-    /// [`show`](crate::show)): x = (t, q, q̇, and Q when L has generalized forces), the outputs
+    /// [`show`](crate::show)): x = (t, q, q̇), the outputs
     /// (q̈, the pivots d of M = LDLᵀ, the diagonal of M, then one value per guard; above
     /// [`UNROLL_MAX`] degrees of freedom b and M's lower triangle instead of q̈ and M's pivots). The compiled
     /// q̈ is valid where every pivot is positive (and their ratio above
@@ -275,18 +276,15 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// recorded ([`guard_signs`](Self::guard_signs)).
     pub fn rust_source(&self, name: &str) -> String {
         let n = self.dual.dof();
-        let inputs = 1 + 2 * n + if self.forced { n } else { 0 };
-        let layout =
-            format!(
-            "x = (t, q[{n}], q̇[{n}]{}); out = (q̈[{n}], pivots of M[{n}], diagonal of M[{n}], guards[{}]).",
-            if self.forced { format!(", Q[{n}]") } else { String::new() },
+        let layout = format!(
+            "x = (t, q[{n}], q̇[{n}]); out = (q̈[{n}], pivots of M[{n}], diagonal of M[{n}], guards[{}]).",
             self.guards.len()
         );
         let doc = [
             "Lagrange's equations, generated by noether-compile from the recorded Lagrangian.",
             layout.as_str(),
         ];
-        crate::show::rust_function(&self.graph, inputs, &self.outputs, name, &doc)
+        crate::show::rust_function(&self.graph, 1 + 2 * n, &self.outputs, name, &doc)
     }
 
     /// Lagrange's equations M(q, q̇) q̈ = b(t, q, q̇) as formulas: M's lower triangle by rows
@@ -300,7 +298,7 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
             rows.extend(row.iter().enumerate().map(|(j, &y)| (Term::Mass(i, j), y)));
         }
         rows.extend(b.iter().enumerate().map(|(i, &y)| (Term::Force(i), y)));
-        crate::show::Equations::new(self.graph.clone(), rows, self.dual.dof(), false, self.forced)
+        crate::show::Equations::new(self.graph.clone(), rows, self.dual.dof(), false)
     }
 
     /// The sign each guard had when L was recorded (the compiled code holds where each has it).
@@ -317,13 +315,8 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     /// finite): `false` otherwise, with `a` unspecified.
     fn compiled_accelerations(&self, t: f64, q: &[f64], v: &[f64], a: &mut [f64]) -> bool {
         let n = q.len();
-        let mut force = Vec::new();
-        if self.forced {
-            force.resize(n, 0.0);
-            self.dual.lagrangian().generalized_force(t, q, v, &mut force);
-        }
         let guards_at = self.outputs.len() - self.guards.len();
-        let run = self.accelerations.run_with(&[&[t], q, v, &force], |o| {
+        let run = self.accelerations.run_with(&[&[t], q, v], |o| {
             if !guards_hold(&o, guards_at, &self.guards) {
                 return false;
             }
@@ -441,16 +434,14 @@ impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
 }
 
 /// The exact Jacobian of Lagrange's equations from the compiled graph (any number of degrees of
-/// freedom: forward accumulation through the unrolled solve), or the dual-number
-/// path's where the program's result is not usable — and always for a model with generalized forces,
-/// which the dual-number path refuses ([`Error::Unsupported`](noether_core::Error::Unsupported)): Q is
-/// a plain function that neither path can differentiate.
+/// freedom: forward accumulation through the unrolled solve; generalized forces included), or the
+/// dual-number path's where the program's result is not usable.
 impl<L: Lagrangian> LinearizedDynamics for CompiledEulerLagrange<L> {
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> noether_core::Result<()> {
         let n = self.dual.dof();
         check_phase_point(n, t, q, v, "q̇")?;
         let shaped = out.nrows() == 2 * n && out.ncols() == 2 * n;
-        if shaped && !self.forced && self.compiled_jacobian(t, q, v, out) {
+        if shaped && self.compiled_jacobian(t, q, v, out) {
             return Ok(());
         }
         self.dual.jacobian(t, q, v, out)

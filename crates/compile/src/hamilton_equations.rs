@@ -143,7 +143,7 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
             .map(|i| (Term::Velocity(i), self.outputs[i]))
             .chain((0..n).map(|i| (Term::MomentumRate(i), self.outputs[n + i])))
             .collect();
-        crate::show::Equations::new(self.graph.clone(), rows, n, true, false)
+        crate::show::Equations::new(self.graph.clone(), rows, n, true)
     }
 
     /// The program of J = ∂(q̇, ṗ)/∂(q, p) by rows (row i by reverse accumulation from rate i:

@@ -199,7 +199,7 @@ impl<P: Potential> CompiledNatural<P> {
         let rows = (self.acceleration_nodes.iter().enumerate())
             .map(|(i, &y)| (crate::show::Term::Acceleration(i), y))
             .collect();
-        crate::show::Equations::new(self.graph.clone(), rows, self.dof(), false, false)
+        crate::show::Equations::new(self.graph.clone(), rows, self.dof(), false)
     }
 
     /// The program of −M⁻¹∇²V (rows of ∇²V by reverse accumulation from each entry of ∇V), then

@@ -453,19 +453,17 @@ pub struct Equations {
     rows: Vec<(Term, Id)>,
     dof: usize,
     momenta: bool,
-    forced: bool,
 }
 
 impl Equations {
-    /// The equations `rows` on `graph`, whose inputs are (t, q, then q̇ or — `momenta` — p, then Q
-    /// when `forced`) for `dof` coordinates.
-    pub(crate) fn new(graph: Graph, rows: Vec<(Term, Id)>, dof: usize, momenta: bool, forced: bool) -> Self {
+    /// The equations `rows` on `graph`, whose inputs are (t, q, then q̇ or — `momenta` — p) for `dof`
+    /// coordinates.
+    pub(crate) fn new(graph: Graph, rows: Vec<(Term, Id)>, dof: usize, momenta: bool) -> Self {
         Equations {
             graph,
             rows,
             dof,
             momenta,
-            forced,
         }
     }
 
@@ -474,8 +472,7 @@ impl Equations {
         self.rows.iter().map(|r| r.0).collect()
     }
 
-    /// The value of each term (in the order of [`terms`](Self::terms)) at `inputs` = (t, q, q̇ or p,
-    /// and Q for a model with generalized forces).
+    /// The value of each term (in the order of [`terms`](Self::terms)) at `inputs` = (t, q, q̇ or p).
     pub fn evaluate(&self, inputs: &[f64]) -> Vec<f64> {
         let last = self.rows.iter().map(|r| r.1).max().unwrap_or(0);
         let values = self.graph.evaluate(inputs, last);
@@ -541,9 +538,6 @@ impl Equations {
                 dotted(&q[i], 1, notation)
             }
         }));
-        if self.forced {
-            names.extend((0..n).map(|i| indexed("Q", &[i], notation)));
-        }
         names
     }
 }

@@ -78,13 +78,15 @@ fn with<R>(op: impl FnOnce(&mut Recording) -> R) -> R {
 }
 
 /// A function of (t, q, v) recorded: its graph, the nodes of its inputs (t is input 0, q the next n,
-/// v the n after) and the node of its value.
+/// v the n after), the node of its value and those of the vector recorded with it (a Lagrangian's
+/// generalized forces; empty for one value alone).
 pub(crate) struct Recorded {
     pub rec: Recording,
     pub t: Id,
     pub q: Vec<Id>,
     pub v: Vec<Id>,
     pub value: Id,
+    pub vector: Vec<Id>,
 }
 
 impl Recorded {
@@ -96,6 +98,18 @@ impl Recorded {
         v0: &[f64],
         f: impl FnOnce(Traced, &[Traced], &[Traced]) -> Traced,
     ) -> crate::Result<Recorded> {
+        Self::with_vector(t0, q0, v0, 0, |t, q, v, _| f(t, q, v))
+    }
+
+    /// [`new`](Self::new) for a value and a vector of `len` components written by `f` into its
+    /// last argument (zeros on entry), recorded together on one graph.
+    pub fn with_vector(
+        t0: f64,
+        q0: &[f64],
+        v0: &[f64],
+        len: usize,
+        f: impl FnOnce(Traced, &[Traced], &[Traced], &mut [Traced]) -> Traced,
+    ) -> crate::Result<Recorded> {
         let n = q0.len();
         let mut rec = Recording::default();
         let t = rec.graph.input(0);
@@ -104,15 +118,25 @@ impl Recorded {
         let tt = Traced::node(t0, t);
         let qq: Vec<Traced> = q.iter().zip(q0).map(|(&id, &x)| Traced::node(x, id)).collect();
         let vv: Vec<Traced> = v.iter().zip(v0).map(|(&id, &x)| Traced::node(x, id)).collect();
-        let (value, mut rec) = record(rec, || f(tt, &qq, &vv));
+        let mut vector = vec![Traced::constant(0.0); len];
+        let (value, mut rec) = record(rec, || f(tt, &qq, &vv, &mut vector));
         if let Some(&operation) = rec.refusals.first() {
             return Err(crate::Error::Refused { operation });
         }
-        let value = match value.id() {
+        let mut node = |x: Traced| match x.id() {
             Some(id) => id,
-            None => rec.graph.constant(value.value()),
+            None => rec.graph.constant(x.value()),
         };
-        Ok(Recorded { rec, t, q, v, value })
+        let value = node(value);
+        let vector = vector.into_iter().map(node).collect();
+        Ok(Recorded {
+            rec,
+            t,
+            q,
+            v,
+            value,
+            vector,
+        })
     }
 }
 

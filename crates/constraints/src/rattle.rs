@@ -15,8 +15,11 @@
 //! G(t_{k+1}, q_{k+1}) q̇_{k+1} + φ_t(t_{k+1}, q_{k+1}) = 0,
 //! ```
 //!
-//! and sets p_{k+1} = D₂L_d + GᵀΜ. Positions and momenta stay on the constraint manifold (the second
-//! stage is the "hidden" velocity constraint), the map is symplectic on it, and for a symmetry with
+//! and sets p_{k+1} = D₂L_d + GᵀΜ. Generalized forces Q(t, q, q̇) of the Lagrangian enter by the
+//! discrete Lagrange-d'Alembert principle: the discrete forces f⁻ and f⁺ of L_d are added to D₁L_d
+//! and D₂L_d, and Newton's Jacobian gains ∂f⁻/∂q_{k+1} (by dual numbers). Positions and momenta stay
+//! on the constraint manifold (the second stage is the "hidden" velocity constraint); without forces
+//! the map is symplectic on it, and for a symmetry with
 //! generator ξ that leaves L_d invariant and is tangent to the constraints (G ξ = 0) the discrete
 //! momentum p·ξ(q) is conserved: the multiplier terms vanish along ξ. With the trapezoidal L_d of
 //! L = ½ q̇ᵀMq̇ − V this is exactly RATTLE. The discrete multipliers Λ, Μ are impulses over half a step;
@@ -69,7 +72,7 @@ use noether_core::newton::{Dense, DenseProblem};
 use noether_core::{
     Error as CoreError, EulerLagrange, Lagrangian, Momenta, Newton, NewtonSystem, State, StepInfo, Stepper,
 };
-use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian};
+use noether_discrete::{DiscreteDerivatives, DiscreteLagrangian, FromLagrangian, StepEnd};
 
 /// What the last step of a [`Rattle`] integrator did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -124,12 +127,6 @@ where
                 expected: ld.dof(),
                 got: constraints.dof(),
             }
-            .into());
-        }
-        if ld.has_discrete_force() {
-            return Err(CoreError::Unsupported(
-                "constrained variational integrator with discrete forces (non-conservative Q)",
-            )
             .into());
         }
         let m = constraints.count();
@@ -370,6 +367,12 @@ where
         let q0 = state.q.as_slice();
         let mut d2 = vec![0.0; n];
         self.ld.d2(t0, h, q0, q1.as_slice(), &mut d2);
+        if self.ld.has_discrete_force() {
+            // D₂L_d + f⁺ in place of D₂L_d.
+            let (mut fm, mut fp) = (vec![0.0; n], vec![0.0; n]);
+            self.ld.discrete_force(t0, h, q0, q1.as_slice(), &mut fm, &mut fp);
+            d2.iter_mut().zip(&fp).for_each(|(d, f)| *d += f);
+        }
         let mut g1 = DMatrix::zeros(m, n);
         holonomic::jacobian_unchecked(&self.constraints, t1, q1.as_slice(), &mut g1);
         let mut phi_t = vec![0.0; m];
@@ -487,6 +490,12 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         let (q1, lam) = x.split_at(n);
         let (ra, rb) = r.split_at_mut(n);
         self.ld.d1(self.t0, self.h, self.q0, q1, ra);
+        if self.ld.has_discrete_force() {
+            let (mut fm, mut fp) = (vec![0.0; n], vec![0.0; n]);
+            self.ld
+                .discrete_force(self.t0, self.h, self.q0, q1, &mut fm, &mut fp);
+            ra.iter_mut().zip(&fm).for_each(|(ri, fi)| *ri += fi);
+        }
         for (i, ri) in ra.iter_mut().enumerate() {
             let gl: f64 = (0..lam.len()).map(|k| self.g0[(k, i)] * lam[k]).sum();
             *ri = self.w * (*ri + self.p0[i]) + gl;
@@ -499,6 +508,13 @@ impl<Ld: DiscreteLagrangian, C: Holonomic> DenseProblem for PositionStage<'_, Ld
         let m = self.c.count();
         let q1 = &x[..n];
         self.ld.d12(self.t0, self.h, self.q0, q1, &mut self.d12);
+        if self.ld.has_discrete_force() {
+            let (mut dm, mut dp) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+            let ends = (self.q0, q1);
+            self.ld
+                .force_derivatives(self.t0, self.h, ends, StepEnd::Right, (&mut dm, &mut dp));
+            self.d12 += dm;
+        }
         holonomic::jacobian_unchecked(self.c, self.t0 + self.h, q1, &mut self.g1);
         j.fill(0.0);
         j.view_mut((0, 0), (n, n)).copy_from(&(&self.d12 * self.w));

@@ -29,6 +29,7 @@
 
 pub mod ad;
 pub mod chart;
+pub mod control;
 pub mod dense;
 pub mod driver;
 pub mod dynamics;

@@ -40,11 +40,19 @@ pub trait Lagrangian {
         false
     }
 
-    /// Non-potential generalized forces Q(t, q, q̇) (damping, driving), written into `out`
-    /// (length `dof()`). Only called when [`has_generalized_force`](Lagrangian::has_generalized_force)
-    /// returns `true`.
-    fn generalized_force(&self, _t: f64, _q: &[f64], _v: &[f64], out: &mut [f64]) {
-        out.iter_mut().for_each(|x| *x = 0.0);
+    /// Non-potential generalized forces Q(t, q, q̇) (damping, driving), written into `out` (length
+    /// `dof()`). Only called when [`has_generalized_force`](Lagrangian::has_generalized_force) returns
+    /// `true`.
+    ///
+    /// Generic over the scalar like [`lagrangian`](Lagrangian::lagrangian), so every derivative noether
+    /// takes of the equations of motion includes ∂Q/∂q and ∂Q/∂q̇ exactly: the Jacobian of Lagrange's
+    /// equations (so implicit Runge-Kutta methods and the tangents of the flow), the Newton Jacobians and
+    /// tangents of forced variational integrators. A force from data rather than a formula (a measured
+    /// wind, a table) that depends on t only is written `D::from(table(t.re()))`: its derivatives in q
+    /// and q̇ are zero, as they should be. A force that reads q or q̇ through `re()` would have wrong
+    /// derivatives: write it with the scalar's arithmetic instead.
+    fn generalized_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], out: &mut [D]) {
+        out.iter_mut().for_each(|x| *x = D::zero());
     }
 }
 
@@ -104,7 +112,7 @@ impl<L: Lagrangian + ?Sized> Lagrangian for &L {
     fn has_generalized_force(&self) -> bool {
         (**self).has_generalized_force()
     }
-    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+    fn generalized_force<D: Scalar>(&self, t: D, q: &[D], v: &[D], out: &mut [D]) {
         (**self).generalized_force(t, q, v, out)
     }
 }

@@ -21,8 +21,19 @@
 //! by the core Newton with the Jacobian from the dual-number Hessian of S (blocks ∂²S/∂q^0∂y and
 //! ∂²S/∂y²). With s = 2 (one interior point, 2 Gauss points) the method has order 4, with s = 3 order
 //! 6 (Marsden & West 2001, §2.2.6; Hairer, Lubich & Wanner, *Geometric Numerical Integration*, VI.6.3:
-//! the Galerkin method with s Gauss points is the s-stage Gauss collocation method, order 2s). Discrete
-//! forces are not supported (a Lagrangian with a generalized force is refused).
+//! the Galerkin method with s Gauss points is the s-stage Gauss collocation method, order 2s).
+//!
+//! Generalized forces Q(t, q, q̇) enter by the discrete Lagrange-d'Alembert principle: the virtual work
+//! ∫ Q·δq dt, by the same quadrature on the same path, adds to each equation the force on its control
+//! point,
+//!
+//! ```text
+//! F_ν = h Σ_i w_i ℓ_ν(c_i) Q(t₀ + c_i h, q(c_i), q̇(c_i)),
+//! p_k + ∂S/∂q^0 + F_0 = 0,   ∂S/∂q^ν + F_ν = 0,   p_{k+1} = ∂S/∂q^s + F_s,
+//! ```
+//!
+//! (Marsden & West 2001, §3.2), and Newton's Jacobian gains ∂F/∂y by dual numbers through the generic
+//! [`generalized_force`](noether_core::Lagrangian::generalized_force).
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -56,6 +67,7 @@ use noether_core::newton::{Dense, DenseProblem};
 use noether_core::{
     Error, EulerLagrange, Lagrangian, Momenta, Newton, NewtonInfo, Result, Scalar, State, StepInfo, Stepper,
 };
+use num_dual::Dual64;
 
 /// The Galerkin variational integrator (see the module docs). As a
 /// [`Stepper`] it advances states (t, q, p).
@@ -94,6 +106,26 @@ impl<L: Lagrangian> Field for Action<'_, L> {
     }
 }
 
+impl<L: Lagrangian> Action<'_, L> {
+    /// The forces on the control points, F_ν = h Σ_i w_i ℓ_ν(c_i) Q(t₀ + c_i h, q(c_i), q̇(c_i)),
+    /// ν = 0 … s, one after the other in `out` (length n(s + 1)).
+    fn control_forces<D: Scalar>(&self, h: f64, x: &[D], y: &[D], out: &mut [D]) {
+        let (g, n) = (self.g, x.len());
+        out.iter_mut().for_each(|o| *o = D::zero());
+        let mut qf = vec![D::zero(); n];
+        for (i, w) in g.weights.iter().enumerate() {
+            let q = on_path(x, y, &g.basis, i, D::one());
+            let v = on_path(x, y, &g.dbasis, i, D::from(h));
+            let t = D::from(self.t0 + h * g.nodes[i]);
+            g.el.lagrangian().generalized_force(t, &q, &v, &mut qf);
+            for (nu, f) in out.chunks_exact_mut(n).enumerate() {
+                let c = h * w * g.basis[(i, nu)];
+                f.iter_mut().zip(&qf).for_each(|(fj, qj)| *fj += *qj * c);
+            }
+        }
+    }
+}
+
 /// Σ_ν basis(i, ν) q^ν / divisor with q^0 = x and q^ν = y[(ν−1)n..νn] (n = x.len()): the path (or its
 /// derivative, for ℓ') at node i. Generic in D only, not in the model (`noether_core::ad::Buf::new`
 /// says why).
@@ -117,13 +149,6 @@ impl<L: Lagrangian> Galerkin<L> {
     }
 
     fn new(lagrangian: L, s: usize) -> Result<Self> {
-        if lagrangian.has_generalized_force() {
-            return Err(Error::InvalidParameter {
-                name: "Galerkin discrete Lagrangian",
-                value: f64::NAN,
-                reason: "generalized forces are not supported (use Midpoint or Trapezoidal)",
-            });
-        }
         let (c, w) = gauss(s);
         let d: Vec<f64> = (0..=s).map(|nu| nu as f64 / s as f64).collect();
         let basis = DMatrix::from_fn(s, s + 1, |i, nu| lagrange(&d, nu, c[i]));
@@ -207,6 +232,8 @@ struct StepProblem<'a, L> {
     gy: Vec<f64>,
     hyy: DMatrix<f64>,
     hxy: DMatrix<f64>,
+    /// The control-point forces F_0 … F_s at the last residual (empty without forces).
+    forces: Vec<f64>,
 }
 
 impl<L: Lagrangian> DenseProblem for StepProblem<'_, L> {
@@ -222,6 +249,11 @@ impl<L: Lagrangian> DenseProblem for StepProblem<'_, L> {
         }
         let m = r.len();
         r[n..].copy_from_slice(&self.gy[..m - n]);
+        if !self.forces.is_empty() {
+            self.action.control_forces(self.h, self.q0, y, &mut self.forces);
+            // F_0 … F_{s−1} into the equations of q^0 … q^{s−1}; F_s goes to p_{k+1}.
+            r.iter_mut().zip(&self.forces).for_each(|(ri, fi)| *ri += fi);
+        }
         Ok(())
     }
     fn jacobian(&mut self, y: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
@@ -248,6 +280,20 @@ impl<L: Lagrangian> DenseProblem for StepProblem<'_, L> {
         j.view_mut((0, 0), (n, m)).copy_from(&self.hxy);
         j.view_mut((n, 0), (m - n, m))
             .copy_from(&self.hyy.view((0, 0), (m - n, m)));
+        if !self.forces.is_empty() {
+            // ∂F_ν/∂y column by column, over Dual64 seeded along y_c (ν < s: F_s is not an equation).
+            let x: Vec<Dual64> = self.q0.iter().map(|&a| Dual64::from(a)).collect();
+            let mut f = vec![Dual64::from(0.0); self.forces.len()];
+            for c in 0..m {
+                let yc: Vec<Dual64> = (0..m)
+                    .map(|k| Dual64::new(y[k], if k == c { 1.0 } else { 0.0 }))
+                    .collect();
+                self.action.control_forces(self.h, &x, &yc, &mut f);
+                for (row, fr) in f[..m].iter().enumerate() {
+                    j[(row, c)] += fr.eps;
+                }
+            }
+        }
         Ok(())
     }
 }
@@ -294,11 +340,19 @@ impl<L: Lagrangian> Galerkin<L> {
             gy: vec![0.0; n * s],
             hyy: DMatrix::zeros(n * s, n * s),
             hxy: DMatrix::zeros(n, n * s),
+            forces: if self.el.lagrangian().has_generalized_force() {
+                vec![0.0; n * (s + 1)]
+            } else {
+                Vec::new()
+            },
         };
         let mut sys = Dense::new(problem);
         let info = newton.solve(&mut sys, &mut y).map_err(|e| e.at_time(t))?;
-        // The last residual was evaluated at the solution: ∂S/∂q^s is the new momentum.
-        let p1 = sys.problem.gy[(s - 1) * n..].to_vec();
+        // The last residual was evaluated at the solution: ∂S/∂q^s (+ F_s) is the new momentum.
+        let mut p1 = sys.problem.gy[(s - 1) * n..].to_vec();
+        if let Some(fs) = sys.problem.forces.get(s * n..) {
+            p1.iter_mut().zip(fs).for_each(|(pi, fi)| *pi += fi);
+        }
         let q1 = &y[(s - 1) * n..];
         if q1.iter().chain(&p1).any(|x| !x.is_finite()) {
             return Err(Error::NonFiniteResult {

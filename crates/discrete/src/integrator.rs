@@ -25,9 +25,9 @@
 //! [`OffPrimaryConstraint`](crate::OffPrimaryConstraint) instead of taking a wild step (see
 //! [`primary`](crate::primary)). The steps that continue a run skip the check.
 //!
-//! The Jacobian neglects the derivative of the discrete forces (they come as plain `f64` from
-//! [`Lagrangian::generalized_force`](noether_core::Lagrangian::generalized_force)); Newton still converges
-//! to the exact solution of F = 0, linearly when the forces depend strongly on q_{k+1}.
+//! With forces the Jacobian is ∂F/∂Δ = D₁₂L_d + ∂f⁻/∂q_{k+1}, the second term by dual numbers through
+//! the generic [`DiscreteLagrangian::discrete_force`] ([`DiscreteDerivatives::force_derivatives`]), so
+//! Newton converges quadratically however strongly the forces depend on q_{k+1}.
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -50,7 +50,7 @@
 //! ```
 
 use crate::flow::{check_flow_args, correct_once, signed_step, Predictor};
-use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
+use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian, StepEnd};
 use crate::quadrature::FromLagrangian;
 use nalgebra::{DMatrix, DVector};
 use noether_core::error::{check_finite, check_len};
@@ -92,7 +92,7 @@ struct DelSystem<'a, Ld: ?Sized> {
     fp: &'a mut [f64],
 }
 
-const JACOBIAN: &str = "discrete Euler-Lagrange Jacobian D₁₂L_d";
+const JACOBIAN: &str = "discrete Euler-Lagrange Jacobian D₁₂L_d + ∂f⁻/∂q₁";
 
 impl<Ld: DiscreteLagrangian + ?Sized> DelSystem<'_, Ld> {
     fn end(&mut self, d: &[f64]) {
@@ -120,6 +120,14 @@ impl<Ld: DiscreteLagrangian + ?Sized> NewtonSystem for DelSystem<'_, Ld> {
     fn factor_jacobian(&mut self, d: &[f64]) -> Result<()> {
         self.end(d);
         self.ld.d12(self.t0, self.h, self.q0, self.q1, self.jac);
+        if self.ld.has_discrete_force() {
+            let n = self.q0.len();
+            let (mut dm, mut dp) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+            let ends = (self.q0, &*self.q1);
+            self.ld
+                .force_derivatives(self.t0, self.h, ends, StepEnd::Right, (&mut dm, &mut dp));
+            *self.jac += dm;
+        }
         *self.lu = None;
         let f = DenseFactor::lu(self.jac.clone()).map_err(|e| e.in_matrix(JACOBIAN))?;
         *self.lu = Some(f);

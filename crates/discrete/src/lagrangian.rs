@@ -30,6 +30,7 @@
 use nalgebra::DMatrix;
 use noether_core::ad::{self, Block, Field};
 use noether_core::{Result, Scalar};
+use num_dual::Dual64;
 
 /// A discrete Lagrangian L_d(t₀; q₀, q₁, h): an approximation of the action ∫ L dt from (t₀, q₀) to
 /// (t₀ + h, q₁).
@@ -87,17 +88,22 @@ pub trait DiscreteLagrangian {
 
     /// The discrete forces f⁻ (acting at the left end q₀) and f⁺ (at the right end q₁) of one step, whose
     /// sum approximates ∫ Q·δq dt over the step. Only called when
-    /// [`has_discrete_force`](Self::has_discrete_force) is `true`.
-    fn discrete_force(
+    /// [`has_discrete_force`](Self::has_discrete_force) is `true`. Generic over the scalar like L_d, so
+    /// that Newton's Jacobian and the step's tangent include their derivatives
+    /// ([`DiscreteDerivatives::force_derivatives`]).
+    fn discrete_force<D: Scalar>(
         &self,
         _t0: f64,
         _h: f64,
-        _q0: &[f64],
-        _q1: &[f64],
-        minus: &mut [f64],
-        plus: &mut [f64],
+        _q0: &[D],
+        _q1: &[D],
+        minus: &mut [D],
+        plus: &mut [D],
     ) {
-        minus.iter_mut().chain(plus.iter_mut()).for_each(|x| *x = 0.0);
+        minus
+            .iter_mut()
+            .chain(plus.iter_mut())
+            .for_each(|x| *x = D::zero());
     }
 }
 
@@ -117,7 +123,15 @@ impl<Ld: DiscreteLagrangian + ?Sized> DiscreteLagrangian for &Ld {
     fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
         (**self).check_momenta(t, q, p, tol)
     }
-    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
+    fn discrete_force<D: Scalar>(
+        &self,
+        t0: f64,
+        h: f64,
+        q0: &[D],
+        q1: &[D],
+        minus: &mut [D],
+        plus: &mut [D],
+    ) {
         (**self).discrete_force(t0, h, q0, q1, minus, plus)
     }
     fn continuous_rates(
@@ -195,6 +209,50 @@ pub trait DiscreteDerivatives: DiscreteLagrangian {
     fn discrete_energy(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64]) -> f64 {
         -ad::partial_t(&DiscreteField { ld: self, t0 }, h, q0, q1)
     }
+
+    /// The Jacobians of the discrete forces with respect to one end, q₀ (`end` = [`StepEnd::Left`]) or q₁
+    /// ([`StepEnd::Right`]): ∂f⁻/∂q_end into `minus` and ∂f⁺/∂q_end into `plus` (dof × dof), column j from
+    /// one evaluation of [`discrete_force`](DiscreteLagrangian::discrete_force) over `Dual64` seeded
+    /// along e_j. Both are zero without forces.
+    fn force_derivatives(
+        &self,
+        t0: f64,
+        h: f64,
+        (q0, q1): (&[f64], &[f64]),
+        end: StepEnd,
+        (minus, plus): (&mut DMatrix<f64>, &mut DMatrix<f64>),
+    ) {
+        minus.fill(0.0);
+        plus.fill(0.0);
+        if !self.has_discrete_force() {
+            return;
+        }
+        let n = q0.len();
+        let (mut fm, mut fp) = (vec![Dual64::from(0.0); n], vec![Dual64::from(0.0); n]);
+        for j in 0..n {
+            let seed = |q: &[f64], at: StepEnd| -> Vec<Dual64> {
+                let dir = if at == end { 1.0 } else { 0.0 };
+                (0..n)
+                    .map(|i| Dual64::new(q[i], if i == j { dir } else { 0.0 }))
+                    .collect()
+            };
+            let (a, b) = (seed(q0, StepEnd::Left), seed(q1, StepEnd::Right));
+            self.discrete_force(t0, h, &a, &b, &mut fm, &mut fp);
+            for i in 0..n {
+                minus[(i, j)] = fm[i].eps;
+                plus[(i, j)] = fp[i].eps;
+            }
+        }
+    }
+}
+
+/// One end of a step: q₀ (left) or q₁ (right).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepEnd {
+    /// The start q₀.
+    Left,
+    /// The end q₁.
+    Right,
 }
 
 impl<Ld: DiscreteLagrangian + ?Sized> DiscreteDerivatives for Ld {}

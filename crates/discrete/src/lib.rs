@@ -77,7 +77,7 @@ pub use boundary::{BoundaryValue, ConjugatePoint, DiscretePath, LinearPath, NotM
 pub use error::{Error, Result};
 pub use galerkin::Galerkin;
 pub use integrator::VariationalIntegrator;
-pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian};
+pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian, StepEnd};
 pub use mechanical::{LocalPotential, Mass, Mechanical};
 pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};

@@ -467,13 +467,13 @@ impl<P: LocalPotential> Lagrangian for Mechanical<P> {
         self.damping.is_some()
     }
 
-    fn generalized_force(&self, _t: f64, _q: &[f64], v: &[f64], out: &mut [f64]) {
+    fn generalized_force<D: Scalar>(&self, _t: D, _q: &[D], v: &[D], out: &mut [D]) {
         match &self.damping {
             Some(c) => out
                 .iter_mut()
                 .zip(c.iter().zip(v))
-                .for_each(|(o, (ci, vi))| *o = -ci * vi),
-            None => out.iter_mut().for_each(|o| *o = 0.0),
+                .for_each(|(o, (ci, vi))| *o = *vi * (-ci)),
+            None => out.iter_mut().for_each(|o| *o = D::zero()),
         }
     }
 }

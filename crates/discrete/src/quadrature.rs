@@ -107,12 +107,20 @@ impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
         crate::primary::check(&self.el, t, q, p, tol)
     }
 
-    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
-        let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
-        let v: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| (b - a) / h).collect();
+    /// f⁻ = f⁺ = (h/2) Q(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h).
+    fn discrete_force<D: Scalar>(
+        &self,
+        t0: f64,
+        h: f64,
+        q0: &[D],
+        q1: &[D],
+        minus: &mut [D],
+        plus: &mut [D],
+    ) {
+        let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, D::from(h)));
         self.el
             .lagrangian()
-            .generalized_force(t0 + 0.5 * h, &mid, &v, minus);
+            .generalized_force(D::from(t0 + 0.5 * h), &mid, &v, minus);
         for (m, p) in minus.iter_mut().zip(plus.iter_mut()) {
             *m *= 0.5 * h;
             *p = *m;
@@ -171,11 +179,20 @@ impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
         crate::primary::check(&self.el, t, q, p, tol)
     }
 
-    fn discrete_force(&self, t0: f64, h: f64, q0: &[f64], q1: &[f64], minus: &mut [f64], plus: &mut [f64]) {
-        let v: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| (b - a) / h).collect();
+    /// f⁻ = (h/2) Q(t₀, q₀, v), f⁺ = (h/2) Q(t₀ + h, q₁, v), v = (q₁ − q₀)/h.
+    fn discrete_force<D: Scalar>(
+        &self,
+        t0: f64,
+        h: f64,
+        q0: &[D],
+        q1: &[D],
+        minus: &mut [D],
+        plus: &mut [D],
+    ) {
+        let v = difference_quotient(q0, q1, D::from(h));
         let l = self.el.lagrangian();
-        l.generalized_force(t0, q0, &v, minus);
-        l.generalized_force(t0 + h, q1, &v, plus);
+        l.generalized_force(D::from(t0), q0, &v, minus);
+        l.generalized_force(D::from(t0 + h), q1, &v, plus);
         minus
             .iter_mut()
             .chain(plus.iter_mut())

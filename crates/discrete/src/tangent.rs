@@ -5,18 +5,18 @@
 //!
 //! # The general integrator ([`VariationalIntegrator`])
 //!
-//! Without forces the step is defined by p₀ = −D₁L_d(q₀, q₁) (solved for q₁) and p₁ = D₂L_d(q₀, q₁).
-//! Differentiating the first equation, −dp₀ = D₁₁L_d dq₀ + D₁₂L_d dq₁, with A = D₁₂L_d (rows q₀,
-//! columns q₁: Newton's Jacobian, invertible where the step is defined):
+//! The step is defined by p₀ + D₁L_d(q₀, q₁) + f⁻(q₀, q₁) = 0 (solved for q₁) and
+//! p₁ = D₂L_d(q₀, q₁) + f⁺(q₀, q₁). Differentiating the first equation,
+//! −dp₀ = (D₁₁L_d + ∂f⁻/∂q₀) dq₀ + A dq₁ with A = D₁₂L_d + ∂f⁻/∂q₁ (rows q₀, columns q₁: Newton's
+//! Jacobian, invertible where the step is defined):
 //!
 //! ```text
-//! ∂q₁/∂q₀ = −A⁻¹ D₁₁L_d,            ∂q₁/∂p₀ = −A⁻¹,
-//! ∂p₁/∂q₀ = Aᵀ + D₂₂L_d ∂q₁/∂q₀,    ∂p₁/∂p₀ = D₂₂L_d ∂q₁/∂p₀,
+//! ∂q₁/∂q₀ = −A⁻¹ (D₁₁L_d + ∂f⁻/∂q₀),                      ∂q₁/∂p₀ = −A⁻¹,
+//! ∂p₁/∂q₀ = D₂₁L_d + ∂f⁺/∂q₀ + (D₂₂L_d + ∂f⁺/∂q₁) ∂q₁/∂q₀,   ∂p₁/∂p₀ = (D₂₂L_d + ∂f⁺/∂q₁) ∂q₁/∂p₀,
 //! ```
 //!
-//! (D₂₁L_d = Aᵀ), all second derivatives of L_d by dual numbers
-//! ([`DiscreteDerivatives`]) at the converged (q₀, q₁). The discrete forces f^± come as plain values
-//! without derivatives: a forced integrator refuses the tangent step (`Unsupported`).
+//! (D₂₁L_d = D₁₂L_dᵀ), all second derivatives of L_d and the forces' first derivatives by dual numbers
+//! ([`DiscreteDerivatives`]) at the converged (q₀, q₁). Without forces the step is symplectic.
 //!
 //! # The mechanical fast paths
 //!
@@ -63,7 +63,7 @@
 //! ```
 
 use crate::integrator::VariationalIntegrator;
-use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
+use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian, StepEnd};
 use crate::mechanical::{LocalPotential, Mechanical};
 use crate::mechanical_midpoint::MechanicalMidpoint;
 use crate::verlet::Verlet;
@@ -137,24 +137,25 @@ impl<Ld: DiscreteLagrangian> SignedTangentStepper for VariationalIntegrator<Ld> 
         h: f64,
         psi: &mut DMatrix<f64>,
     ) -> Result<StepInfo> {
-        if self.discrete_lagrangian().has_discrete_force() {
-            return Err(Error::Unsupported(
-                "step Jacobian of a forced variational integrator: the discrete forces f± come without derivatives",
-            ));
-        }
         let t = state.t;
         step_then_jacobian(self, state, h, psi, |vi, q0, _p0, q1| {
             let ld = vi.discrete_lagrangian();
             let n = q0.len();
-            let (mut a, mut d11, mut d22) =
-                (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-            ld.d12(t, h, q0, q1, &mut a);
+            let zero = || DMatrix::zeros(n, n);
+            let (mut d12, mut d11, mut d22) = (zero(), zero(), zero());
+            ld.d12(t, h, q0, q1, &mut d12);
             ld.d11(t, h, q0, q1, &mut d11);
             ld.d22(t, h, q0, q1, &mut d22);
-            let lu = DenseFactor::lu(a.clone()).map_err(|e| e.in_matrix("D₁₂L_d in the step Jacobian"))?;
-            let qq = -lu.solve_matrix(&d11);
+            // The forces' derivatives (zero without forces): ∂f±/∂q₀ and ∂f±/∂q₁.
+            let (mut m0, mut p0, mut m1, mut p1) = (zero(), zero(), zero(), zero());
+            ld.force_derivatives(t, h, (q0, q1), StepEnd::Left, (&mut m0, &mut p0));
+            ld.force_derivatives(t, h, (q0, q1), StepEnd::Right, (&mut m1, &mut p1));
+            let a = &d12 + m1;
+            let lu = DenseFactor::lu(a).map_err(|e| e.in_matrix("D₁₂L_d + ∂f⁻/∂q₁ in the step Jacobian"))?;
+            let qq = -lu.solve_matrix(&(d11 + m0));
             let qp = -lu.solve_matrix(&DMatrix::identity(n, n));
-            let pq = a.transpose() + &d22 * &qq;
+            let d22 = d22 + p1;
+            let pq = d12.transpose() + p0 + &d22 * &qq;
             let pp = &d22 * &qp;
             Ok(blocks(&qq, &qp, &pq, &pp))
         })

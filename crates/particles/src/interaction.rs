@@ -60,8 +60,9 @@ pub trait Interaction: Sync + Send {
         false
     }
 
-    /// Adds the non-potential forces (drag, given two-body forces) into `f`.
-    fn add_nonpotential(&self, _t: f64, _x: &[f64], _v: &[f64], _ps: &[Particle], _f: &mut [f64]) {}
+    /// Adds the non-potential forces (drag, given two-body forces) into `f`, generic over the scalar
+    /// (the generalized force of the Lagrangian path).
+    fn add_nonpotential<D: Scalar>(&self, _t: f64, _x: &[D], _v: &[D], _ps: &[Particle], _f: &mut [D]) {}
 
     /// Appends the group's Hessian entries ∂²V/∂x∂x (3×3 blocks per particle pair) to `out`.
     fn add_hessian(&self, t: f64, x: &[f64], ps: &[Particle], out: &mut Triplets);
@@ -113,7 +114,7 @@ impl<A: Interaction, B: Interaction> Interaction for (A, B) {
     fn autonomous(&self) -> bool {
         self.0.autonomous() && self.1.autonomous()
     }
-    fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
+    fn add_nonpotential<D: Scalar>(&self, t: f64, x: &[D], v: &[D], ps: &[Particle], f: &mut [D]) {
         self.0.add_nonpotential(t, x, v, ps, f);
         self.1.add_nonpotential(t, x, v, ps, f);
     }
@@ -408,7 +409,7 @@ impl<F: OneBodyForce> Interaction for ExternalForce<F> {
         self.indices.len()
     }
     forces_only!();
-    fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
+    fn add_nonpotential<D: Scalar>(&self, t: f64, x: &[D], v: &[D], ps: &[Particle], f: &mut [D]) {
         for &i in &self.indices {
             let i = i as usize;
             add3(f, i, self.force.force(t, get3(x, i), get3(v, i), &ps[i]));
@@ -441,7 +442,7 @@ impl<F: TwoBodyForce> Interaction for InternalForce<F> {
         self.pairs.len()
     }
     forces_only!();
-    fn add_nonpotential(&self, t: f64, x: &[f64], v: &[f64], ps: &[Particle], f: &mut [f64]) {
+    fn add_nonpotential<D: Scalar>(&self, t: f64, x: &[D], v: &[D], ps: &[Particle], f: &mut [D]) {
         for &[by, on] in &self.pairs {
             let (by, on) = (by as usize, on as usize);
             let g = self.force.force(

@@ -164,18 +164,44 @@ pub struct GaussianCoupling {
 
 central! { GaussianCoupling, |self, s, _, _| (s * (-0.5 / (self.sigma * self.sigma))).exp() * self.k2 }
 
-/// A central force with any scalar law f(r): F21 = f(r) r̂ (f > 0 repulsive). Given as a force, not a
+/// A central force of the power law f(r) = k rⁿ: F21 = f(r) r̂ (k > 0 repulsive). Given as a force, not a
 /// potential, so it enters the Lagrangian as a generalized force.
-#[derive(Debug, Clone, Copy)]
-pub struct CentralForce<F>(pub F);
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CentralForce {
+    /// Strength k.
+    pub k: f64,
+    /// Exponent n.
+    pub n: f64,
+}
 
-impl<F: Fn(f64) -> f64 + Sync + Send> TwoBodyForce for CentralForce<F> {
+impl TwoBodyForce for CentralForce {
     #[inline]
-    fn force(&self, _t: f64, by: Body<'_>, on: Body<'_>) -> Vec3 {
+    fn force<D: Scalar>(&self, _t: f64, by: Body<'_, D>, on: Body<'_, D>) -> [D; 3] {
         let r = [on.r[0] - by.r[0], on.r[1] - by.r[1], on.r[2] - by.r[2]];
-        let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-        let s = (self.0)(d) / d;
-        [s * r[0], s * r[1], s * r[2]]
+        let d = r2(&r).sqrt();
+        // f(r)/r = k r^(n − 1)
+        let s = d.powf(self.n - 1.0) * self.k;
+        [r[0] * s, r[1] * s, r[2] * s]
+    }
+}
+
+/// A dashpot between two particles: the force on `on` is F = −c ((v_on − v_by)·r̂) r̂, r̂ the unit vector
+/// from `by` to `on` (damps the rate of change of their distance only, c ≥ 0; a velocity-dependent
+/// two-body force, so a generalized force).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dashpot {
+    /// Damping coefficient c.
+    pub c: f64,
+}
+
+impl TwoBodyForce for Dashpot {
+    #[inline]
+    fn force<D: Scalar>(&self, _t: f64, by: Body<'_, D>, on: Body<'_, D>) -> [D; 3] {
+        let r = [on.r[0] - by.r[0], on.r[1] - by.r[1], on.r[2] - by.r[2]];
+        let w = [on.v[0] - by.v[0], on.v[1] - by.v[1], on.v[2] - by.v[2]];
+        // −c (w·r) r / |r|²
+        let s = (w[0] * r[0] + w[1] * r[1] + w[2] * r[2]) / r2(&r) * (-self.c);
+        [r[0] * s, r[1] * s, r[2] * s]
     }
 }
 
@@ -267,7 +293,29 @@ pub struct LinearDrag {
 
 impl OneBodyForce for LinearDrag {
     #[inline]
-    fn force(&self, _t: f64, _r: Vec3, v: Vec3, _p: &Particle) -> Vec3 {
-        [-self.b * v[0], -self.b * v[1], -self.b * v[2]]
+    fn force<D: Scalar>(&self, _t: f64, _r: [D; 3], v: [D; 3], _p: &Particle) -> [D; 3] {
+        [v[0] * -self.b, v[1] * -self.b, v[2] * -self.b]
+    }
+}
+
+/// The Lorentz force of uniform fields, F = e (E + v × B) (e the particle's charge): a velocity-dependent
+/// force, so a generalized force (the magnetic part does no work).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lorentz {
+    /// Electric field E.
+    pub e: Vec3,
+    /// Magnetic field B.
+    pub b: Vec3,
+}
+
+impl OneBodyForce for Lorentz {
+    #[inline]
+    fn force<D: Scalar>(&self, _t: f64, _r: [D; 3], v: [D; 3], p: &Particle) -> [D; 3] {
+        let (e, b, q) = (self.e, self.b, p.charge);
+        [
+            (v[1] * b[2] - v[2] * b[1] + e[0]) * q,
+            (v[2] * b[0] - v[0] * b[2] + e[1]) * q,
+            (v[0] * b[1] - v[1] * b[0] + e[2]) * q,
+        ]
     }
 }

@@ -46,14 +46,14 @@ impl Particle {
 
 /// Particle `i` of a flat array of length 3N (one bounds check for the three components).
 #[inline(always)]
-pub(crate) fn get3(x: &[f64], i: usize) -> Vec3 {
+pub(crate) fn get3<T: Copy>(x: &[T], i: usize) -> [T; 3] {
     let a = &x[3 * i..3 * i + 3];
     [a[0], a[1], a[2]]
 }
 
 /// Adds `f` to particle `i` of a flat array.
 #[inline(always)]
-pub(crate) fn add3(out: &mut [f64], i: usize, f: Vec3) {
+pub(crate) fn add3<T: Copy + std::ops::AddAssign>(out: &mut [T], i: usize, f: [T; 3]) {
     let o = &mut out[3 * i..3 * i + 3];
     o[0] += f[0];
     o[1] += f[1];
@@ -62,7 +62,7 @@ pub(crate) fn add3(out: &mut [f64], i: usize, f: Vec3) {
 
 /// Subtracts `f` from particle `i` of a flat array.
 #[inline(always)]
-pub(crate) fn sub3(out: &mut [f64], i: usize, f: Vec3) {
+pub(crate) fn sub3<T: Copy + std::ops::SubAssign>(out: &mut [T], i: usize, f: [T; 3]) {
     let o = &mut out[3 * i..3 * i + 3];
     o[0] -= f[0];
     o[1] -= f[1];

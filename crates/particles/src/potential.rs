@@ -81,20 +81,22 @@ pub trait OnePotential: Sync + Send {
     fn energy<D: Scalar>(&self, t: f64, r: [D; 3], p: &Particle) -> D;
 }
 
-/// A one-body force F(t, r, v; particle) that is not the gradient of a potential (drag, driving).
-/// It enters Lagrange's equations as a generalized force.
+/// A one-body force F(t, r, v; particle) that is not the gradient of a potential (drag, driving, the
+/// Lorentz force). It enters Lagrange's equations as a generalized force. Generic over the scalar like
+/// a potential, so that the Jacobians of the equations of motion include its derivatives.
 pub trait OneBodyForce: Sync + Send {
     /// The force on a particle at position `r` with velocity `v`.
-    fn force(&self, t: f64, r: Vec3, v: Vec3, p: &Particle) -> Vec3;
+    fn force<D: Scalar>(&self, t: f64, r: [D; 3], v: [D; 3], p: &Particle) -> [D; 3];
 }
 
-/// The state of one particle seen by a two-body force.
+/// The state of one particle seen by a two-body force (`D` the scalar: `f64`, or a dual number when
+/// the force is differentiated).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Body<'a> {
+pub struct Body<'a, D = f64> {
     /// Position.
-    pub r: Vec3,
+    pub r: [D; 3],
     /// Velocity.
-    pub v: Vec3,
+    pub v: [D; 3],
     /// Mass and charge.
     pub p: &'a Particle,
 }
@@ -104,7 +106,7 @@ pub struct Body<'a> {
 /// construction), so only one evaluation per pair is needed.
 pub trait TwoBodyForce: Sync + Send {
     /// Force produced by `by`, acting on `on`.
-    fn force(&self, t: f64, by: Body<'_>, on: Body<'_>) -> Vec3;
+    fn force<D: Scalar>(&self, t: f64, by: Body<'_, D>, on: Body<'_, D>) -> [D; 3];
 }
 
 /// U(r) and ∇_r U by one `DualSVec64<3>` evaluation (one `Dual64` evaluation in s = |r|² for

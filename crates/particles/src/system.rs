@@ -359,9 +359,10 @@ impl<I: Interaction> Lagrangian for System<I> {
     fn has_generalized_force(&self) -> bool {
         self.interactions.has_nonpotential()
     }
-    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
-        out.iter_mut().for_each(|a| *a = 0.0);
-        self.interactions.add_nonpotential(t, q, v, &self.particles, out);
+    fn generalized_force<D: Scalar>(&self, t: D, q: &[D], v: &[D], out: &mut [D]) {
+        out.iter_mut().for_each(|a| *a = D::zero());
+        self.interactions
+            .add_nonpotential(t.re(), q, v, &self.particles, out);
     }
 }
 

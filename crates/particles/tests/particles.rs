@@ -116,7 +116,7 @@ fn ad_vs_hand_one_body_and_given_forces() {
         .unwrap()
         .with(ExternalForce::new(LinearDrag { b: 0.5 }, [0]))
         .unwrap()
-        .with(InternalForce::new(CentralForce(|r: f64| 1.0 / r), [(0, 1)]))
+        .with(InternalForce::new(CentralForce { k: 1.0, n: -1.0 }, [(0, 1)]))
         .unwrap();
     let mut f = vec![0.0; 6];
     sys.forces(0.0, &x.concat(), &v.concat(), &mut f).unwrap();

@@ -28,6 +28,7 @@ pub mod boundary;
 #[cfg(feature = "canonical")]
 pub mod canonical;
 pub mod closed_form;
+pub mod control;
 #[cfg(feature = "constraints")]
 pub mod gibbs_appell;
 #[cfg(feature = "canonical")]

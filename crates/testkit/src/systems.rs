@@ -496,12 +496,43 @@ impl Lagrangian for DrivenOscillator {
     fn has_generalized_force(&self) -> bool {
         true
     }
-    fn generalized_force(&self, t: f64, _q: &[f64], v: &[f64], out: &mut [f64]) {
-        out[0] = -self.c * v[0] + self.f * (self.omega * t).cos();
+    fn generalized_force<D: Scalar>(&self, t: D, _q: &[D], v: &[D], out: &mut [D]) {
+        out[0] = v[0] * (-self.c) + (t * self.omega).cos() * self.f;
     }
 }
 
 impl DrivenOscillator {
+    /// The linear (β = 0), underdamped (c² < 4mk) oscillator: `Default` with β = 0.
+    pub fn linear() -> Self {
+        DrivenOscillator {
+            beta: 0.0,
+            ..Default::default()
+        }
+    }
+
+    /// The closed-form motion (q, q̇)(t) from q(0) = q0, q̇(0) = v0 of the linear oscillator
+    /// m q̈ + c q̇ + k q = F cos ωt (β must be 0, c² < 4mk): the steady response
+    /// A cos ωt + B sin ωt with (A, B) = F (k − mω², cω) / ((k − mω²)² + (cω)²) plus the transient
+    /// e^{−γt}(C₁ cos ω_d t + C₂ sin ω_d t), γ = c/2m, ω_d = √(k/m − γ²), C₁ = q0 − A,
+    /// C₂ = (v0 − ωB + γC₁)/ω_d (any text on forced oscillations, e.g. Taylor, *Classical Mechanics*,
+    /// §5.5–5.6).
+    pub fn linear_solution(&self, t: f64, q0: f64, v0: f64) -> (f64, f64) {
+        assert!(self.beta == 0.0 && self.c * self.c < 4.0 * self.m * self.k);
+        let (m, k, c, w) = (self.m, self.k, self.c, self.omega);
+        let det = (k - m * w * w).powi(2) + (c * w).powi(2);
+        let (a, b) = (self.f * (k - m * w * w) / det, self.f * c * w / det);
+        let gamma = c / (2.0 * m);
+        let wd = (k / m - gamma * gamma).sqrt();
+        let c1 = q0 - a;
+        let c2 = (v0 - w * b + gamma * c1) / wd;
+        let (e, cs, sn) = ((-gamma * t).exp(), (wd * t).cos(), (wd * t).sin());
+        let q = a * (w * t).cos() + b * (w * t).sin() + e * (c1 * cs + c2 * sn);
+        let v = -a * w * (w * t).sin()
+            + b * w * (w * t).cos()
+            + e * (-gamma * (c1 * cs + c2 * sn) + wd * (-c1 * sn + c2 * cs));
+        (q, v)
+    }
+
     /// m q̈ = −k q − β q³ − c q̇ + F cos ωt.
     #[inline]
     pub fn hand_acceleration(&self, t: f64, q: f64, v: f64) -> f64 {

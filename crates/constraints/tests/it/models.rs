@@ -72,6 +72,31 @@ impl Lagrangian for AnglePendulum {
     }
 }
 
+/// A model with the linear drag Q = −c q̇ added (a physical drag −c ṙ on Cartesian point masses; for
+/// the angle pendulum c l² is the drag on the bob).
+pub struct Dragged<L> {
+    pub model: L,
+    pub c: f64,
+}
+
+impl<L: Lagrangian> Lagrangian for Dragged<L> {
+    fn dof(&self) -> usize {
+        self.model.dof()
+    }
+    fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        self.model.lagrangian(t, q, v)
+    }
+    fn constant_mass_matrix(&self) -> bool {
+        self.model.constant_mass_matrix()
+    }
+    fn has_generalized_force(&self) -> bool {
+        true
+    }
+    fn generalized_force<D: Scalar>(&self, _t: D, _q: &[D], v: &[D], out: &mut [D]) {
+        out.iter_mut().zip(v).for_each(|(o, vi)| *o = *vi * -self.c);
+    }
+}
+
 /// A planar pendulum state at angle θ, rate ω (x = l sin θ, y = −l cos θ).
 pub fn pendulum_state(l: f64, theta: f64, omega: f64) -> State {
     State::new(

@@ -94,36 +94,48 @@ fn conserves_l_z_and_constraint_spherical_pendulum() {
 }
 
 /// Second order: the planar Cartesian pendulum against the angle formulation integrated by RK4 with
-/// a tiny step (error ~1e-14). Halving h divides the RATTLE error by 4 (ratio within [3.5, 4.5]).
+/// a tiny step (error ~1e-14), without and with a drag −c ṙ on the bob (c = 0.8; the angle model's
+/// force −c l² θ̇): halving h divides the RATTLE error by 4 (ratio within [3.5, 4.5]).
 #[test]
 fn order_two_cartesian_pendulum() {
     let (m, l, g) = (1.0, 1.0, 9.81);
     let (th0, om0) = (1.0_f64, 0.0_f64);
     let t_end = 1.0;
-    let reference = {
-        let el = EulerLagrange::new(AnglePendulum { m, l, g });
-        let mut tr = Driver::with_step(Rk4::new(el), State::new(0.0, [th0], [om0]), 1e-4).unwrap();
-        tr.run_until(t_end).unwrap().last().q[0]
-    };
-    let err = |h: f64| {
-        let mut r = Rattle::new(
-            Midpoint::new(Masses { n: 1, d: 2, m, g }),
-            Rod { d: 2, l, copies: 1 },
-        )
-        .unwrap();
-        let s = pendulum_state(l, th0, om0);
-        let mut s = r
-            .state_from_velocities(0.0, s.q.as_slice(), s.v.as_slice())
-            .unwrap();
-        let steps = (t_end / h).round() as usize;
-        for _ in 0..steps {
-            r.step(&mut s, h).unwrap();
-        }
-        (s.q[0].atan2(-s.q[1]) - reference).abs()
-    };
-    let (e1, e2) = (err(0.02), err(0.01));
-    let ratio = e1 / e2;
-    assert!((3.5..4.5).contains(&ratio), "errors {e1:e} {e2:e} ratio {ratio}");
+    for c in [0.0, 0.8] {
+        let reference = {
+            let angle = Dragged {
+                model: AnglePendulum { m, l, g },
+                c: c * l * l,
+            };
+            let el = EulerLagrange::new(angle);
+            let mut tr = Driver::with_step(Rk4::new(el), State::new(0.0, [th0], [om0]), 1e-4).unwrap();
+            tr.run_until(t_end).unwrap().last().q[0]
+        };
+        let err = |h: f64| {
+            let masses = Dragged {
+                model: Masses { n: 1, d: 2, m, g },
+                c,
+            };
+            let mut r = Rattle::new(Midpoint::new(masses), Rod { d: 2, l, copies: 1 }).unwrap();
+            let s = pendulum_state(l, th0, om0);
+            let mut s = r
+                .state_from_velocities(0.0, s.q.as_slice(), s.v.as_slice())
+                .unwrap();
+            let steps = (t_end / h).round() as usize;
+            for _ in 0..steps {
+                r.step(&mut s, h).unwrap();
+                assert!(r.last_step().position_residual < 1e-12, "{:?}", r.last_step());
+            }
+            (s.q[0].atan2(-s.q[1]) - reference).abs()
+        };
+        let (e1, e2) = (err(0.02), err(0.01));
+        let ratio = e1 / e2;
+        println!("RATTLE pendulum, drag {c}: errors {e1:e} {e2:e}, ratio {ratio}");
+        assert!(
+            (3.5..4.5).contains(&ratio),
+            "drag {c}: errors {e1:e} {e2:e} ratio {ratio}"
+        );
+    }
 }
 
 /// Tension from the discrete multipliers against T = m g cos θ + m l θ̇² evaluated on the discrete

@@ -40,10 +40,9 @@ impl<L: Lagrangian> Dynamics for EulerLagrange<L> {
 /// δM. M is factored once per call by [`linalg`](crate::linalg). Up to 10 degrees of freedom (the
 /// jet's stack range, as `EulerLagrange::accelerations`); more give [`Error::Unsupported`](crate::Error::Unsupported).
 ///
-/// Generalized forces Q(t, q, q̇) are plain `f64` functions that dual numbers cannot differentiate:
-/// with [`has_generalized_force`](crate::Lagrangian::has_generalized_force) true the Jacobian is refused
-/// with [`Error::Unsupported`](crate::Error::Unsupported) (write the force into L, or use
-/// [`central_difference`](crate::tangent::central_difference) of the step).
+/// Generalized forces Q(t, q, q̇) enter b, so δb gains δQ = ∂Q/∂q·δq + ∂Q/∂q̇·δq̇: one evaluation
+/// of the generic [`generalized_force`](crate::Lagrangian::generalized_force) over `Dual64` per
+/// column.
 impl<L: crate::Lagrangian> LinearizedDynamics for crate::EulerLagrange<L> {
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         let n = self.dof();
@@ -59,24 +58,19 @@ impl<L: crate::Lagrangian> LinearizedDynamics for crate::EulerLagrange<L> {
                 },
             });
         }
-        if self.lagrangian().has_generalized_force() {
-            return Err(crate::Error::Unsupported(
-                "the Jacobian of Lagrange's equations with generalized forces (Q is not differentiable by dual numbers)",
-            ));
-        }
-        let f = crate::lagrange::LagrangianField(self.lagrangian());
+        let l = self.lagrangian();
         let jac = match n {
             0 => Ok(DMatrix::zeros(0, 0)),
-            1 => lagrange_jacobian::<_, 1>(&f, t, q, v),
-            2 => lagrange_jacobian::<_, 2>(&f, t, q, v),
-            3 => lagrange_jacobian::<_, 3>(&f, t, q, v),
-            4 => lagrange_jacobian::<_, 4>(&f, t, q, v),
-            5 => lagrange_jacobian::<_, 5>(&f, t, q, v),
-            6 => lagrange_jacobian::<_, 6>(&f, t, q, v),
-            7 => lagrange_jacobian::<_, 7>(&f, t, q, v),
-            8 => lagrange_jacobian::<_, 8>(&f, t, q, v),
-            9 => lagrange_jacobian::<_, 9>(&f, t, q, v),
-            10 => lagrange_jacobian::<_, 10>(&f, t, q, v),
+            1 => lagrange_jacobian::<_, 1>(l, t, q, v),
+            2 => lagrange_jacobian::<_, 2>(l, t, q, v),
+            3 => lagrange_jacobian::<_, 3>(l, t, q, v),
+            4 => lagrange_jacobian::<_, 4>(l, t, q, v),
+            5 => lagrange_jacobian::<_, 5>(l, t, q, v),
+            6 => lagrange_jacobian::<_, 6>(l, t, q, v),
+            7 => lagrange_jacobian::<_, 7>(l, t, q, v),
+            8 => lagrange_jacobian::<_, 8>(l, t, q, v),
+            9 => lagrange_jacobian::<_, 9>(l, t, q, v),
+            10 => lagrange_jacobian::<_, 10>(l, t, q, v),
             _ => Err(crate::Error::Unsupported(
                 "the Jacobian of Lagrange's equations for more than 10 degrees of freedom",
             )),
@@ -128,14 +122,30 @@ fn lagrange_terms_along<F: crate::ad::Field, const N: usize>(
     (row(&r.gx) - row(&r.hsw), r.hww.matrix(Const::<N>))
 }
 
+/// Q(t, q + ε δq, q̇ + ε δq̇) over `Dual64`: the generalized force and its derivative along δ.
+fn force_along<L: Lagrangian, const N: usize>(
+    l: &L,
+    t: f64,
+    (q, v): (&[f64], &[f64]),
+    (dq, dv): (&[f64], &[f64]),
+) -> nalgebra::SVector<num_dual::Dual64, N> {
+    use num_dual::Dual64;
+    let x: [Dual64; N] = std::array::from_fn(|i| Dual64::new(q[i], dq[i]));
+    let y: [Dual64; N] = std::array::from_fn(|i| Dual64::new(v[i], dv[i]));
+    let mut out = [Dual64::from(0.0); N];
+    l.generalized_force(Dual64::from(t), &x, &y, &mut out);
+    out.into()
+}
+
 /// J of Lagrange's equations for N degrees of freedom, column by column (see the
 /// [`LinearizedDynamics`](LinearizedDynamics) impl of `EulerLagrange`).
-fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
-    f: &F,
+fn lagrange_jacobian<L: Lagrangian, const N: usize>(
+    l: &L,
     t: f64,
     q: &[f64],
     v: &[f64],
 ) -> Result<DMatrix<f64>> {
+    let f = crate::lagrange::LagrangianField(l);
     let zeros = [0.0; N];
     let mut jac = DMatrix::zeros(2 * N, 2 * N);
     jac.view_mut((0, N), (N, N)).fill_with_identity();
@@ -148,7 +158,11 @@ fn lagrange_jacobian<F: crate::ad::Field, const N: usize>(
             } else {
                 (&zeros[..], &e[..])
             };
-            lagrange_terms_along::<F, N>(f, t, (q, v), dir)
+            let (mut b, m) = lagrange_terms_along::<_, N>(&f, t, (q, v), dir);
+            if l.has_generalized_force() {
+                b += force_along::<L, N>(l, t, (q, v), dir);
+            }
+            (b, m)
         })
         .collect();
     let Some((b0, m0)) = columns.first() else {

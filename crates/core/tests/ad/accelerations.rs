@@ -104,7 +104,7 @@ impl<L: Lagrangian, const K: usize> Lagrangian for Copies<L, K> {
     fn has_generalized_force(&self) -> bool {
         self.0.has_generalized_force()
     }
-    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+    fn generalized_force<D: noether_core::Scalar>(&self, t: D, q: &[D], v: &[D], out: &mut [D]) {
         let n = self.0.dof();
         for c in 0..K {
             let r = c * n..(c + 1) * n;
@@ -219,7 +219,7 @@ impl<L: noether_core::Lagrangian> noether_core::Lagrangian for ConstMass<L> {
     fn has_generalized_force(&self) -> bool {
         self.0.has_generalized_force()
     }
-    fn generalized_force(&self, t: f64, q: &[f64], v: &[f64], out: &mut [f64]) {
+    fn generalized_force<D: noether_core::Scalar>(&self, t: D, q: &[D], v: &[D], out: &mut [D]) {
         self.0.generalized_force(t, q, v, out)
     }
 }

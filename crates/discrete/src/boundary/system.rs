@@ -5,7 +5,7 @@
 use super::{
     BoundaryValue, Component, ConjugatePoint, DiscreteField, DiscretePath, PathConstraint, Weighted,
 };
-use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
+use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian, StepEnd};
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block};
 use noether_core::error::{check_finite, check_len};
@@ -16,6 +16,9 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
     /// The stationary path from the guess `nodes` (ends kept) under the constraint `c`, by Newton on
     /// the whole-path system; an unconstrained path is then tested for conjugate points (its Morse
     /// index, the conjugate times and the margin recorded, [`ConjugatePoint`] when too close to one).
+    /// With forces the path solves the discrete Lagrange-d'Alembert equations
+    /// D₂L_d(q_{k−1}, q_k) + f⁺_{k−1} + D₁L_d(q_k, q_{k+1}) + f⁻_k = 0 instead: there is no action to
+    /// be stationary, so no Morse index and no conjugate-point test.
     pub(super) fn solve_with<C: PathConstraint>(
         &self,
         c: &C,
@@ -23,17 +26,13 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
         t1: f64,
         nodes: &[Vec<f64>],
     ) -> Result<DiscretePath> {
-        if self.ld.has_discrete_force() {
-            return Err(Error::Unsupported(
-                "boundary-value problems of a forced discrete Lagrangian (no action to make stationary)",
-            ));
-        }
         let mut sys = System::new(&self.ld, c, t0, t1, nodes)?;
         let mut x = sys.initial_unknowns(nodes);
         let newton = self
             .newton
             .residual_floor(8.0 * f64::EPSILON * sys.momentum_scale(&x));
-        let constrained = c.count() > 0;
+        // The conjugate-point test is the one of an action's second variation.
+        let constrained = c.count() > 0 || self.ld.has_discrete_force();
         let info = match newton.solve(&mut sys, &mut x) {
             Ok(info) => info,
             Err(e) if !constrained => {
@@ -113,6 +112,11 @@ pub(super) struct System<'a, Ld, C> {
     d22: DMatrix<f64>,
     d12: DMatrix<f64>,
     lhess: DMatrix<f64>,
+    /// The discrete forces f⁻, f⁺ of a step and their derivatives in q_k (`df0`) and q_{k+1} (`df1`).
+    fm: Vec<f64>,
+    fp: Vec<f64>,
+    df0: (DMatrix<f64>, DMatrix<f64>),
+    df1: (DMatrix<f64>, DMatrix<f64>),
     lu: Option<BandedLu>,
 }
 
@@ -164,6 +168,10 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
             d22: DMatrix::zeros(n, n),
             d12: DMatrix::zeros(n, n),
             lhess: DMatrix::zeros(n, n),
+            fm: vec![0.0; n],
+            fp: vec![0.0; n],
+            df0: (DMatrix::zeros(n, n), DMatrix::zeros(n, n)),
+            df1: (DMatrix::zeros(n, n), DMatrix::zeros(n, n)),
             lu: None,
         })
     }
@@ -224,6 +232,14 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
             .sum()
     }
 
+    /// The discrete forces f⁻, f⁺ of step k (from node k to node k + 1) into `fm`, `fp`.
+    fn step_forces(&mut self, k: usize) {
+        let n = self.n;
+        let (q0, q1) = (&self.q[k * n..(k + 1) * n], &self.q[(k + 1) * n..(k + 2) * n]);
+        self.ld
+            .discrete_force(self.tk(k), self.h, q0, q1, &mut self.fm, &mut self.fp);
+    }
+
     /// ∇g(q) (m × n) into `gjac`, g(q) into `cval`.
     fn constraint_jacobian(&mut self, k: usize) {
         let (n, m) = (self.n, self.m);
@@ -242,9 +258,9 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
         let (n, s, steps) = (self.n, self.block(), self.steps);
         let mut p0 = vec![0.0; n];
         let mut p1 = vec![0.0; n];
+        // p₀ = −D₁L_d(q₀, q₁) − f⁻₀ and p_N = D₂L_d(q_{N−1}, q_N) + f⁺_{N−1}.
         self.ld
             .d1(self.tk(0), self.h, self.node(0), self.node(1), &mut p0);
-        p0.iter_mut().for_each(|p| *p = -*p);
         self.ld.d2(
             self.tk(steps - 1),
             self.h,
@@ -252,6 +268,13 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
             self.node(steps),
             &mut p1,
         );
+        if self.ld.has_discrete_force() {
+            self.step_forces(0);
+            p0.iter_mut().zip(&self.fm).for_each(|(p, f)| *p += f);
+            self.step_forces(steps - 1);
+            p1.iter_mut().zip(&self.fp).for_each(|(p, f)| *p += f);
+        }
+        p0.iter_mut().for_each(|p| *p = -*p);
         let action = self.action();
         check_finite("end momenta of the boundary-value path", &p0)?;
         check_finite("end momenta of the boundary-value path", &p1)?;
@@ -422,21 +445,41 @@ impl<'a, Ld: DiscreteLagrangian, C: PathConstraint> System<'a, Ld, C> {
             self.ld.d11(self.tk(k), h, &q0, &q1, &mut self.d11);
             self.ld.d22(self.tk(k), h, &q0, &q1, &mut self.d22);
             self.ld.d12(self.tk(k), h, &q0, &q1, &mut self.d12);
-            // Rows of node k get D₁₁ (and D₁₂ toward node k+1); rows of node k+1 get D₂₂ (and D₂₁).
+            if self.ld.has_discrete_force() {
+                // f⁻ joins D₁L_d in the rows of node k, f⁺ joins D₂L_d in those of node k+1.
+                let (t, ends) = (self.tk(k), (&q0[..], &q1[..]));
+                let (m0, p0) = (&mut self.df0.0, &mut self.df0.1);
+                self.ld.force_derivatives(t, h, ends, StepEnd::Left, (m0, p0));
+                let (m1, p1) = (&mut self.df1.0, &mut self.df1.1);
+                self.ld.force_derivatives(t, h, ends, StepEnd::Right, (m1, p1));
+                self.d11 += &self.df0.0;
+                self.d22 += &self.df1.1;
+            }
+            // Rows of node k get D₁₁ (and D₁₂ toward node k+1); rows of node k+1 get D₂₂ (and D₂₁);
+            // with forces, ∂f⁻/∂q_{k+1} and ∂f⁺/∂q_k join the off-diagonal blocks.
+            let forced = self.ld.has_discrete_force();
+            let off = |i: usize, j: usize, d: &DMatrix<f64>, f: &DMatrix<f64>| {
+                d[(i, j)] + if forced { f[(i, j)] } else { 0.0 }
+            };
             for i in 0..n {
                 for j in 0..n {
                     if k >= 1 {
                         let r = (k - 1) * s + i;
                         jac.add(r, (k - 1) * s + j, self.d11[(i, j)]);
                         if k + 1 < steps {
-                            jac.add(r, k * s + j, self.d12[(i, j)]);
+                            jac.add(r, k * s + j, off(i, j, &self.d12, &self.df1.0));
                         }
                     }
                     if k + 1 < steps {
                         let r = k * s + i;
                         jac.add(r, k * s + j, self.d22[(i, j)]);
                         if k >= 1 {
-                            jac.add(r, (k - 1) * s + j, self.d12[(j, i)]);
+                            let d21 = self.d12[(j, i)];
+                            jac.add(
+                                r,
+                                (k - 1) * s + j,
+                                d21 + if forced { self.df0.1[(i, j)] } else { 0.0 },
+                            );
                         }
                     }
                 }
@@ -489,7 +532,11 @@ impl<Ld: DiscreteLagrangian, C: PathConstraint> NewtonSystem for System<'_, Ld, 
         self.set_interior(x);
         let (n, m, s, steps, h) = (self.n, self.m, self.block(), self.steps, self.h);
         r.iter_mut().for_each(|v| *v = 0.0);
+        let forced = self.ld.has_discrete_force();
         for k in 0..steps {
+            if forced {
+                self.step_forces(k);
+            }
             let (t, q0, q1) = (
                 self.tk(k),
                 &self.q[k * n..(k + 1) * n],
@@ -497,6 +544,9 @@ impl<Ld: DiscreteLagrangian, C: PathConstraint> NewtonSystem for System<'_, Ld, 
             );
             if k >= 1 {
                 self.ld.d1(t, h, q0, q1, &mut self.g1);
+                if forced {
+                    self.g1.iter_mut().zip(&self.fm).for_each(|(g, f)| *g += f);
+                }
                 let base = (k - 1) * s;
                 r[base..base + n]
                     .iter_mut()
@@ -505,6 +555,9 @@ impl<Ld: DiscreteLagrangian, C: PathConstraint> NewtonSystem for System<'_, Ld, 
             }
             if k + 1 < steps {
                 self.ld.d2(t, h, q0, q1, &mut self.g2);
+                if forced {
+                    self.g2.iter_mut().zip(&self.fp).for_each(|(g, f)| *g += f);
+                }
                 let base = k * s;
                 r[base..base + n]
                     .iter_mut()

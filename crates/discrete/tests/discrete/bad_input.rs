@@ -100,27 +100,6 @@ fn bad_input_galerkin() {
         other => panic!("expected a Newton failure, got {other:?}"),
     }
     assert_eq!(s, before);
-    assert!(matches!(
-        Galerkin::order4(Damped),
-        Err(Error::InvalidParameter { .. })
-    ));
-}
-
-/// A damped oscillator (L = ½(q̇² − q²), Q = −q̇).
-struct Damped;
-impl noether_core::Lagrangian for Damped {
-    fn dof(&self) -> usize {
-        1
-    }
-    fn lagrangian<D: noether_core::Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
-        (v[0] * v[0] - q[0] * q[0]) * 0.5
-    }
-    fn has_generalized_force(&self) -> bool {
-        true
-    }
-    fn generalized_force(&self, _t: f64, _q: &[f64], v: &[f64], out: &mut [f64]) {
-        out[0] = -v[0];
-    }
 }
 
 /// Issue 29 item 7: a variational step that does not move t (t = 1e20, h = 1e-3) is refused with

@@ -5,6 +5,7 @@ mod bad_input;
 mod boundary;
 mod conserves;
 mod degenerate;
+mod forced;
 mod mechanical;
 mod models;
 mod order;

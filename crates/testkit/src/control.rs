@@ -1,0 +1,72 @@
+//! Actuated models: the cart-pole.
+
+use noether_core::control::Actuated;
+use noether_core::{Lagrangian, Scalar};
+
+/// The cart-pole: a cart of mass M on a horizontal track pushed by a force u, carrying a point mass m
+/// on a massless rod of length l; q = (x, θ), x the cart's position and θ the rod's angle from the
+/// upward vertical. The bob is at (x + l sin θ, l cos θ), so
+///
+/// ```text
+/// L = ½(M + m) ẋ² + m l ẋ θ̇ cos θ + ½ m l² θ̇² − m g l cos θ,   Q_u = (u, 0).
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CartPole {
+    /// Cart mass M.
+    pub cart: f64,
+    /// Bob mass m.
+    pub bob: f64,
+    /// Rod length l.
+    pub l: f64,
+    /// Gravity g.
+    pub g: f64,
+}
+
+impl Default for CartPole {
+    fn default() -> Self {
+        CartPole {
+            cart: 1.0,
+            bob: 0.3,
+            l: 0.8,
+            g: 9.81,
+        }
+    }
+}
+
+impl Lagrangian for CartPole {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let (big, m, l) = (self.cart, self.bob, self.l);
+        v[0] * v[0] * (0.5 * (big + m)) + v[0] * v[1] * q[1].cos() * (m * l) + v[1] * v[1] * (0.5 * m * l * l)
+            - q[1].cos() * (m * self.g * l)
+    }
+}
+
+impl Actuated for CartPole {
+    fn inputs(&self) -> usize {
+        1
+    }
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
+        out[0] = u[0];
+        out[1] = D::zero();
+    }
+}
+
+impl CartPole {
+    /// The textbook linearisation upright (θ = 0, at rest), state (x, θ, ẋ, θ̇): from
+    /// (M + m)ẍ + m l θ̈ = u and m l ẍ + m l² θ̈ − m g l θ = 0,
+    /// ẍ = −(m g/M) θ + u/M and θ̈ = (M + m) g θ/(M l) − u/(M l): the rows of ẍ and θ̈ of A
+    /// (on θ) and of B.
+    pub fn upright_linearization(&self) -> ([[f64; 4]; 4], [f64; 4]) {
+        let (big, m, l, g) = (self.cart, self.bob, self.l, self.g);
+        let a = [
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+            [0.0, -m * g / big, 0.0, 0.0],
+            [0.0, (big + m) * g / (big * l), 0.0, 0.0],
+        ];
+        (a, [0.0, 0.0, 1.0 / big, -1.0 / (big * l)])
+    }
+}
