@@ -31,11 +31,12 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
         let newton = self
             .newton
             .residual_floor(8.0 * f64::EPSILON * sys.momentum_scale(&x));
-        // The conjugate-point test is the one of an action's second variation.
-        let constrained = c.count() > 0 || self.ld.has_discrete_force();
+        // The conjugate-point test is that of the second variation of an action: unconstrained and
+        // unforced paths only.
+        let second_variation = c.count() == 0 && !self.ld.has_discrete_force();
         let info = match newton.solve(&mut sys, &mut x) {
             Ok(info) => info,
-            Err(e) if !constrained => {
+            Err(e) if second_variation => {
                 // A singular or nearly singular Jacobi operator (Newton cannot reach the tolerance,
                 // or its factorisation is refused) at the last iterate: a conjugate point.
                 let j = sys.jacobi(&x);
@@ -49,7 +50,7 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
         };
         sys.set_interior(&x);
         let mut path = sys.path(&x, info)?;
-        if !constrained {
+        if second_variation {
             let j = sys.jacobi(&x);
             let margin = sys.margin(&x, j.mu);
             path.morse_index = j.morse_index;
