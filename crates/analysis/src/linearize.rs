@@ -14,6 +14,7 @@
 
 use crate::Result;
 use nalgebra::{DMatrix, DVector};
+use noether_core::ad::Buf;
 use noether_core::control::{Actuated, ClosedLoop, Constant};
 use noether_core::error::{check_finite, check_len, check_phase_point};
 use noether_core::system::LinearizedDynamics;
@@ -47,10 +48,7 @@ pub fn linearize<A: Actuated>(model: &A, t: f64, q: &[f64], v: &[f64], u: &[f64]
     held.rates(t, q, v, dq, dv)?;
     // ∂Q_u/∂u column by column, then M⁻¹.
     let m = u.len();
-    let (qd, vd): (Vec<Dual64>, Vec<Dual64>) = (
-        q.iter().map(|&x| Dual64::from(x)).collect(),
-        v.iter().map(|&x| Dual64::from(x)).collect(),
-    );
+    let (qd, vd) = (Buf::<Dual64, 16>::constants(q), Buf::<Dual64, 16>::constants(v));
     let mut du = DMatrix::zeros(n, m);
     let mut force = vec![Dual64::from(0.0); n];
     for j in 0..m {

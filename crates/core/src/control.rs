@@ -41,6 +41,7 @@
 //! # Ok::<(), noether_core::Error>(())
 //! ```
 
+use crate::ad::Buf;
 use crate::{Error, Lagrangian, Result, Scalar};
 use nalgebra::DMatrix;
 
@@ -233,13 +234,14 @@ impl<A: Actuated, P: Policy> Lagrangian for ClosedLoop<A, P> {
         true
     }
     fn generalized_force<D: Scalar>(&self, t: D, q: &[D], v: &[D], out: &mut [D]) {
-        let mut u = vec![D::zero(); self.model.inputs()];
+        // On the stack for small models: this runs at every evaluation of the equations of motion.
+        let mut u = Buf::<D, 16>::filled(self.model.inputs(), D::zero());
         self.policy.control(t, q, v, &mut u);
         self.model.input_force(t, q, v, &u, out);
         if self.model.has_generalized_force() {
-            let mut own = vec![D::zero(); out.len()];
+            let mut own = Buf::<D, 16>::filled(out.len(), D::zero());
             self.model.generalized_force(t, q, v, &mut own);
-            out.iter_mut().zip(own).for_each(|(o, f)| *o += f);
+            out.iter_mut().zip(own.iter()).for_each(|(o, f)| *o += *f);
         }
     }
 }
