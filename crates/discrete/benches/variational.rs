@@ -2,7 +2,10 @@
 //! noether (term-by-term AD, Newton; by default the last step's Jacobian factor is reused, and also with
 //! a fresh Jacobian every step as the hand code does) against a hand-written midpoint Newton step with
 //! the analytic gradient and Hessian of V (a fresh Jacobian every step); and one midpoint step of a quartic chain of N masses (banded Jacobian)
-//! for N = 10², 10³, 10⁴, 10⁵ (cost linear in N).
+//! for N = 10², 10³, 10⁴, 10⁵ (cost linear in N); and whole optimal-control solves by discrete mechanics
+//! (`optimal_control`): the cart-pole swung up in T = 2 with N = 100 steps from the straight line (12
+//! Newton iterations on the banded KKT system) and the double integrator's minimum-effort transfer with
+//! N = 1000 (3 iterations).
 //!
 //! Run: `cargo bench -p noether-discrete --bench variational`
 
@@ -173,5 +176,43 @@ fn quartic_chain(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, coupled_chains, quartic_chain);
+fn optimal_control(c: &mut Criterion) {
+    use noether_discrete::optimal_control::{Effort, OptimalControl};
+    use noether_discrete::Midpoint;
+    use noether_testkit::control::{CartPole, DoubleIntegrator};
+    use std::f64::consts::PI;
+    let mut group = c.benchmark_group("optimal_control");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
+    let swing = OptimalControl::new(
+        Midpoint::new(CartPole::default()),
+        Effort::new(vec![1.0]).unwrap(),
+    );
+    group.bench_function("cart_pole_swing_up_N100", |b| {
+        b.iter(|| {
+            swing
+                .solve(
+                    0.0,
+                    (&[0.0, PI], &[0.0, 0.0]),
+                    2.0,
+                    (&[0.0, 0.0], &[0.0, 0.0]),
+                    black_box(100),
+                )
+                .unwrap()
+        })
+    });
+    let transfer = OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap());
+    group.bench_function("double_integrator_N1000", |b| {
+        b.iter(|| {
+            transfer
+                .solve(0.0, (&[0.0], &[0.0]), 2.0, (&[1.0], &[0.0]), black_box(1000))
+                .unwrap()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, coupled_chains, quartic_chain, optimal_control);
 criterion_main!(benches);

@@ -26,6 +26,10 @@
 //!   implicit-function theorem at the converged solution.
 //! - [`boundary`]: boundary-value problems q(t₀) = a, q(t₁) = b by the discrete Hamilton principle
 //!   ([`BoundaryValue`]), with the conjugate points of the discrete Jacobi operator ([`ConjugatePoint`]).
+//! - [`optimal_control`]: optimal control by discrete mechanics (DMOC) — the path and piecewise-constant
+//!   inputs of an actuated model ([`DiscreteActuated`]) that minimise a running cost between two states,
+//!   subject to the forced discrete Euler-Lagrange equations, by Newton on the banded KKT system
+//!   ([`OptimalControl`]).
 //! - [`primary`]: for a degenerate Lagrangian (linear in q̇), a start whose momenta are off
 //!   p = ∂L/∂q̇ is refused ([`OffPrimaryConstraint`]) instead of taking a wild step.
 //! - Fast paths for L = ½q̇ᵀMq̇ − Σ_k V_k(q) ([`Mechanical`], a potential of local terms):
@@ -68,6 +72,7 @@ pub mod lagrangian;
 pub mod mechanical;
 pub mod mechanical_midpoint;
 pub mod momentum;
+pub mod optimal_control;
 pub mod primary;
 pub mod quadrature;
 pub mod tangent;
@@ -81,6 +86,7 @@ pub use lagrangian::{DiscreteDerivatives, DiscreteField, DiscreteLagrangian, Ste
 pub use mechanical::{LocalPotential, Mass, Mechanical};
 pub use mechanical_midpoint::MechanicalMidpoint;
 pub use momentum::{noether_momentum, Symmetry};
+pub use optimal_control::{DiscreteActuated, Effort, Endpoint, OptimalControl, OptimalPath, RunningCost};
 pub use primary::OffPrimaryConstraint;
 pub use quadrature::{FromLagrangian, Midpoint, Trapezoidal};
 pub use verlet::Verlet;

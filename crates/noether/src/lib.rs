@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | [`core`] | noether-core | models, equations of motion by AD, Legendre maps, integrators (explicit, adaptive Dormand-Prince, Nyström DPRKN, IAS15, symplectic, Gauss), exact tangents of the flow, the driver, Newton |
 //! | [`constraints`] | noether-constraints | holonomic and nonholonomic constraints, multipliers, RATTLE |
-//! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta |
+//! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta, optimal control by discrete mechanics |
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
 //! | [`analysis`] | noether-analysis | equilibria and normal modes, Lyapunov spectra, sensitivities, periodic orbits |
 //! | [`compile`] | noether-compile | compiled models: the model recorded once, its equations derived and simplified on the graph, run without dual numbers (dual numbers as the guarded fallback): by an interpreter, or as native code compiled by Cranelift with the feature `jit` |

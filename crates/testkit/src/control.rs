@@ -70,3 +70,27 @@ impl CartPole {
         (a, [0.0, 0.0, 1.0 / big, -1.0 / (big * l)])
     }
 }
+
+/// The double integrator q̈ = u: a unit mass pushed by a force, L = ½ q̇², Q_u = u. The minimum-effort
+/// transfer (min ∫ u² dt) from rest at 0 to rest at 1 in time T has the closed form
+/// u(t) = (6/T²)(1 − 2t/T), cost 12/T³ (Bryson and Ho, *Applied Optimal Control*, §5.2).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DoubleIntegrator;
+
+impl Lagrangian for DoubleIntegrator {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
+        v[0] * v[0] * 0.5
+    }
+}
+
+impl Actuated for DoubleIntegrator {
+    fn inputs(&self) -> usize {
+        1
+    }
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
+        out[0] = u[0];
+    }
+}

@@ -8,6 +8,7 @@ mod degenerate;
 mod forced;
 mod mechanical;
 mod models;
+mod optimal_control;
 mod order;
 mod regress;
 mod tangent;
