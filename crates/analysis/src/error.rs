@@ -59,12 +59,14 @@ pub enum Error {
     /// The Riccati equation of an LQR design has no stabilising solution: (A, B) is not stabilisable or
     /// (Q, A) not detectable (the Hamiltonian matrix has eigenvalues on the imaginary axis).
     #[error(
-        "no stabilising solution of the Riccati equation (relative residual {residual:e}, largest real part          of the closed loop's eigenvalues {largest_real_part:e}): is (A, B) stabilisable and (Q, A) detectable?"
+        "no stabilising solution of the Riccati equation (relative residual {residual:e}, largest real part of the closed loop's eigenvalues, of their logarithms for a discrete design: {largest_real_part:e}): is (A, B) stabilisable and (Q, A) detectable?"
     )]
     NoStabilizingSolution {
         /// The relative residual of the best solution found (∞ when the sign iteration failed).
         residual: f64,
-        /// The largest real part of the eigenvalues of A − BK (NaN when no gain was formed).
+        /// The largest real part of the eigenvalues λ of A − BK, for the discrete equation of
+        /// [`dlqr`](crate::dlqr) of ln λ (ln |λ|: negative when stable in both cases); NaN when no
+        /// gain was formed.
         largest_real_part: f64,
     },
     /// An eigenvalue iteration did not converge.

@@ -21,7 +21,7 @@
 //! and accepted when the Riccati residual is at rounding level and every eigenvalue of A − BK has a
 //! negative real part.
 
-use crate::{Error, Linearization, Result};
+use crate::{Error, Linearization, Result, StepLinearization};
 use nalgebra::{Complex, DMatrix};
 use noether_core::error::check_finite;
 use noether_core::linalg::DenseFactor;
@@ -50,33 +50,7 @@ const REFINEMENTS: usize = 3;
 /// imaginary axis and the sign iteration does not settle, or the solution does not stabilise).
 pub fn lqr(lin: &Linearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lqr> {
     let (a, b) = (&lin.a, &lin.b);
-    let (n, m) = (a.nrows(), b.ncols());
-    for (what, mat, rows) in [("LQR weight Q", q, n), ("LQR weight R", r, m)] {
-        if mat.nrows() != rows || mat.ncols() != rows {
-            return Err(noether_core::Error::Dimension {
-                what,
-                expected: rows,
-                got: if mat.nrows() != rows {
-                    mat.nrows()
-                } else {
-                    mat.ncols()
-                },
-            }
-            .into());
-        }
-        check_finite(what, mat.as_slice())?;
-    }
-    let r_factor = DenseFactor::symmetric(r.clone()).map_err(|e| e.in_matrix("LQR weight R"))?;
-    if r_factor.cholesky().is_none() {
-        return Err(noether_core::Error::InvalidParameter {
-            name: "LQR weight R",
-            value: r.symmetric_eigenvalues().min(),
-            reason: "must be positive definite (its smallest eigenvalue is given)",
-        }
-        .into());
-    }
-    let rinv_bt = r_factor.solve_matrix(&b.transpose());
-    let g = b * &rinv_bt;
+    let (rinv_bt, g) = weights(a.nrows(), b, q, r)?;
     let mut x = sign_solution(a, &g, q)?;
     // The sign function's X must already stabilise (Newton-Kleinman keeps a stabilising X
     // stabilising; from any other its Lyapunov operator may be singular).
@@ -107,6 +81,43 @@ pub fn lqr(lin: &Linearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lq
         riccati: x,
         closed_loop,
     })
+}
+
+/// Checks the weights Q (n × n) and R (m × m, positive definite) and returns (R⁻¹Bᵀ, G = BR⁻¹Bᵀ).
+fn weights(
+    n: usize,
+    b: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let m = b.ncols();
+    for (what, mat, rows) in [("LQR weight Q", q, n), ("LQR weight R", r, m)] {
+        if mat.nrows() != rows || mat.ncols() != rows {
+            return Err(noether_core::Error::Dimension {
+                what,
+                expected: rows,
+                got: if mat.nrows() != rows {
+                    mat.nrows()
+                } else {
+                    mat.ncols()
+                },
+            }
+            .into());
+        }
+        check_finite(what, mat.as_slice())?;
+    }
+    let r_factor = DenseFactor::symmetric(r.clone()).map_err(|e| e.in_matrix("LQR weight R"))?;
+    if r_factor.cholesky().is_none() {
+        return Err(noether_core::Error::InvalidParameter {
+            name: "LQR weight R",
+            value: r.symmetric_eigenvalues().min(),
+            reason: "must be positive definite (its smallest eigenvalue is given)",
+        }
+        .into());
+    }
+    let rinv_bt = r_factor.solve_matrix(&b.transpose());
+    let g = b * &rinv_bt;
+    Ok((rinv_bt, g))
 }
 
 /// The Riccati residual ‖AᵀX + XA − XGX + Q‖ relative to the scale of its terms, and the largest
@@ -187,6 +198,145 @@ fn kleinman_step(
     let kron = identity.kronecker(&ft) + ft.kronecker(&identity);
     let factor =
         DenseFactor::lu(kron).map_err(|e| e.in_matrix("Lyapunov operator of the Newton-Kleinman step"))?;
+    let mut v = c.as_slice().to_vec();
+    factor.solve_in_place(&mut v);
+    let next = DMatrix::from_column_slice(n, n, &v);
+    Ok((&next + next.transpose()) * 0.5)
+}
+
+/// The discrete-time LQR: the gain K that minimises Σ_k (δx_kᵀ Q δx_k + δu_kᵀ R δu_k) for
+/// δx_{k+1} = A δx_k + B δu_k (a [`StepLinearization`]), from the stabilising solution X of the
+/// discrete algebraic Riccati equation
+///
+/// ```text
+/// X = AᵀXA − AᵀXB (R + BᵀXB)⁻¹ BᵀXA + Q = AᵀX (I + GX)⁻¹ A + Q,   G = B R⁻¹ Bᵀ,
+/// K = (R + BᵀXB)⁻¹ BᵀXA,   δu_k = −K δx_k
+/// ```
+///
+/// (Anderson & Moore §2.4), by the structure-preserving doubling algorithm (Chu, Fan, Lin and Wang,
+/// *Linear Algebra Appl.* 396, 2005), which converges quadratically:
+///
+/// ```text
+/// A₀ = A, G₀ = G, H₀ = Q;   W_k = I + G_k H_k,
+/// A_{k+1} = A_k W_k⁻¹ A_k,   G_{k+1} = G_k + A_k W_k⁻¹ G_k A_kᵀ,   H_{k+1} = H_k + A_kᵀ H_k W_k⁻¹ A_k → X,
+/// ```
+///
+/// then refined by Hewer's Newton steps (each a Stein equation FᵀX'F − X' = −(Q + KᵀRK), F = A − BK,
+/// through its Kronecker form). Accepted when the Riccati residual is at rounding level and every
+/// eigenvalue of A − BK lies inside the unit circle. A sampled design with step h approaches the
+/// continuous [`lqr`] with weights Q h and R h as h → 0. [`Error::NoStabilizingSolution`] carries, for
+/// this discrete equation, the largest ln |λ| of A − BK (negative when stable, as the real parts of the
+/// continuous case: λ = e^{sh}).
+pub fn dlqr(lin: &StepLinearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lqr> {
+    let (a, b) = (&lin.a, &lin.b);
+    let (_, g) = weights(a.nrows(), b, q, r)?;
+    let mut x = doubling(a, &g, q)?;
+    let (residual, worst) = check_discrete(a, &g, q, &x);
+    if worst.is_nan() || worst >= 0.0 {
+        return Err(Error::NoStabilizingSolution {
+            residual,
+            largest_real_part: worst,
+        });
+    }
+    for _ in 0..REFINEMENTS {
+        x = hewer_step(a, b, q, r, &x).map_err(|_| Error::NoStabilizingSolution {
+            residual,
+            largest_real_part: worst,
+        })?;
+    }
+    let (residual, worst) = check_discrete(a, &g, q, &x);
+    if !(residual <= 1e-10 && worst < 0.0) {
+        return Err(Error::NoStabilizingSolution {
+            residual,
+            largest_real_part: worst,
+        });
+    }
+    let gain = discrete_gain(a, b, r, &x)?;
+    let closed_loop: Vec<Complex<f64>> = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
+    Ok(Lqr {
+        gain,
+        riccati: x,
+        closed_loop,
+    })
+}
+
+/// K = (R + BᵀXB)⁻¹ BᵀXA.
+fn discrete_gain(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+    x: &DMatrix<f64>,
+) -> Result<DMatrix<f64>> {
+    let btx = b.transpose() * x;
+    let factor = DenseFactor::symmetric(r + &btx * b).map_err(|e| e.in_matrix("R + BᵀXB"))?;
+    Ok(factor.solve_matrix(&(btx * a)))
+}
+
+/// The residual ‖AᵀX(I + GX)⁻¹A + Q − X‖ relative to the scale of its terms, and the largest ln |λ| of
+/// the closed loop (I + GX)⁻¹A = A − BK.
+fn check_discrete(a: &DMatrix<f64>, g: &DMatrix<f64>, q: &DMatrix<f64>, x: &DMatrix<f64>) -> (f64, f64) {
+    let n = a.nrows();
+    let Some(w_inv) = (DMatrix::identity(n, n) + g * x).try_inverse() else {
+        return (f64::INFINITY, f64::NAN);
+    };
+    let closed = &w_inv * a;
+    let residual = (a.transpose() * x * &closed + q - x).amax();
+    let scale = (a.amax() * a.amax() * x.amax())
+        .max(q.amax())
+        .max(x.amax())
+        .max(f64::MIN_POSITIVE);
+    let worst = closed
+        .complex_eigenvalues()
+        .iter()
+        .map(|l| l.norm().ln())
+        .fold(f64::NEG_INFINITY, f64::max);
+    (residual / scale, worst)
+}
+
+/// X by structure-preserving doubling (see [`dlqr`]).
+fn doubling(a: &DMatrix<f64>, g: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    let n = a.nrows();
+    let (mut ak, mut gk, mut hk) = (a.clone(), g.clone(), q.clone());
+    for _ in 0..SIGN_ITERATIONS {
+        let w = DenseFactor::lu(DMatrix::identity(n, n) + &gk * &hk).map_err(|_| {
+            Error::NoStabilizingSolution {
+                residual: f64::INFINITY,
+                largest_real_part: f64::NAN,
+            }
+        })?;
+        let wa = w.solve_matrix(&ak);
+        let wg = w.solve_matrix(&gk);
+        let next_h = &hk + ak.transpose() * &hk * &wa;
+        gk = &gk + &ak * wg * ak.transpose();
+        ak = &ak * wa;
+        let change = (&next_h - &hk).amax() / next_h.amax().max(f64::MIN_POSITIVE);
+        hk = (&next_h + next_h.transpose()) * 0.5;
+        if change <= 1e-14 || ak.amax() <= f64::EPSILON * hk.amax() {
+            return Ok(hk);
+        }
+    }
+    Err(Error::NoStabilizingSolution {
+        residual: f64::INFINITY,
+        largest_real_part: f64::NAN,
+    })
+}
+
+/// One Hewer step: X' solving FᵀX'F − X' = −(Q + KᵀRK), F = A − BK, K the gain of X, by its Kronecker
+/// form (Fᵀ ⊗ Fᵀ − I) vec X' = −vec(Q + KᵀRK).
+fn hewer_step(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    q: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+    x: &DMatrix<f64>,
+) -> Result<DMatrix<f64>> {
+    let n = a.nrows();
+    let k = discrete_gain(a, b, r, x)?;
+    let f = a - b * &k;
+    let c = -(q + k.transpose() * r * &k);
+    let ft = f.transpose();
+    let stein = ft.kronecker(&ft) - DMatrix::<f64>::identity(n * n, n * n);
+    let factor = DenseFactor::lu(stein).map_err(|e| e.in_matrix("Stein operator of the Hewer step"))?;
     let mut v = c.as_slice().to_vec();
     factor.solve_in_place(&mut v);
     let next = DMatrix::from_column_slice(n, n, &v);

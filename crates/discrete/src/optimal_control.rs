@@ -242,7 +242,7 @@ pub struct OptimalControl<M, C> {
 
 impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
     /// The problem of the discrete actuated model `model` (e.g. [`Midpoint`] of an
-    /// [`Actuated`](noether_core::control::Actuated) Lagrangian) and the running cost `cost`.
+    /// [`Actuated`] Lagrangian) and the running cost `cost`.
     pub fn new(model: M, cost: C) -> Self {
         OptimalControl {
             model,
