@@ -296,6 +296,11 @@ fn closed_form_driven_pendulum() {
 }
 
 #[test]
+fn closed_form_cart_pole_lqr() {
+    assert_example_passes("cart_pole_lqr");
+}
+
+#[test]
 fn closed_form_swing_up() {
     assert_example_passes("swing_up");
 }
