@@ -1,8 +1,8 @@
 //! Control: linearisation (A, B) and LQR against the textbooks' closed forms, and a closed loop.
 
-use nalgebra::DMatrix;
+use nalgebra::{Complex, DMatrix};
 use noether_analysis::{dlqr, linearize, linearize_step, lqr, Error, Linearization, StepLinearization};
-use noether_core::control::{ClosedLoop, LinearFeedback};
+use noether_core::control::{Actuated, ClosedLoop, LinearFeedback};
 use noether_core::prelude::*;
 use noether_core::system::LinearizedDynamics;
 use noether_testkit::control::CartPole;
@@ -265,4 +265,122 @@ fn sampled_lqr_tends_to_the_continuous_design() {
     let order = (d1 / d2).log2();
     println!("sampled LQR: |K_d − K| = {d1:.3e} (h = 0.01), {d2:.3e} (h = 0.005): order {order:.3}");
     assert!((order - 1.0).abs() < 0.05, "{order}");
+}
+
+/// The heavy symmetric top in Cardan angles q = (α, β, γ), the body frame R = R_x(α) R_y(β) R_z(γ):
+/// ω_body = (α̇ cos β cos γ + β̇ sin γ, −α̇ cos β sin γ + β̇ cos γ, γ̇ + α̇ sin β), the centre of mass at
+/// height ℓ cos α cos β, so
+///
+///   L = ½ I₁ (α̇² cos²β + β̇²) + ½ I₃ (γ̇ + α̇ sin β)² − M g ℓ cos α cos β,
+///
+/// a chart that is regular at the vertical (Euler angles are not), where the top sleeps.
+struct CardanTop {
+    i1: f64,
+    i3: f64,
+    mgl: f64,
+}
+
+impl Lagrangian for CardanTop {
+    fn dof(&self) -> usize {
+        3
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let (cb, sb) = (q[1].cos(), q[1].sin());
+        let spin = v[2] + v[0] * sb;
+        (v[0] * v[0] * cb * cb + v[1] * v[1]) * (0.5 * self.i1) + spin * spin * (0.5 * self.i3)
+            - q[0].cos() * cb * self.mgl
+    }
+}
+
+impl Actuated for CardanTop {
+    fn inputs(&self) -> usize {
+        0
+    }
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], _u: &[D], out: &mut [D]) {
+        out.iter_mut().for_each(|o| *o = D::zero());
+    }
+}
+
+/// The sleeping top, a steady motion with q̇* = (0, 0, ω₃) ≠ 0, linearised: to first order in the tilts
+/// L ≈ ½I₁(α̇² + β̇²) + I₃ω₃ α̇β + ½Mgℓ(α² + β²) + const, so α̈ = (Mgℓ α − I₃ω₃ β̇)/I₁ and
+/// β̈ = (Mgℓ β + I₃ω₃ α̇)/I₁: ξ = α + iβ obeys I₁ξ̈ − iI₃ω₃ξ̇ − Mgℓ ξ = 0 (Goldstein, Poole and Safko
+/// §5.7), whose solutions e^{iλt} have I₁λ² − I₃ω₃λ + Mgℓ = 0. The tilt block of A is that matrix
+/// (checked entry by entry at every ω₃, to rounding) and has the eigenvalues ±iλ: purely imaginary
+/// exactly when ω₃² > 4 I₁ Mgℓ / I₃² (the gyroscopic stability threshold; ω₃ > 4 for I₁ = 1, I₃ = ½,
+/// Mgℓ = 1), a pair with real parts ±√(4I₁Mgℓ − I₃²ω₃²)/(2I₁) below it. Spin and tilt do not couple to
+/// first order (the blocks between them are exactly zero), and the drift is (q̇*, 0). The tilt block
+/// comes out exact (measured 0). Its eigenvalues, computed by nalgebra's nonsymmetric QR (backward
+/// stable, so within ε times their condition, which grows where the two roots λ nearly meet), are
+/// checked against ±iλ where they are well separated (ω₃ = 6 and 3: measured 2e-16 and 1.1e-14
+/// relative, tolerance 1e-13), the threshold by the largest real part just above (4.01: zero, measured
+/// 1.7e-15, tolerance 1e-13) and just below it (3.99: the closed form's 0.0707, tolerance 1e-11).
+#[test]
+fn closed_form_sleeping_top_threshold() {
+    let top = CardanTop {
+        i1: 1.0,
+        i3: 0.5,
+        mgl: 1.0,
+    };
+    for spin in [6.0, 4.01, 3.99, 3.0] {
+        let lin = linearize(&top, 0.0, &[0.0, 0.0, 0.0], &[0.0, 0.0, spin], &[]).unwrap();
+        assert_eq!(lin.drift.as_slice(), &[0.0, 0.0, spin, 0.0, 0.0, 0.0]);
+        // (α, β, α̇, β̇) and (γ, γ̇) in x = (α, β, γ, α̇, β̇, γ̇).
+        let (tilt, turn) = ([0, 1, 3, 4], [2, 5]);
+        for i in tilt {
+            for j in turn {
+                assert_eq!((lin.a[(i, j)], lin.a[(j, i)]), (0.0, 0.0), "({i}, {j})");
+            }
+        }
+        let block = DMatrix::from_fn(4, 4, |i, j| lin.a[(tilt[i], tilt[j])]);
+        let (k, g) = (top.mgl / top.i1, top.i3 * spin / top.i1);
+        #[rustfmt::skip]
+        let exact = DMatrix::from_row_slice(4, 4, &[
+            0.0, 0.0, 1.0, 0.0,
+            0.0, 0.0, 0.0, 1.0,
+            k, 0.0, 0.0, -g,
+            0.0, k, g, 0.0,
+        ]);
+        let entries = (&block - &exact).amax() / exact.amax();
+        assert!(entries < 2.0 * f64::EPSILON, "ω₃ = {spin}: {entries:e}");
+        let computed: Vec<Complex<f64>> = block.complex_eigenvalues().iter().copied().collect();
+        let largest_real = computed.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
+        // λ = (I₃ω₃ ± √(I₃²ω₃² − 4I₁Mgℓ))/(2I₁), complex below the threshold.
+        let disc = Complex::new((top.i3 * spin).powi(2) - 4.0 * top.i1 * top.mgl, 0.0).sqrt();
+        let roots = [
+            (top.i3 * spin + disc) / (2.0 * top.i1),
+            (top.i3 * spin - disc) / (2.0 * top.i1),
+        ];
+        let expected: Vec<Complex<f64>> = roots
+            .iter()
+            .flat_map(|root| {
+                let s = Complex::<f64>::i() * root;
+                [s, s.conj()]
+            })
+            .collect();
+        let scale = expected.iter().map(|z| z.norm()).fold(0.0, f64::max);
+        // Each expected eigenvalue's distance to the nearest computed one.
+        let worst = expected
+            .iter()
+            .map(|e| {
+                computed
+                    .iter()
+                    .map(|c| (c - e).norm())
+                    .fold(f64::INFINITY, f64::min)
+                    / scale
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "sleeping top ω₃ = {spin}: A's tilt block within {entries:.1e}, eigenvalues within {worst:.1e}, \
+             largest real part {largest_real:.6e}"
+        );
+        match spin {
+            6.0 | 3.0 => assert!(worst < 1e-13, "ω₃ = {spin}: {worst:e}"),
+            _ if spin > 4.0 => assert!(largest_real.abs() < 1e-13, "ω₃ = {spin}: {largest_real:e}"),
+            _ => {
+                let unstable = (4.0 * top.i1 * top.mgl - (top.i3 * spin).powi(2)).sqrt() / (2.0 * top.i1);
+                let error = (largest_real - unstable).abs() / unstable;
+                assert!(error < 1e-11, "ω₃ = {spin}: {largest_real:e} vs {unstable:e}");
+            }
+        }
+    }
 }
