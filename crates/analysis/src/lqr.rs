@@ -20,6 +20,11 @@
 //! solved through its Kronecker form), which converge quadratically from the sign function's answer,
 //! and accepted when the Riccati residual is at rounding level and every eigenvalue of A − BK has a
 //! negative real part.
+//!
+//! [`dlqr`] is the same design for a sampled system δx_{k+1} = A δx_k + B δu_k (one step of an
+//! integrator, [`linearize_step`](crate::linearize_step)): the discrete Riccati equation by
+//! structure-preserving doubling, refined by Hewer's Newton steps, accepted by the same rule with the
+//! closed loop's eigenvalues inside the unit circle.
 
 use crate::{Error, Linearization, Result, StepLinearization};
 use nalgebra::{Complex, DMatrix};
@@ -51,29 +56,11 @@ const REFINEMENTS: usize = 3;
 pub fn lqr(lin: &Linearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lqr> {
     let (a, b) = (&lin.a, &lin.b);
     let (rinv_bt, g) = weights(a.nrows(), b, q, r)?;
-    let mut x = sign_solution(a, &g, q)?;
-    // The sign function's X must already stabilise (Newton-Kleinman keeps a stabilising X
-    // stabilising; from any other its Lyapunov operator may be singular).
-    let (residual, worst) = check(a, &g, q, &x);
-    if worst.is_nan() || worst >= 0.0 {
-        return Err(Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        });
-    }
-    for _ in 0..REFINEMENTS {
-        x = kleinman_step(a, &g, q, &x).map_err(|_| Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        })?;
-    }
-    let (residual, worst) = check(a, &g, q, &x);
-    if !(residual <= 1e-10 && worst < 0.0) {
-        return Err(Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        });
-    }
+    let x = refine(
+        sign_solution(a, &g, q)?,
+        |x| check(a, &g, q, x),
+        |x| kleinman_step(a, &g, q, x),
+    )?;
     let gain = &rinv_bt * &x;
     let closed_loop: Vec<Complex<f64>> = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
     Ok(Lqr {
@@ -81,6 +68,34 @@ pub fn lqr(lin: &Linearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lq
         riccati: x,
         closed_loop,
     })
+}
+
+/// The first solution X₀ of a Riccati equation refined by `REFINEMENTS` Newton steps (`newton`), and
+/// accepted when `check` (the relative residual and the largest real part, or ln |λ|, of the closed
+/// loop) says it stabilises and solves the equation to rounding. X₀ must already stabilise: Newton's
+/// steps keep a stabilising X stabilising, and from any other their linear operator may be singular.
+fn refine(
+    first: DMatrix<f64>,
+    check: impl Fn(&DMatrix<f64>) -> (f64, f64),
+    newton: impl Fn(&DMatrix<f64>) -> Result<DMatrix<f64>>,
+) -> Result<DMatrix<f64>> {
+    let refused = |(residual, largest_real_part): (f64, f64)| Error::NoStabilizingSolution {
+        residual,
+        largest_real_part,
+    };
+    let first_check = check(&first);
+    if first_check.1.is_nan() || first_check.1 >= 0.0 {
+        return Err(refused(first_check));
+    }
+    let mut x = first;
+    for _ in 0..REFINEMENTS {
+        x = newton(&x).map_err(|_| refused(first_check))?;
+    }
+    let (residual, worst) = check(&x);
+    if !(residual <= 1e-10 && worst < 0.0) {
+        return Err(refused((residual, worst)));
+    }
+    Ok(x)
 }
 
 /// Checks the weights Q (n × n) and R (m × m, positive definite) and returns (R⁻¹Bᵀ, G = BR⁻¹Bᵀ).
@@ -230,27 +245,11 @@ fn kleinman_step(
 pub fn dlqr(lin: &StepLinearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lqr> {
     let (a, b) = (&lin.a, &lin.b);
     let (_, g) = weights(a.nrows(), b, q, r)?;
-    let mut x = doubling(a, &g, q)?;
-    let (residual, worst) = check_discrete(a, &g, q, &x);
-    if worst.is_nan() || worst >= 0.0 {
-        return Err(Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        });
-    }
-    for _ in 0..REFINEMENTS {
-        x = hewer_step(a, b, q, r, &x).map_err(|_| Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        })?;
-    }
-    let (residual, worst) = check_discrete(a, &g, q, &x);
-    if !(residual <= 1e-10 && worst < 0.0) {
-        return Err(Error::NoStabilizingSolution {
-            residual,
-            largest_real_part: worst,
-        });
-    }
+    let x = refine(
+        doubling(a, &g, q)?,
+        |x| check_discrete(a, &g, q, x),
+        |x| hewer_step(a, b, q, r, x),
+    )?;
     let gain = discrete_gain(a, b, r, &x)?;
     let closed_loop: Vec<Complex<f64>> = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
     Ok(Lqr {
