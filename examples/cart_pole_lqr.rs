@@ -182,6 +182,9 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         Dop853::new(&closed).tolerances(1e-11, 1e-11)?,
         State::new(0.0, [0.0, 0.3], [0.0, 0.0]),
     )?
+    .observe("u", |s| {
+        closed.lagrangian().inputs_at(s.t, s.q.as_slice(), s.v.as_slice())[0]
+    })
     .run_until(10.0)?;
     let last = balance.last();
     let rest = last.q.amax().max(last.v.amax());
@@ -221,11 +224,18 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     let cart: Vec<(f64, f64)> = (0..balance.len())
         .map(|i| (balance.times()[i], balance.q(i)[0]))
         .collect();
+    let force: Vec<(f64, f64)> = balance
+        .times()
+        .iter()
+        .zip(balance.observed("u")?)
+        .map(|(&t, u)| (t, u / 100.0))
+        .collect();
     let fig = Figure::new("Cart-pole balanced by LQR from a 0.3 rad lean")
         .x_label("t")
-        .y_label("θ, x")
+        .y_label("θ, x, u/100")
         .series("pole angle θ", theta)
-        .series("cart position x", cart);
+        .series("cart position x", cart)
+        .series("force on the cart u/100 (recorded by an observer)", force);
     report.save(opts, &fig, "cart_pole_lqr.svg")?;
     Ok(report)
 }
