@@ -200,7 +200,14 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
     ));
 
     let h = 0.01;
-    let step = linearize_step(&cp, Rk4::new, 0.0, (&[0.0, 0.0], &[0.0, 0.0]), &[0.0], h)?;
+    let step = linearize_step(
+        &cp,
+        |l| Rk4::new(EulerLagrange::new(l)),
+        0.0,
+        (&[0.0, 0.0], &[0.0, 0.0]),
+        &[0.0],
+        h,
+    )?;
     let sampled = dlqr(
         &step,
         &(DMatrix::from_diagonal(&DVector::from_column_slice(&STATE_WEIGHTS)) * h),

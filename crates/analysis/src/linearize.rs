@@ -23,7 +23,9 @@ use noether_core::ad::Buf;
 use noether_core::control::{Actuated, ClosedLoop, Constant};
 use noether_core::error::{check_finite, check_len, check_phase_point};
 use noether_core::system::LinearizedDynamics;
-use noether_core::{Dynamics, EulerLagrange, Lagrangian, Scalar, State, TangentStepper, Velocities};
+use noether_core::{
+    Dynamics, EulerLagrange, Lagrangian, Momenta, Partner, Scalar, State, TangentStepper, Velocities,
+};
 use num_dual::Dual64;
 
 /// The linearisation (A, B) of an actuated system at an operating point, with the drift there.
@@ -120,26 +122,60 @@ impl<A: Actuated + ?Sized> Lagrangian for HeldInputs<'_, A> {
     }
 }
 
-/// The linearisation of one step x_{k+1} = Φ_h(x_k, u_k), x = (q, q̇), with the inputs held over the
-/// step: δx_{k+1} = A_d δx_k + B_d δu_k.
+/// The linearisation of one step x_{k+1} = Φ_h(x_k, u_k), with the inputs held over the step:
+/// δx_{k+1} = A_d δx_k + B_d δu_k, x the stepper's own state, (q, q̇) or (q, p).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepLinearization {
     /// A_d = ∂x_{k+1}/∂x_k, 2n × 2n.
     pub a: DMatrix<f64>,
     /// B_d = ∂x_{k+1}/∂u_k, 2n × m.
     pub b: DMatrix<f64>,
-    /// x_{k+1} = (q, q̇) after the step: the start again at a rest point.
+    /// x_{k+1} after the step: the start again at a rest point.
     pub next: DVector<f64>,
     /// The step h.
     pub h: f64,
 }
 
-/// The discrete-time linearisation (A_d, B_d) of one step of size `h` of the integrator `method`
-/// (built from the model with held inputs, e.g. `Rk4::new`) from (t, q, q̇) with the inputs u held
-/// over the step: the exact Jacobian of the step (the integrator's tangent, [`TangentStepper`]) of
-/// [`HeldInputs`], whose ṡ columns are B_d. At a rest point the step's Jacobian is the method applied
-/// to the continuous linearisation (for RK4, A_d = Σ_{k≤4} (Ah)^k/k!). Errors: dimensions, non-finite
-/// input, a step h that is zero or not finite, and the step's own errors.
+/// The start state of a step with held inputs in a stepper's own coordinates (see
+/// [`linearize_step`]): (q, s = 0, q̇, ṡ = u) for velocities; (q, s = 0, p, p_s = u) for momenta, with
+/// p = ∂L/∂q̇ (L' is L plus ½|ṡ|², so p_s = ṡ = u and p does not depend on u).
+pub trait HeldStart: Partner + Sized {
+    /// The start state at `t` from (q, q̇) and the inputs `u`.
+    fn held_start<A: Actuated>(model: &A, t: f64, q: &[f64], v: &[f64], u: &[f64]) -> Result<State<Self>>;
+}
+
+/// (q, s = 0): the configuration part of a held start.
+fn held_configuration(q: &[f64], m: usize) -> Vec<f64> {
+    q.iter().copied().chain(std::iter::repeat_n(0.0, m)).collect()
+}
+
+impl HeldStart for Velocities {
+    fn held_start<A: Actuated>(_model: &A, t: f64, q: &[f64], v: &[f64], u: &[f64]) -> Result<State<Self>> {
+        Ok(State::new(t, held_configuration(q, u.len()), [v, u].concat()))
+    }
+}
+
+impl HeldStart for Momenta {
+    fn held_start<A: Actuated>(model: &A, t: f64, q: &[f64], v: &[f64], u: &[f64]) -> Result<State<Self>> {
+        let mut p = vec![0.0; q.len()];
+        EulerLagrange::new(model).momenta(t, q, v, &mut p)?;
+        Ok(State::with_momenta(
+            t,
+            held_configuration(q, u.len()),
+            [&p[..], u].concat(),
+        ))
+    }
+}
+
+/// The discrete-time linearisation (A_d, B_d) of one step of size `h` from (t, q, q̇) with the inputs u
+/// held over the step, for the integrator that `method` builds from the model with held inputs
+/// ([`HeldInputs`]): `|l| Rk4::new(EulerLagrange::new(l))`, or a variational integrator
+/// `|l| VariationalIntegrator::new(Midpoint::new(l))`. A_d and B_d are the exact Jacobian of the step
+/// (the integrator's tangent, [`TangentStepper`]) in the stepper's own state, (q, q̇) or (q, p), B_d
+/// from its ṡ (or p_s = u) columns. At a rest point the step's Jacobian is the method applied to the
+/// continuous linearisation (for RK4 A_d = Σ_{k≤4} (Ah)^k/k!; for the midpoint variational integrator
+/// the Cayley transform of h times the (q, p) linearisation). Errors: dimensions, non-finite input, a
+/// step h that is zero or not finite, and the step's own errors.
 pub fn linearize_step<'m, A, S, F>(
     model: &'m A,
     method: F,
@@ -150,8 +186,9 @@ pub fn linearize_step<'m, A, S, F>(
 ) -> Result<StepLinearization>
 where
     A: Actuated,
-    F: FnOnce(EulerLagrange<HeldInputs<'m, A>>) -> S,
-    S: TangentStepper<Partner = Velocities>,
+    F: FnOnce(HeldInputs<'m, A>) -> S,
+    S: TangentStepper,
+    S::Partner: HeldStart,
 {
     let (n, m) = (model.dof(), model.inputs());
     check_phase_point(n, t, q, v, "q̇")?;
@@ -160,14 +197,12 @@ where
     if !(h.is_finite() && h != 0.0) {
         return Err(noether_core::Error::InvalidStep { h }.into());
     }
-    let mut stepper = method(EulerLagrange::new(HeldInputs(model)));
-    let start_q: Vec<f64> = q.iter().copied().chain(std::iter::repeat_n(0.0, m)).collect();
-    let start_v: Vec<f64> = v.iter().chain(u).copied().collect();
-    let mut state = State::new(t, start_q, start_v);
+    let mut state = S::Partner::held_start(model, t, q, v, u)?;
+    let mut stepper = method(HeldInputs(model));
     let size = 2 * (n + m);
     let mut psi = DMatrix::zeros(size, size);
     stepper.step_tangent(&mut state, h, &mut psi)?;
-    // Rows and columns of (q, q̇) in (q, s, q̇, ṡ), and the columns of ṡ.
+    // Rows and columns of the model's state in (q, s, ·, ·), and the columns of the inputs.
     let x: Vec<usize> = (0..n).chain(n + m..2 * n + m).collect();
     let a = DMatrix::from_fn(2 * n, 2 * n, |i, j| psi[(x[i], x[j])]);
     let b = DMatrix::from_fn(2 * n, m, |i, j| psi[(x[i], 2 * n + m + j)]);

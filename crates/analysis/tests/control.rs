@@ -175,7 +175,15 @@ fn lqr_errors_are_typed() {
 fn rk4_step_linearization_is_rk4_on_the_linearization() {
     let cp = CartPole::default();
     let h = 0.05;
-    let step = linearize_step(&cp, Rk4::new, 0.0, (&[0.0, 0.0], &[0.0, 0.0]), &[0.0], h).unwrap();
+    let step = linearize_step(
+        &cp,
+        |l| Rk4::new(EulerLagrange::new(l)),
+        0.0,
+        (&[0.0, 0.0], &[0.0, 0.0]),
+        &[0.0],
+        h,
+    )
+    .unwrap();
     let lin = linearize(&cp, 0.0, &[0.0, 0.0], &[0.0, 0.0], &[0.0]).unwrap();
     let (mut a_d, mut b_d) = (DMatrix::identity(4, 4), DMatrix::zeros(4, 1));
     let mut power = DMatrix::identity(4, 4); // (Ah)^k / k!
@@ -256,7 +264,15 @@ fn sampled_lqr_tends_to_the_continuous_design() {
     let lin = linearize(&cp, 0.0, &[0.0, 0.0], &[0.0, 0.0], &[0.0]).unwrap();
     let continuous = lqr(&lin, &weights, &r).unwrap();
     let distance = |h: f64| {
-        let step = linearize_step(&cp, Rk4::new, 0.0, (&[0.0, 0.0], &[0.0, 0.0]), &[0.0], h).unwrap();
+        let step = linearize_step(
+            &cp,
+            |l| Rk4::new(EulerLagrange::new(l)),
+            0.0,
+            (&[0.0, 0.0], &[0.0, 0.0]),
+            &[0.0],
+            h,
+        )
+        .unwrap();
         let design = dlqr(&step, &(&weights * h), &(&r * h)).unwrap();
         assert!(design.closed_loop.iter().all(|l| l.norm() < 1.0));
         (&design.gain - &continuous.gain).amax()
@@ -383,4 +399,46 @@ fn closed_form_sleeping_top_threshold() {
             }
         }
     }
+}
+
+/// One step of the midpoint variational integrator of the cart-pole from the upright rest point, in
+/// its own coordinates (q, p), with the input held. At an equilibrium only the quadratic part of L
+/// matters, L₂ = ½q̇ᵀMq̇ − ½qᵀKq with M = [[M + m, ml], [ml, ml²]] and K = diag(0, −mgl), and for a
+/// quadratic L the midpoint discrete Lagrangian is the implicit midpoint rule on ż = Fz + Gu,
+/// F = [[0, M⁻¹], [−K, 0]], G = [0; (1, 0)] (p̄ = M(q₁ − q₀)/h and p₁ − p₀ = −hKq̄ + h(1, 0)u). So
+/// A_d = (I − hF/2)⁻¹(I + hF/2) and B_d = (I − hF/2)⁻¹ hG, exact to rounding (measured 4e-16).
+#[test]
+fn variational_step_linearization_is_the_cayley_transform() {
+    use noether_discrete::{Midpoint, VariationalIntegrator};
+    let cp = CartPole::default();
+    let h = 0.05;
+    let step = linearize_step(
+        &cp,
+        |l| VariationalIntegrator::new(Midpoint::new(l)),
+        0.0,
+        (&[0.0, 0.0], &[0.0, 0.0]),
+        &[0.0],
+        h,
+    )
+    .unwrap();
+    let (big, m, l, g) = (cp.cart, cp.bob, cp.l, cp.g);
+    let mass = DMatrix::from_row_slice(2, 2, &[big + m, m * l, m * l, m * l * l]);
+    let mass_inv = mass.try_inverse().unwrap();
+    let mut f = DMatrix::zeros(4, 4);
+    f.view_mut((0, 2), (2, 2)).copy_from(&mass_inv);
+    f[(3, 1)] = m * g * l; // −K
+    let gain = DMatrix::from_column_slice(4, 1, &[0.0, 0.0, 1.0, 0.0]);
+    let identity = DMatrix::<f64>::identity(4, 4);
+    let implicit = (&identity - &f * (0.5 * h)).try_inverse().unwrap();
+    let a_d = &implicit * (&identity + &f * (0.5 * h));
+    let b_d = &implicit * gain * h;
+    let (ea, eb) = (
+        (&step.a - &a_d).amax() / a_d.amax(),
+        (&step.b - &b_d).amax() / b_d.amax(),
+    );
+    println!("midpoint VI step of the cart-pole upright: |A_d − Cayley| {ea:e}, |B_d − closed form| {eb:e}");
+    assert!(
+        ea < 8.0 * f64::EPSILON && eb < 8.0 * f64::EPSILON,
+        "{ea:e} {eb:e}"
+    );
 }
