@@ -1,11 +1,24 @@
 //! Control: linearisation (A, B) and LQR against the textbooks' closed forms, and a closed loop.
 
 use nalgebra::{Complex, DMatrix};
-use noether_analysis::{dlqr, linearize, linearize_step, lqr, Error, Linearization, StepLinearization};
+use noether_analysis::{
+    dlqr, linearize, linearize_step, lqr, Error, HeldInputs, HeldStart, Linearization, StepLinearization,
+};
 use noether_core::control::{Actuated, ClosedLoop, LinearFeedback};
 use noether_core::prelude::*;
 use noether_core::system::LinearizedDynamics;
 use noether_testkit::control::CartPole;
+
+/// One step of size `h` of the integrator `method` builds, linearised at the cart-pole's upright rest
+/// point with the force held at zero.
+fn upright_step<'m, S, F>(cp: &'m CartPole, method: F, h: f64) -> StepLinearization
+where
+    F: FnOnce(HeldInputs<'m, CartPole>) -> S,
+    S: TangentStepper,
+    S::Partner: HeldStart,
+{
+    linearize_step(cp, method, 0.0, (&[0.0, 0.0], &[0.0, 0.0]), &[0.0], h).unwrap()
+}
 
 /// The cart-pole upright: A and B are the textbook matrices (`CartPole::upright_linearization`:
 /// ẍ = −(mg/M)θ + u/M, θ̈ = (M + m)gθ/(Ml) − u/(Ml)), exact to rounding, and the drift is zero. Off
@@ -175,15 +188,7 @@ fn lqr_errors_are_typed() {
 fn rk4_step_linearization_is_rk4_on_the_linearization() {
     let cp = CartPole::default();
     let h = 0.05;
-    let step = linearize_step(
-        &cp,
-        |l| Rk4::new(EulerLagrange::new(l)),
-        0.0,
-        (&[0.0, 0.0], &[0.0, 0.0]),
-        &[0.0],
-        h,
-    )
-    .unwrap();
+    let step = upright_step(&cp, |l| Rk4::new(EulerLagrange::new(l)), h);
     let lin = linearize(&cp, 0.0, &[0.0, 0.0], &[0.0, 0.0], &[0.0]).unwrap();
     let (mut a_d, mut b_d) = (DMatrix::identity(4, 4), DMatrix::zeros(4, 1));
     let mut power = DMatrix::identity(4, 4); // (Ah)^k / k!
@@ -264,15 +269,7 @@ fn sampled_lqr_tends_to_the_continuous_design() {
     let lin = linearize(&cp, 0.0, &[0.0, 0.0], &[0.0, 0.0], &[0.0]).unwrap();
     let continuous = lqr(&lin, &weights, &r).unwrap();
     let distance = |h: f64| {
-        let step = linearize_step(
-            &cp,
-            |l| Rk4::new(EulerLagrange::new(l)),
-            0.0,
-            (&[0.0, 0.0], &[0.0, 0.0]),
-            &[0.0],
-            h,
-        )
-        .unwrap();
+        let step = upright_step(&cp, |l| Rk4::new(EulerLagrange::new(l)), h);
         let design = dlqr(&step, &(&weights * h), &(&r * h)).unwrap();
         assert!(design.closed_loop.iter().all(|l| l.norm() < 1.0));
         (&design.gain - &continuous.gain).amax()
@@ -412,15 +409,7 @@ fn variational_step_linearization_is_the_cayley_transform() {
     use noether_discrete::{Midpoint, VariationalIntegrator};
     let cp = CartPole::default();
     let h = 0.05;
-    let step = linearize_step(
-        &cp,
-        |l| VariationalIntegrator::new(Midpoint::new(l)),
-        0.0,
-        (&[0.0, 0.0], &[0.0, 0.0]),
-        &[0.0],
-        h,
-    )
-    .unwrap();
+    let step = upright_step(&cp, |l| VariationalIntegrator::new(Midpoint::new(l)), h);
     let (big, m, l, g) = (cp.cart, cp.bob, cp.l, cp.g);
     let mass = DMatrix::from_row_slice(2, 2, &[big + m, m * l, m * l, m * l * l]);
     let mass_inv = mass.try_inverse().unwrap();
