@@ -151,6 +151,7 @@ examples! {
     kepler: "Kepler orbit e = 0.6: period, energy, angular momentum, Runge-Lenz after 100 orbits",
     double_pendulum: "double pendulum: energy conservation over a chaotic run",
     driven_pendulum: "driven damped pendulum (generalized force): resonance amplitude and phase vs the linear closed form, energy balance",
+    galerkin_orders: "Galerkin variational integrators of order 4 and 6 on Kepler: observed orders, angular momentum kept, no energy drift",
     cart_pole_lqr: "cart-pole balanced by LQR: textbook linearisation, closed-loop eigenvalues, cost x₀ᵀXx₀, a sampled design",
     swing_up: "cart-pole swung up by discrete optimal control (DMOC), caught by LQR: the double integrator's discrete optimum in closed form, order 2",
     equations_of_motion: "equations of motion derived on the graph and printed: double pendulum, heavy top, Hénon-Heiles as in the textbooks",

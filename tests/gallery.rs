@@ -296,6 +296,11 @@ fn closed_form_driven_pendulum() {
 }
 
 #[test]
+fn closed_form_galerkin_orders() {
+    assert_example_passes("galerkin_orders");
+}
+
+#[test]
 fn closed_form_cart_pole_lqr() {
     assert_example_passes("cart_pole_lqr");
 }
