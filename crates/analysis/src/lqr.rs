@@ -43,6 +43,18 @@ pub struct Lqr {
     pub closed_loop: Vec<Complex<f64>>,
 }
 
+impl Lqr {
+    /// The design of gain K and Riccati solution X, with the eigenvalues of A − BK.
+    fn new(a: &DMatrix<f64>, b: &DMatrix<f64>, gain: DMatrix<f64>, riccati: DMatrix<f64>) -> Self {
+        let closed_loop = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
+        Lqr {
+            gain,
+            riccati,
+            closed_loop,
+        }
+    }
+}
+
 /// Iteration cap of the sign function (it converges quadratically; 10–20 iterations are typical).
 const SIGN_ITERATIONS: usize = 100;
 /// Newton-Kleinman refinements after the sign function.
@@ -61,13 +73,7 @@ pub fn lqr(lin: &Linearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Result<Lq
         |x| check(a, &g, q, x),
         |x| kleinman_step(a, &g, q, x),
     )?;
-    let gain = &rinv_bt * &x;
-    let closed_loop: Vec<Complex<f64>> = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
-    Ok(Lqr {
-        gain,
-        riccati: x,
-        closed_loop,
-    })
+    Ok(Lqr::new(a, b, &rinv_bt * &x, x))
 }
 
 /// The first solution X₀ of a Riccati equation refined by `REFINEMENTS` Newton steps (`newton`), and
@@ -250,13 +256,7 @@ pub fn dlqr(lin: &StepLinearization, q: &DMatrix<f64>, r: &DMatrix<f64>) -> Resu
         |x| check_discrete(a, &g, q, x),
         |x| hewer_step(a, b, q, r, x),
     )?;
-    let gain = discrete_gain(a, b, r, &x)?;
-    let closed_loop: Vec<Complex<f64>> = (a - b * &gain).complex_eigenvalues().iter().copied().collect();
-    Ok(Lqr {
-        gain,
-        riccati: x,
-        closed_loop,
-    })
+    Ok(Lqr::new(a, b, discrete_gain(a, b, r, &x)?, x))
 }
 
 /// K = (R + BᵀXB)⁻¹ BᵀXA.

@@ -69,7 +69,7 @@
 //! ```
 
 use crate::lagrangian::{difference_quotient, midpoint, DiscreteLagrangian, Scratch};
-use crate::quadrature::{FromLagrangian, Midpoint, Trapezoidal};
+use crate::quadrature::{midpoint_forces, trapezoidal_forces, FromLagrangian, Midpoint, Trapezoidal};
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
 use noether_core::control::Actuated;
@@ -119,13 +119,10 @@ impl<L: Actuated> DiscreteActuated for Midpoint<L> {
         minus: &mut [D],
         plus: &mut [D],
     ) {
-        let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, D::from(h)));
         let model = self.continuous().lagrangian();
-        model.input_force(D::from(t0 + 0.5 * h), &mid, &v, u, minus);
-        for (m, p) in minus.iter_mut().zip(plus.iter_mut()) {
-            *m *= 0.5 * h;
-            *p = *m;
-        }
+        midpoint_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+            model.input_force(t, q, v, u, out)
+        });
     }
 
     fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
@@ -149,14 +146,10 @@ impl<L: Actuated> DiscreteActuated for Trapezoidal<L> {
         minus: &mut [D],
         plus: &mut [D],
     ) {
-        let v = difference_quotient(q0, q1, D::from(h));
         let model = self.continuous().lagrangian();
-        model.input_force(D::from(t0), q0, &v, u, minus);
-        model.input_force(D::from(t0 + h), q1, &v, u, plus);
-        minus
-            .iter_mut()
-            .chain(plus.iter_mut())
-            .for_each(|x| *x *= 0.5 * h);
+        trapezoidal_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+            model.input_force(t, q, v, u, out)
+        });
     }
 
     fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {

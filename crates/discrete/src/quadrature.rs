@@ -117,14 +117,10 @@ impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
         minus: &mut [D],
         plus: &mut [D],
     ) {
-        let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, D::from(h)));
-        self.el
-            .lagrangian()
-            .generalized_force(D::from(t0 + 0.5 * h), &mid, &v, minus);
-        for (m, p) in minus.iter_mut().zip(plus.iter_mut()) {
-            *m *= 0.5 * h;
-            *p = *m;
-        }
+        let l = self.el.lagrangian();
+        midpoint_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+            l.generalized_force(t, q, v, out)
+        });
     }
 }
 
@@ -189,13 +185,45 @@ impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
         minus: &mut [D],
         plus: &mut [D],
     ) {
-        let v = difference_quotient(q0, q1, D::from(h));
         let l = self.el.lagrangian();
-        l.generalized_force(D::from(t0), q0, &v, minus);
-        l.generalized_force(D::from(t0 + h), q1, &v, plus);
-        minus
-            .iter_mut()
-            .chain(plus.iter_mut())
-            .for_each(|x| *x *= 0.5 * h);
+        trapezoidal_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+            l.generalized_force(t, q, v, out)
+        });
     }
+}
+
+/// The midpoint rule's discrete forces of a force law F(t, q, q̇) written into its last argument (the
+/// model's generalized force, or its input force at given inputs):
+/// f⁻ = f⁺ = (h/2) F(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h).
+pub(crate) fn midpoint_forces<D: Scalar>(
+    t0: f64,
+    h: f64,
+    (q0, q1): (&[D], &[D]),
+    (minus, plus): (&mut [D], &mut [D]),
+    force: impl FnOnce(D, &[D], &[D], &mut [D]),
+) {
+    let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, D::from(h)));
+    force(D::from(t0 + 0.5 * h), &mid, &v, minus);
+    for (m, p) in minus.iter_mut().zip(plus.iter_mut()) {
+        *m *= 0.5 * h;
+        *p = *m;
+    }
+}
+
+/// The trapezoidal rule's discrete forces of a force law F(t, q, q̇) (see [`midpoint_forces`]):
+/// f⁻ = (h/2) F(t₀, q₀, v), f⁺ = (h/2) F(t₀ + h, q₁, v), v = (q₁ − q₀)/h.
+pub(crate) fn trapezoidal_forces<D: Scalar>(
+    t0: f64,
+    h: f64,
+    (q0, q1): (&[D], &[D]),
+    (minus, plus): (&mut [D], &mut [D]),
+    mut force: impl FnMut(D, &[D], &[D], &mut [D]),
+) {
+    let v = difference_quotient(q0, q1, D::from(h));
+    force(D::from(t0), q0, &v, minus);
+    force(D::from(t0 + h), q1, &v, plus);
+    minus
+        .iter_mut()
+        .chain(plus.iter_mut())
+        .for_each(|x| *x *= 0.5 * h);
 }
