@@ -115,9 +115,12 @@ impl<F: Fn(f64, &mut [f64])> Policy for OpenLoop<F> {
         self.inputs
     }
     fn control<D: Scalar>(&self, t: D, _q: &[D], _v: &[D], u: &mut [D]) {
-        let mut values = vec![0.0; self.inputs];
+        // On the stack for small models: this runs at every evaluation of a closed loop's force.
+        let mut values = Buf::<f64, 16>::filled(self.inputs, 0.0);
         (self.schedule)(t.re(), &mut values);
-        u.iter_mut().zip(values).for_each(|(ui, x)| *ui = D::from(x));
+        u.iter_mut()
+            .zip(values.iter())
+            .for_each(|(ui, x)| *ui = D::from(*x));
     }
 }
 
