@@ -17,7 +17,11 @@
 //!    through the forced midpoint variational integrator (its own Newton, step by step), reaches the
 //!    top at rest.
 //! 3. **Second order.** The swing-up's optimal cost at N = 50, 100, 200 converges at order 2.
-//! 4. **Caught by LQR.** The same schedule fed to the continuous cart-pole (DOP853) ends O(h²) off the
+//! 4. **A bounded force.** With |u| ≤ 12 (the unbounded optimum peaks at 15.8) the problem has
+//!    inequality constraints: SQP with Clarabel's quadratic subproblems, then Newton on the active set.
+//!    The optimum holds the force at the bound on some steps, costs more, and its replay reaches the top
+//!    at rest as in check 2.
+//! 5. **Caught by LQR.** The same schedule fed to the continuous cart-pole (DOP853) ends O(h²) off the
 //!    top; the LQR gain of the upright linearisation (Q = diag(10, 10, 1, 1), R = 0.1) then catches it
 //!    and brings it to rest upright.
 //!
@@ -63,9 +67,15 @@ fn double_integrator(steps: usize) -> Result<(f64, f64), BoxError> {
     Ok(((path.cost - cost).abs() / cost, inputs))
 }
 
-/// The swing-up with N steps.
-fn swing_up(steps: usize) -> Result<OptimalPath, BoxError> {
-    let problem = OptimalControl::new(Midpoint::new(CartPole::default()), Effort::new(vec![1.0])?);
+/// The largest force of the bounded swing-up (check 4).
+const BOUND: f64 = 12.0;
+
+/// The swing-up with N steps, the force bounded by |u| ≤ `bound` if given.
+fn swing_up(steps: usize, bound: Option<f64>) -> Result<OptimalPath, BoxError> {
+    let mut problem = OptimalControl::new(Midpoint::new(CartPole::default()), Effort::new(vec![1.0])?);
+    if let Some(b) = bound {
+        problem = problem.input_bounds(&[-b], &[b])?;
+    }
     Ok(problem.solve(
         0.0,
         (&[0.0, PI], &[0.0, 0.0]),
@@ -104,7 +114,7 @@ fn replay(path: &OptimalPath) -> Result<(f64, f64), BoxError> {
 /// Tolerances: the double integrator's discrete closed form is met to rounding (measured ≤ 1.3e-15
 /// relative for the cost and ≤ 6e-16 for the inputs at N = 10, 100, 1000, tolerance 1e-14). The replay
 /// is limited by the two Newton tolerances (measured 8e-15 for the nodes, 3e-14 for the end velocity;
-/// tolerances 1e-13 and 1e-12). The order's remainder is the next term of the error (measured 2.0038;
+/// tolerances 1e-13 and 1e-12; the bounded swing-up's replay likewise, measured 2e-14 and 8e-14). The order's remainder is the next term of the error (measured 2.0038;
 /// tolerance 0.03). The catch: the continuous cart-pole misses the top by 0.12 under the discrete
 /// schedule (the O(h²) of the midpoint rule on a violent swing), and the LQR loop, slowest decay rate
 /// σ = −2.0, brings that to e^{8σ}·0.12 = 1.4e-8 times the transient growth of its non-normal
@@ -129,7 +139,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         ));
     }
 
-    let path = swing_up(100)?;
+    let path = swing_up(100, None)?;
     let peak = path.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
     report.note(format!(
         "swing-up (N = 100, T = {T_SWING}): ∫u²dt = {:.4}, largest |u| = {peak:.2}, {} Newton iterations",
@@ -150,7 +160,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         0.0,
         1e-12,
     ));
-    let costs = [swing_up(50)?.cost, path.cost, swing_up(200)?.cost];
+    let costs = [swing_up(50, None)?.cost, path.cost, swing_up(200, None)?.cost];
     let order = ((costs[0] - costs[1]) / (costs[1] - costs[2])).log2();
     report.checks.push(Check::abs(
         NAME,
@@ -158,6 +168,37 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         order,
         2.0,
         0.03,
+    ));
+    let bounded = swing_up(100, Some(BOUND))?;
+    let held = bounded.u.iter().filter(|u| u[0].abs() == BOUND).count();
+    report.note(format!(
+        "bounded swing-up (|u| ≤ {BOUND}): ∫u²dt = {:.4} against {:.4} unbounded, {held} of 100 steps at the \
+         bound, {} SQP + {} Newton iterations",
+        bounded.cost, path.cost, bounded.sqp_iterations, bounded.newton.iterations
+    ));
+    // The force reaches the bound and never passes it: its largest magnitude is the bound exactly
+    // (the polishing solve holds the active inputs at it).
+    report.checks.push(Check::abs(
+        NAME,
+        "bounded swing-up: largest |u| is the bound",
+        bounded.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max),
+        BOUND,
+        0.0,
+    ));
+    let (nodes, v_end) = replay(&bounded)?;
+    report.checks.push(Check::abs(
+        NAME,
+        "bounded swing-up replayed: nodes",
+        nodes,
+        0.0,
+        1e-13,
+    ));
+    report.checks.push(Check::abs(
+        NAME,
+        "bounded swing-up replayed: at rest at the top",
+        v_end,
+        0.0,
+        1e-12,
     ));
 
     // The continuous cart-pole under the same schedule, then under LQR about the top.
@@ -216,12 +257,19 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         .enumerate()
         .flat_map(|(k, u)| [(path.t[k], u[0] / 10.0), (path.t[k + 1], u[0] / 10.0)])
         .collect();
+    let capped: Vec<(f64, f64)> = bounded
+        .u
+        .iter()
+        .enumerate()
+        .flat_map(|(k, u)| [(bounded.t[k], u[0] / 10.0), (bounded.t[k + 1], u[0] / 10.0)])
+        .collect();
     let fig = Figure::new("Cart-pole: swing-up by DMOC (T = 2, N = 100), then held by LQR")
         .x_label("t")
         .y_label("θ, x, u/10")
         .series("pole angle θ (from upright)", theta)
         .series("cart position x", cart)
-        .series("force u/10 (DMOC, piecewise constant)", force);
+        .series("force u/10 (DMOC, piecewise constant)", force)
+        .series("force u/10 with |u| ≤ 12 (DMOC with bounds)", capped);
     report.save(opts, &fig, "swing_up.svg")?;
     Ok(report)
 }

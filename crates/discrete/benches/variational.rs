@@ -4,8 +4,10 @@
 //! the analytic gradient and Hessian of V (a fresh Jacobian every step); and one midpoint step of a quartic chain of N masses (banded Jacobian)
 //! for N = 10², 10³, 10⁴, 10⁵ (cost linear in N); and whole optimal-control solves by discrete mechanics
 //! (`optimal_control`): the cart-pole swung up in T = 2 with N = 100 steps from the straight line (12
-//! Newton iterations on the banded KKT system) and the double integrator's minimum-effort transfer with
-//! N = 1000 (3 iterations).
+//! Newton iterations on the banded KKT system), the same swing-up with the force bounded by |u| ≤ 12
+//! (SQP with Clarabel's subproblems, then Newton on the active set) and in T = 2.5 where only the SQP
+//! solve converges (infinite bounds), and the double integrator's minimum-effort transfer with
+//! N = 1000 (3 iterations) and with |u| ≤ 5 (T = 1).
 //!
 //! Run: `cargo bench -p noether-discrete --bench variational`
 
@@ -203,7 +205,41 @@ fn optimal_control(c: &mut Criterion) {
                 .unwrap()
         })
     });
+    for (name, t_end, bound) in [
+        ("cart_pole_swing_up_N100_bounded", 2.0, 12.0),
+        ("cart_pole_swing_up_T2.5_N100_sqp", 2.5, f64::INFINITY),
+    ] {
+        let bounded = OptimalControl::new(
+            Midpoint::new(CartPole::default()),
+            Effort::new(vec![1.0]).unwrap(),
+        )
+        .input_bounds(&[-bound], &[bound])
+        .unwrap();
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                bounded
+                    .solve(
+                        0.0,
+                        (&[0.0, PI], &[0.0, 0.0]),
+                        t_end,
+                        (&[0.0, 0.0], &[0.0, 0.0]),
+                        black_box(100),
+                    )
+                    .unwrap()
+            })
+        });
+    }
     let transfer = OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap());
+    let saturated = OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap())
+        .input_bounds(&[-5.0], &[5.0])
+        .unwrap();
+    group.bench_function("double_integrator_N1000_bounded", |b| {
+        b.iter(|| {
+            saturated
+                .solve(0.0, (&[0.0], &[0.0]), 1.0, (&[1.0], &[0.0]), black_box(1000))
+                .unwrap()
+        })
+    });
     group.bench_function("double_integrator_N1000", |b| {
         b.iter(|| {
             transfer

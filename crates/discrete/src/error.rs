@@ -20,6 +20,7 @@
 //! ```
 
 use crate::boundary::{ConjugatePoint, NotMinimum};
+use crate::optimal_control::NoOptimalPath;
 use crate::primary::OffPrimaryConstraint;
 
 /// Result alias with this crate's [`Error`].
@@ -40,6 +41,9 @@ pub enum Error {
     /// primary constraint.
     #[error(transparent)]
     OffPrimaryConstraint(#[from] OffPrimaryConstraint),
+    /// A bounded optimal-control problem not solved (infeasible, no descent, iteration limit).
+    #[error(transparent)]
+    NoOptimalPath(#[from] NoOptimalPath),
     /// The optimiser (argmin) of [`BoundaryValue::minimize`](crate::BoundaryValue::minimize) failed.
     #[error("optimiser: {reason}")]
     Optimizer {
@@ -65,4 +69,4 @@ macro_rules! through_core {
     };
 }
 
-through_core!(ConjugatePoint, NotMinimum, OffPrimaryConstraint);
+through_core!(ConjugatePoint, NotMinimum, OffPrimaryConstraint, NoOptimalPath);

@@ -3,6 +3,7 @@
 
 mod bad_input;
 mod boundary;
+mod bounded_control;
 mod conserves;
 mod degenerate;
 mod forced;

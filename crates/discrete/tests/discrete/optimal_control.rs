@@ -88,7 +88,7 @@ fn cart_transfer(steps: usize) -> OptimalPath {
 /// variational integrator of the cart-pole (an independent code path: its own Newton per step from
 /// the start state) and returns the largest distance of its nodes from the path's and its velocity
 /// at the end.
-fn replay(path: &OptimalPath, v0: &[f64]) -> (f64, f64) {
+pub(crate) fn replay(path: &OptimalPath, v0: &[f64]) -> (f64, f64) {
     let steps = path.u.len();
     let h = path.t[1] - path.t[0];
     let inputs: Vec<f64> = path.u.iter().map(|u| u[0]).collect();

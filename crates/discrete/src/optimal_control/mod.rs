@@ -35,6 +35,14 @@
 //! (half-bandwidth 4n + m − 1 for n coordinates and m inputs) and factored by core's banded LU with
 //! partial pivoting: O(N (4n + m)³) per iteration, as the boundary-value solver.
 //!
+//! Bounds lower ≤ u_k ≤ upper ([`OptimalControl::input_bounds`]) turn the KKT equations into
+//! inequalities: the problem is then solved by SQP, each quadratic subproblem by Clarabel's
+//! interior-point method on the same sparse structure, globalised by an ℓ₁ merit line search and
+//! finished by Newton on the active set to the same rounding floor (the `sqp` module's docs say how
+//! and why). SQP also solves unbounded problems from guesses where Newton alone diverges (infinite
+//! bounds). The double integrator with |u| ≤ U has a closed form as well (u saturated near both
+//! ends, a ramp between), met at second order (`tests/discrete/bounded_control.rs`).
+//!
 //! With C = uᵀRu the problem is the discrete minimum-effort problem. For the double integrator q̈ = u
 //! the midpoint rule is exact for piecewise-constant inputs, and the discrete optimum from rest at 0 to
 //! rest at 1 in time T has the closed form u_k = u(t_k + h/2)/(1 − (h/T)²), J_d = 12/(T(T² − h²)),
@@ -68,15 +76,19 @@
 //! # Ok::<(), noether_core::Error>(())
 //! ```
 
-use crate::lagrangian::{difference_quotient, midpoint, DiscreteLagrangian, Scratch};
+mod kkt;
+mod sqp;
+
+pub use sqp::{Failure, NoOptimalPath};
+
+use crate::lagrangian::DiscreteLagrangian;
 use crate::quadrature::{midpoint_forces, trapezoidal_forces, FromLagrangian, Midpoint, Trapezoidal};
-use nalgebra::{DMatrix, DVector};
-use noether_core::ad::{self, Block, Field};
+use kkt::Kkt;
+use nalgebra::DVector;
 use noether_core::control::Actuated;
 use noether_core::error::{check_finite, check_len};
-use noether_core::linalg::{Banded, BandedLu};
-use noether_core::{Error, Newton, NewtonInfo, NewtonSystem, Result, Scalar};
-use num_dual::Dual;
+use noether_core::{Error, Newton, NewtonInfo, Result, Scalar};
+use sqp::InputBounds;
 
 /// A discrete Lagrangian with inputs: the discrete forces f⁻, f⁺ of inputs u held constant over a step,
 /// by the same quadrature as L_d, and the continuous Legendre transform at the ends of a path.
@@ -220,8 +232,10 @@ pub struct OptimalPath {
     pub multipliers: Vec<DVector<f64>>,
     /// The discrete cost J_d.
     pub cost: f64,
-    /// Statistics of the Newton solve.
+    /// Statistics of the Newton solve (with input bounds: of the polishing solve on the active set).
     pub newton: NewtonInfo,
+    /// SQP iterations before the polishing solve (0 without input bounds).
+    pub sqp_iterations: usize,
 }
 
 /// Discrete mechanics and optimal control: the path and piecewise-constant inputs that minimise a
@@ -231,6 +245,7 @@ pub struct OptimalControl<M, C> {
     model: M,
     cost: C,
     newton: Newton,
+    bounds: Option<InputBounds>,
 }
 
 impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
@@ -245,6 +260,7 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
                 .and_then(|n| n.max_iterations(100))
                 .map(|n| n.reuse_jacobian(false))
                 .expect("valid settings"),
+            bounds: None,
         }
     }
 
@@ -255,6 +271,45 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
     pub fn newton(mut self, newton: Newton) -> Self {
         self.newton = newton;
         self
+    }
+
+    /// Bounds lower ≤ u_k ≤ upper on the inputs, componentwise and the same at every step (±∞ for an
+    /// unbounded side). The problem is then solved by SQP with Clarabel's interior-point method for the
+    /// quadratic subproblems, an ℓ₁ merit line search, and a polishing Newton solve on the active set
+    /// (see [`NoOptimalPath`] for its failures); the guess's inputs are clipped into the bounds. SQP
+    /// is also the globalised solver of an unbounded problem whose Newton solve diverges: give infinite
+    /// bounds. Wrong lengths are [`Error::Dimension`]; a NaN, a lower bound above its upper one, or
+    /// an infinite bound of the wrong sign is [`Error::InvalidParameter`].
+    pub fn input_bounds(mut self, lower: &[f64], upper: &[f64]) -> Result<Self> {
+        let m = self.model.inputs();
+        check_len("lower input bounds", lower, m)?;
+        check_len("upper input bounds", upper, m)?;
+        for (&lo, &hi) in lower.iter().zip(upper) {
+            for (name, value, ok) in [
+                ("lower input bound", lo, lo < f64::INFINITY),
+                ("upper input bound", hi, hi > f64::NEG_INFINITY),
+            ] {
+                if value.is_nan() || !ok {
+                    return Err(Error::InvalidParameter {
+                        name,
+                        value,
+                        reason: "a number, −∞ allowed below and +∞ above",
+                    });
+                }
+            }
+            if lo > hi {
+                return Err(Error::InvalidParameter {
+                    name: "lower input bound",
+                    value: lo,
+                    reason: "at most the upper bound",
+                });
+            }
+        }
+        self.bounds = Some(InputBounds {
+            lower: lower.to_vec(),
+            upper: upper.to_vec(),
+        });
+        Ok(self)
     }
 
     /// The optimal path from (q, q̇) = `start` at `t0` to `end` at `t1` in `steps` steps, from the
@@ -349,276 +404,17 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
         }
         let mut kkt = Kkt::new(self, (t0, t1), (start, end), steps)?;
         let mut x = kkt.initial_unknowns(nodes, inputs);
-        let info = self.newton.solve(&mut kkt, &mut x)?;
-        Ok(kkt.path(&x, info))
-    }
-}
-
-/// The term φ_k of one step as an AD field of its window (q_k, q_{k+1}, u_k, λ_k, λ_{k+1}) (x block).
-struct Stage<'a, M, C> {
-    model: &'a M,
-    cost: &'a C,
-    n: usize,
-    m: usize,
-    t0: f64,
-    h: f64,
-}
-
-impl<M: DiscreteActuated, C: RunningCost> Field for Stage<'_, M, C> {
-    fn eval<D: Scalar>(&self, _t: D, w: &[D], _y: &[D]) -> D {
-        let (n, h) = (self.n, self.h);
-        let (qa, rest) = w.split_at(n);
-        let (qb, rest) = rest.split_at(n);
-        let (u, rest) = rest.split_at(self.m);
-        let (la, lb) = rest.split_at(n);
-        let (mid, v) = (midpoint(qa, qb), difference_quotient(qa, qb, D::from(h)));
-        let running = self.cost.cost(D::from(self.t0 + 0.5 * h), &mid, &v, u) * h;
-        // λ_k·D₁L_d + λ_{k+1}·D₂L_d: the derivative of L_d along (λ_k, λ_{k+1}).
-        let xa = Scratch::<Dual<D, f64>>::new(n, |i| Dual::new(qa[i], la[i]));
-        let xb = Scratch::<Dual<D, f64>>::new(n, |i| Dual::new(qb[i], lb[i]));
-        let along = self
-            .model
-            .discrete_lagrangian(self.t0, Dual::from_re(D::from(h)), &xa, &xb)
-            .eps;
-        let (mut fm, mut fp) = (Scratch::filled(n, D::zero()), Scratch::filled(n, D::zero()));
-        self.model
-            .discrete_input_force(self.t0, h, qa, qb, u, &mut fm, &mut fp);
-        if self.model.has_discrete_force() {
-            let (mut gm, mut gp) = (Scratch::filled(n, D::zero()), Scratch::filled(n, D::zero()));
-            self.model.discrete_force(self.t0, h, qa, qb, &mut gm, &mut gp);
-            fm.iter_mut().zip(gm.iter()).for_each(|(f, g)| *f += *g);
-            fp.iter_mut().zip(gp.iter()).for_each(|(f, g)| *f += *g);
-        }
-        let work = (0..n).fold(D::zero(), |s, i| s + la[i] * fm[i] + lb[i] * fp[i]);
-        running + along + work
-    }
-}
-
-/// The KKT system ∇𝓛 = 0 of one problem: the unknowns node by node, (q_k if interior, λ_k, u_k if
-/// k < N), and the scratch of one step's window.
-struct Kkt<'a, M, C> {
-    problem: &'a OptimalControl<M, C>,
-    n: usize,
-    m: usize,
-    steps: usize,
-    t0: f64,
-    h: f64,
-    ends: [Vec<f64>; 2],
-    momenta: [Vec<f64>; 2],
-    /// Index of node k's first unknown.
-    offsets: Vec<usize>,
-    dim: usize,
-    window: Vec<f64>,
-    grad: Vec<f64>,
-    hess: DMatrix<f64>,
-    lu: Option<BandedLu>,
-}
-
-/// What the KKT matrix is called in its errors.
-const KKT_MATRIX: &str = "KKT matrix of the optimal-control problem";
-
-impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
-    fn new(
-        problem: &'a OptimalControl<M, C>,
-        (t0, t1): (f64, f64),
-        ((qa, va), (qb, vb)): (Endpoint<'_>, Endpoint<'_>),
-        steps: usize,
-    ) -> Result<Self> {
-        let (n, m) = (problem.model.dof(), problem.model.inputs());
-        let (mut pa, mut pb) = (vec![0.0; n], vec![0.0; n]);
-        problem.model.momenta(t0, qa, va, &mut pa)?;
-        problem.model.momenta(t1, qb, vb, &mut pb)?;
-        let mut offsets = Vec::with_capacity(steps + 1);
-        let mut dim = 0;
-        for k in 0..=steps {
-            offsets.push(dim);
-            dim += n + if k > 0 && k < steps { n } else { 0 } + if k < steps { m } else { 0 };
-        }
-        let width = 4 * n + m;
-        Ok(Kkt {
-            problem,
-            n,
-            m,
-            steps,
-            t0,
-            h: (t1 - t0) / steps as f64,
-            ends: [qa.to_vec(), qb.to_vec()],
-            momenta: [pa, pb],
-            offsets,
-            dim,
-            window: vec![0.0; width],
-            grad: vec![0.0; width],
-            hess: DMatrix::zeros(width, width),
-            lu: None,
-        })
-    }
-
-    fn interior(&self, k: usize) -> bool {
-        k > 0 && k < self.steps
-    }
-
-    /// Global index of q_k (interior nodes only).
-    fn q_index(&self, k: usize) -> Option<usize> {
-        self.interior(k).then(|| self.offsets[k])
-    }
-
-    fn lambda_index(&self, k: usize) -> usize {
-        self.offsets[k] + if self.interior(k) { self.n } else { 0 }
-    }
-
-    fn u_index(&self, k: usize) -> usize {
-        self.lambda_index(k) + self.n
-    }
-
-    /// The global index of entry `i` of step k's window (`None` for the fixed ends q₀, q_N).
-    fn global(&self, k: usize, i: usize) -> Option<usize> {
-        let (n, m) = (self.n, self.m);
-        match i {
-            i if i < n => self.q_index(k).map(|j| j + i),
-            i if i < 2 * n => self.q_index(k + 1).map(|j| j + i - n),
-            i if i < 2 * n + m => Some(self.u_index(k) + i - 2 * n),
-            i if i < 3 * n + m => Some(self.lambda_index(k) + i - 2 * n - m),
-            i => Some(self.lambda_index(k + 1) + i - 3 * n - m),
-        }
-    }
-
-    /// q_k at the unknowns `x`.
-    fn q<'x>(&'x self, x: &'x [f64], k: usize) -> &'x [f64] {
-        match self.q_index(k) {
-            Some(j) => &x[j..j + self.n],
-            None if k == 0 => &self.ends[0],
-            None => &self.ends[1],
-        }
-    }
-
-    /// Step k's window at the unknowns `x` into `self.window`.
-    fn fill_window(&mut self, x: &[f64], k: usize) {
-        let (n, m) = (self.n, self.m);
-        let mut w = std::mem::take(&mut self.window);
-        w[..n].copy_from_slice(self.q(x, k));
-        w[n..2 * n].copy_from_slice(self.q(x, k + 1));
-        let (u, la, lb) = (self.u_index(k), self.lambda_index(k), self.lambda_index(k + 1));
-        w[2 * n..2 * n + m].copy_from_slice(&x[u..u + m]);
-        w[2 * n + m..3 * n + m].copy_from_slice(&x[la..la + n]);
-        w[3 * n + m..].copy_from_slice(&x[lb..lb + n]);
-        self.window = w;
-    }
-
-    fn stage(&self, k: usize) -> Stage<'a, M, C> {
-        Stage {
-            model: &self.problem.model,
-            cost: &self.problem.cost,
-            n: self.n,
-            m: self.m,
-            t0: self.t0 + k as f64 * self.h,
-            h: self.h,
-        }
-    }
-
-    /// The unknowns of the guess: interior nodes, inputs, zero multipliers.
-    fn initial_unknowns(&self, nodes: &[Vec<f64>], inputs: &[Vec<f64>]) -> Vec<f64> {
-        let mut x = vec![0.0; self.dim];
-        for k in 0..=self.steps {
-            if let Some(j) = self.q_index(k) {
-                x[j..j + self.n].copy_from_slice(&nodes[k]);
-            }
-            if k < self.steps {
-                let j = self.u_index(k);
-                x[j..j + self.m].copy_from_slice(&inputs[k]);
+        let Some(bounds) = &self.bounds else {
+            let info = self.newton.solve(&mut kkt, &mut x)?;
+            return Ok(kkt.path(&x, info, 0));
+        };
+        for k in 0..steps {
+            let j = kkt.u_index(k);
+            for (i, u) in x[j..j + m].iter_mut().enumerate() {
+                *u = u.clamp(bounds.lower[i], bounds.upper[i]);
             }
         }
-        x
-    }
-
-    fn path(&self, x: &[f64], newton: NewtonInfo) -> OptimalPath {
-        let (n, m) = (self.n, self.m);
-        let u: Vec<_> = (0..self.steps)
-            .map(|k| DVector::from_column_slice(&x[self.u_index(k)..self.u_index(k) + m]))
-            .collect();
-        let cost = (0..self.steps)
-            .map(|k| {
-                let (qa, qb) = (self.q(x, k), self.q(x, k + 1));
-                let (mid, v) = (midpoint(qa, qb), difference_quotient(qa, qb, self.h));
-                let t = self.t0 + (k as f64 + 0.5) * self.h;
-                self.problem.cost.cost(t, &mid, &v, u[k].as_slice()) * self.h
-            })
-            .sum();
-        OptimalPath {
-            t: (0..=self.steps).map(|k| self.t0 + k as f64 * self.h).collect(),
-            q: (0..=self.steps)
-                .map(|k| DVector::from_column_slice(self.q(x, k)))
-                .collect(),
-            u,
-            multipliers: (0..=self.steps)
-                .map(|k| DVector::from_column_slice(&x[self.lambda_index(k)..self.lambda_index(k) + n]))
-                .collect(),
-            cost,
-            newton,
-        }
-    }
-}
-
-impl<M: DiscreteActuated, C: RunningCost> NewtonSystem for Kkt<'_, M, C> {
-    fn dim(&self) -> usize {
-        self.dim
-    }
-
-    /// ∇𝓛: the step terms' gradients, and ±p at λ₀ and λ_N.
-    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
-        r.iter_mut().for_each(|ri| *ri = 0.0);
-        for k in 0..self.steps {
-            self.fill_window(x, k);
-            let stage = self.stage(k);
-            ad::gradient(&stage, 0.0, &self.window, &[], Block::X, &mut self.grad);
-            for (i, g) in self.grad.iter().enumerate() {
-                if let Some(j) = self.global(k, i) {
-                    r[j] += g;
-                }
-            }
-        }
-        let (l0, ln) = (self.lambda_index(0), self.lambda_index(self.steps));
-        for i in 0..self.n {
-            r[l0 + i] += self.momenta[0][i];
-            r[ln + i] -= self.momenta[1][i];
-        }
-        // A NaN or infinite entry is core Newton's to report (the model's non-finite result).
-        Ok(())
-    }
-
-    /// The KKT matrix ∇²𝓛 from the step terms' Hessians, banded, and its LU.
-    fn factor_jacobian(&mut self, x: &[f64]) -> Result<()> {
-        self.lu = None;
-        let bw = (4 * self.n + self.m - 1).min(self.dim.saturating_sub(1));
-        let mut kkt = Banded::zeros(self.dim, bw, bw);
-        for k in 0..self.steps {
-            self.fill_window(x, k);
-            let stage = self.stage(k);
-            ad::hessian(&stage, 0.0, &self.window, &[], Block::X, Block::X, &mut self.hess);
-            for i in 0..self.window.len() {
-                let Some(gi) = self.global(k, i) else { continue };
-                for j in 0..self.window.len() {
-                    if let Some(gj) = self.global(k, j) {
-                        kkt.add(gi, gj, self.hess[(i, j)]);
-                    }
-                }
-            }
-        }
-        self.lu = Some(kkt.factor().map_err(|e| match e {
-            noether_core::linalg::FactorError::NonFinite => Error::NonFiniteResult {
-                what: KKT_MATRIX,
-                t: f64::NAN,
-                component: None,
-            },
-            e => e.in_matrix(KKT_MATRIX),
-        })?);
-        Ok(())
-    }
-
-    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let lu = self.lu.as_ref().ok_or(Error::Unsupported(
-            "an optimal-control KKT solve before its factorisation",
-        ))?;
-        lu.solve(rhs);
-        Ok(())
+        let (info, iterations) = sqp::solve(&mut kkt, &mut x, bounds, &self.newton)?;
+        Ok(kkt.path(&x, info, iterations))
     }
 }
