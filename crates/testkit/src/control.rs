@@ -1,4 +1,4 @@
-//! Actuated models: the cart-pole.
+//! Actuated models: the cart-pole, the double integrator, the pendubot.
 
 use noether_core::control::Actuated;
 use noether_core::{Lagrangian, Scalar};
@@ -92,5 +92,31 @@ impl Actuated for DoubleIntegrator {
     }
     fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
         out[0] = u[0];
+    }
+}
+
+/// The pendubot: the double pendulum of [`DoublePendulum`](crate::systems::DoublePendulum) (absolute
+/// angles θ1, θ2 from the downward vertical) with a motor at the shoulder only, a torque u between
+/// the base and the upper rod: its virtual work u δθ1 gives Q_u = (u, 0). Underactuated: the lower
+/// rod moves only through the coupling.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Pendubot(pub crate::systems::DoublePendulum);
+
+impl Lagrangian for Pendubot {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, t: D, q: &[D], v: &[D]) -> D {
+        self.0.lagrangian(t, q, v)
+    }
+}
+
+impl Actuated for Pendubot {
+    fn inputs(&self) -> usize {
+        1
+    }
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
+        out[0] = u[0];
+        out[1] = D::zero();
     }
 }

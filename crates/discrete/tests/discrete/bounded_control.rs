@@ -1,14 +1,15 @@
 //! Optimal control with bounded inputs (SQP with Clarabel's subproblems, polished by Newton on the
 //! active set): the double integrator's saturated minimum-effort transfer against its closed form, an
 //! infeasible bound refused with its data, the cart-pole swing-up with a bounded force replayed
-//! through the forced variational integrator, the globalisation of a swing-up where Newton alone
+//! through the forced variational integrator, the pendubot's (a double pendulum with a shoulder motor)
+//! likewise, the globalisation of a swing-up where Newton alone
 //! diverges, and bad bounds.
 
-use crate::optimal_control::replay;
+use crate::optimal_control::{replay, replay_of};
 use noether_core::Error;
 use noether_discrete::optimal_control::{Effort, Failure, NoOptimalPath, OptimalControl, OptimalPath};
 use noether_discrete::Midpoint;
-use noether_testkit::control::{CartPole, DoubleIntegrator};
+use noether_testkit::control::{CartPole, DoubleIntegrator, Pendubot};
 use std::f64::consts::PI;
 
 /// q̈ = u from rest at 0 to rest at 1 in T = 1 with |u| ≤ `bound`, minimum ∫u² dt, N steps.
@@ -231,4 +232,42 @@ fn bad_bounds_are_refused() {
             other => panic!("({lo}, {hi}): {other:?}"),
         }
     }
+}
+
+/// The double pendulum swung up by a bounded shoulder torque (the pendubot, underactuated: the
+/// lower rod follows through the coupling only) from hanging at rest to upright at rest in T = 3,
+/// N = 100, |u| ≤ 20 (the unbounded optimum needs 40.8): SQP from the straight line between the two
+/// rests (measured 17 SQP + 5 Newton iterations, cost 490.49 against 441.90 unbounded), the torque at
+/// its bound on some steps and never beyond, and the replay through the forced variational
+/// integrator upright at rest: measured nodes within 4.1e-13 and end velocity 2.3e-12, ten times the
+/// cart-pole's because the replay is an initial-value run along a motion that ends on the unstable
+/// upright equilibrium of a chaotic system, which amplifies the replay's per-step Newton residual
+/// (1e-12) and rounding; bounds 1e-12 and 1e-11.
+#[test]
+fn pendubot_swing_up_with_a_bounded_torque() {
+    let bound = 20.0;
+    let path = OptimalControl::new(
+        Midpoint::new(Pendubot::default()),
+        Effort::new(vec![1.0]).unwrap(),
+    )
+    .input_bounds(&[-bound], &[bound])
+    .unwrap()
+    .solve(
+        0.0,
+        (&[0.0, 0.0], &[0.0, 0.0]),
+        3.0,
+        (&[PI, PI], &[0.0, 0.0]),
+        100,
+    )
+    .unwrap();
+    let peak = path.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
+    let (worst, v_end) = replay_of(Pendubot::default(), &path, &[0.0, 0.0]);
+    println!(
+        "pendubot: cost {:.4}, {} SQP + {} Newton iterations, largest |u| {peak}; replay within \
+         {worst:.1e}, end velocity {v_end:.1e}",
+        path.cost, path.sqp_iterations, path.newton.iterations
+    );
+    assert_eq!(peak, bound);
+    assert!(worst < 1e-12 && v_end < 1e-11, "{worst:e} {v_end:e}");
+    assert_eq!(path.q[100].as_slice(), &[PI, PI]);
 }

@@ -3,7 +3,7 @@
 //! cart-pole's cart moved with the pole hanging) replayed through the forced variational integrator
 //! and converging at second order; bad input.
 
-use noether_core::control::{ClosedLoop, OpenLoop};
+use noether_core::control::{Actuated, ClosedLoop, OpenLoop};
 use noether_core::{Error, Stepper};
 use noether_discrete::optimal_control::{Effort, OptimalControl, OptimalPath};
 use noether_discrete::{DiscreteActuated, Midpoint, Trapezoidal, VariationalIntegrator};
@@ -89,6 +89,11 @@ fn cart_transfer(steps: usize) -> OptimalPath {
 /// the start state) and returns the largest distance of its nodes from the path's and its velocity
 /// at the end.
 pub(crate) fn replay(path: &OptimalPath, v0: &[f64]) -> (f64, f64) {
+    replay_of(CartPole::default(), path, v0)
+}
+
+/// [`replay`] for any actuated model with one input.
+pub(crate) fn replay_of<L: Actuated>(actuated: L, path: &OptimalPath, v0: &[f64]) -> (f64, f64) {
     let steps = path.u.len();
     let h = path.t[1] - path.t[0];
     let inputs: Vec<f64> = path.u.iter().map(|u| u[0]).collect();
@@ -96,7 +101,7 @@ pub(crate) fn replay(path: &OptimalPath, v0: &[f64]) -> (f64, f64) {
     let schedule = OpenLoop::new(1, move |t: f64, u: &mut [f64]| {
         u[0] = inputs[((t / h).floor() as usize).min(steps - 1)];
     });
-    let model = ClosedLoop::new(CartPole::default(), schedule).unwrap();
+    let model = ClosedLoop::new(actuated, schedule).unwrap();
     let mut vi = VariationalIntegrator::new(Midpoint::new(model));
     let mut s = vi.state_from_velocities(0.0, path.q[0].as_slice(), v0).unwrap();
     let mut worst = 0.0_f64;
