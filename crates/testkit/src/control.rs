@@ -1,4 +1,5 @@
-//! Actuated models: the cart-pole, the double integrator, the pendubot.
+//! Actuated models: the cart-pole, the double integrator, the pendubot, a spacecraft's reaction
+//! wheel.
 
 use noether_core::control::Actuated;
 use noether_core::{Lagrangian, Scalar};
@@ -118,5 +119,53 @@ impl Actuated for Pendubot {
     fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
         out[0] = u[0];
         out[1] = D::zero();
+    }
+}
+
+/// A spacecraft turned about one axis by a reaction wheel: q = (θ, α), the body's angle and the
+/// wheel's angle relative to the body, J the body's moment (without the wheel's axial one) and I_w
+/// the wheel's,
+///
+/// ```text
+/// L = ½ J θ̇² + ½ I_w (θ̇ + α̇)²,   Q_u = (0, u),
+/// ```
+///
+/// the motor's torque u on the wheel and −u on the body (internal: its virtual work is u δα). θ is
+/// cyclic and unforced, so p_θ = J θ̇ + I_w(θ̇ + α̇), the total angular momentum, is conserved; with
+/// ṗ_α = u it gives J θ̈ = −u: the body is a double integrator driven by −u/J.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReactionWheel {
+    /// The body's moment J about the axis.
+    pub body: f64,
+    /// The wheel's axial moment I_w.
+    pub wheel: f64,
+}
+
+impl Default for ReactionWheel {
+    fn default() -> Self {
+        ReactionWheel {
+            body: 12.0,
+            wheel: 0.4,
+        }
+    }
+}
+
+impl Lagrangian for ReactionWheel {
+    fn dof(&self) -> usize {
+        2
+    }
+    fn lagrangian<D: Scalar>(&self, _t: D, _q: &[D], v: &[D]) -> D {
+        let spin = v[0] + v[1];
+        v[0] * v[0] * (0.5 * self.body) + spin * spin * (0.5 * self.wheel)
+    }
+}
+
+impl Actuated for ReactionWheel {
+    fn inputs(&self) -> usize {
+        1
+    }
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
+        out[0] = D::zero();
+        out[1] = u[0];
     }
 }

@@ -69,6 +69,11 @@ pub(super) struct Kkt<'a, M, C> {
     lu: Option<BandedLu>,
     /// Inputs held at a value (global index, value): the active bounds of a polishing Newton solve.
     held: Vec<(usize, f64)>,
+    /// The global index of each component of q_N that is an unknown (free end position).
+    free_end: Vec<Option<usize>>,
+    /// The multipliers λ_N^i held at 0 for the coordinates i whose momentum the discrete equations
+    /// conserve ([`Kkt::drop_conserved`]).
+    pub(super) conserved: Vec<usize>,
 }
 
 /// What the KKT matrix is called in its errors.
@@ -91,6 +96,12 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
             offsets.push(dim);
             dim += n + if k > 0 && k < steps { n } else { 0 } + if k < steps { m } else { 0 };
         }
+        // The free components of q_N follow λ_N.
+        let mut free_end = vec![None; n];
+        for (i, &c) in problem.free_end.iter().enumerate() {
+            free_end[c] = Some(dim + i);
+        }
+        dim += problem.free_end.len();
         let width = 4 * n + m;
         Ok(Kkt {
             problem,
@@ -108,6 +119,8 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
             hess: DMatrix::zeros(width, width),
             lu: None,
             held: Vec::new(),
+            free_end,
+            conserved: Vec::new(),
         })
     }
 
@@ -128,33 +141,52 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
         self.lambda_index(k) + self.n
     }
 
-    /// The global index of entry `i` of step k's window (`None` for the fixed ends q₀, q_N).
+    /// The global index of entry `i` of step k's window (`None` for the fixed ends q₀, q_N, but for
+    /// the free components of q_N).
     fn global(&self, k: usize, i: usize) -> Option<usize> {
         let (n, m) = (self.n, self.m);
         match i {
             i if i < n => self.q_index(k).map(|j| j + i),
-            i if i < 2 * n => self.q_index(k + 1).map(|j| j + i - n),
+            i if i < 2 * n => match self.q_index(k + 1) {
+                Some(j) => Some(j + i - n),
+                None => self.free_end[i - n],
+            },
             i if i < 2 * n + m => Some(self.u_index(k) + i - 2 * n),
             i if i < 3 * n + m => Some(self.lambda_index(k) + i - 2 * n - m),
             i => Some(self.lambda_index(k + 1) + i - 3 * n - m),
         }
     }
 
-    /// q_k at the unknowns `x`.
-    fn q<'x>(&'x self, x: &'x [f64], k: usize) -> &'x [f64] {
+    /// q_k at the unknowns `x` into `out`.
+    fn q_into(&self, x: &[f64], k: usize, out: &mut [f64]) {
         match self.q_index(k) {
-            Some(j) => &x[j..j + self.n],
-            None if k == 0 => &self.ends[0],
-            None => &self.ends[1],
+            Some(j) => out.copy_from_slice(&x[j..j + self.n]),
+            None if k == 0 => out.copy_from_slice(&self.ends[0]),
+            None => {
+                out.copy_from_slice(&self.ends[1]);
+                for (o, j) in out.iter_mut().zip(&self.free_end) {
+                    if let Some(j) = *j {
+                        *o = x[j];
+                    }
+                }
+            }
         }
+    }
+
+    /// q_k at the unknowns `x`.
+    fn q(&self, x: &[f64], k: usize) -> Vec<f64> {
+        let mut q = vec![0.0; self.n];
+        self.q_into(x, k, &mut q);
+        q
     }
 
     /// Step k's window at the unknowns `x` into `self.window`.
     fn fill_window(&mut self, x: &[f64], k: usize) {
         let (n, m) = (self.n, self.m);
         let mut w = std::mem::take(&mut self.window);
-        w[..n].copy_from_slice(self.q(x, k));
-        w[n..2 * n].copy_from_slice(self.q(x, k + 1));
+        let (qa, rest) = w.split_at_mut(n);
+        self.q_into(x, k, qa);
+        self.q_into(x, k + 1, &mut rest[..n]);
         let (u, la, lb) = (self.u_index(k), self.lambda_index(k), self.lambda_index(k + 1));
         w[2 * n..2 * n + m].copy_from_slice(&x[u..u + m]);
         w[2 * n + m..3 * n + m].copy_from_slice(&x[la..la + n]);
@@ -185,7 +217,30 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
                 x[j..j + self.m].copy_from_slice(&inputs[k]);
             }
         }
+        for (c, j) in self.free_end.iter().enumerate() {
+            if let Some(j) = *j {
+                x[j] = nodes[self.steps][c];
+            }
+        }
         x
+    }
+
+    /// Whether the end momenta p_N, taken at the given end position, hold at the solved one `x`
+    /// (free end positions): the relative change of p(t₁, q_N, q̇_N), `None` if nothing is free.
+    pub(super) fn end_momenta_change(&self, x: &[f64], t1: f64, v_end: &[f64]) -> Result<Option<f64>> {
+        if self.free_end.iter().all(Option::is_none) {
+            return Ok(None);
+        }
+        let mut p = vec![0.0; self.n];
+        self.problem
+            .model
+            .momenta(t1, &self.q(x, self.steps), v_end, &mut p)?;
+        let scale = self.momenta[1].iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        let change = p
+            .iter()
+            .zip(&self.momenta[1])
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        Ok(Some(change / scale))
     }
 
     pub(super) fn path(&self, x: &[f64], newton: NewtonInfo, sqp_iterations: usize) -> OptimalPath {
@@ -196,7 +251,7 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
         OptimalPath {
             t: (0..=self.steps).map(|k| self.t0 + k as f64 * self.h).collect(),
             q: (0..=self.steps)
-                .map(|k| DVector::from_column_slice(self.q(x, k)))
+                .map(|k| DVector::from_vec(self.q(x, k)))
                 .collect(),
             u,
             multipliers: (0..=self.steps)
@@ -213,7 +268,7 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
         (0..self.steps)
             .map(|k| {
                 let (qa, qb) = (self.q(x, k), self.q(x, k + 1));
-                let (mid, v) = (midpoint(qa, qb), difference_quotient(qa, qb, self.h));
+                let (mid, v) = (midpoint(&qa, &qb), difference_quotient(&qa, &qb, self.h));
                 let t = self.t0 + (k as f64 + 0.5) * self.h;
                 let u = self.u_index(k);
                 self.problem.cost.cost(t, &mid, &v, &x[u..u + self.m]) * self.h
@@ -262,6 +317,59 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
         kkt
     }
 
+    /// The unknowns held fixed, with their values: held inputs, and the conserved momenta's λ_N^i at 0.
+    fn fixed(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.held
+            .iter()
+            .copied()
+            .chain(self.conserved.iter().map(|&j| (j, 0.0)))
+    }
+
+    /// Finds the coordinates i whose momentum the discrete equations conserve — a cyclic coordinate
+    /// no force acts on, such as a spacecraft's yaw: then Σ_k c_k^i = p₀^i − p_N^i whatever the path
+    /// (the D₁L_d + D₂L_d = h ∂L/∂q_i of each step vanish), one equation is implied by the others and
+    /// the KKT matrix is singular. Such an i shows at the guess `x` as a sum of the rows ∇c_k^i that
+    /// vanishes (to 1e-12 of their entries). Its last equation c_N^i is then dropped and λ_N^i held at
+    /// 0 — unless p₀^i ≠ p_N^i: the ends ask the conserved momentum to change, and no path does
+    /// ([`Error::InvalidParameter`] with the change).
+    pub(super) fn drop_conserved(&mut self, x: &[f64]) -> Result<()> {
+        let h = self.hessian(x);
+        let (kl, ku) = h.bandwidths();
+        let mut is_lambda = vec![false; self.dim];
+        for k in 0..=self.steps {
+            let l = self.lambda_index(k);
+            is_lambda[l..l + self.n].iter_mut().for_each(|b| *b = true);
+        }
+        let mut sum = vec![0.0; self.dim];
+        for i in 0..self.n {
+            sum.iter_mut().for_each(|s| *s = 0.0);
+            let mut largest = 0.0_f64;
+            for k in 0..=self.steps {
+                let row = self.lambda_index(k) + i;
+                for col in row.saturating_sub(kl)..=(row + ku).min(self.dim - 1) {
+                    if !is_lambda[col] {
+                        sum[col] += h.get(row, col);
+                        largest = largest.max(h.get(row, col).abs());
+                    }
+                }
+            }
+            if largest == 0.0 || sum.iter().any(|s| s.abs() > 1e-12 * largest) {
+                continue;
+            }
+            let change = self.momenta[1][i] - self.momenta[0][i];
+            let scale = self.momenta[0][i].abs().max(self.momenta[1][i].abs()).max(1.0);
+            if change.abs() > 1e-12 * scale {
+                return Err(Error::InvalidParameter {
+                    name: "change of a conserved momentum between the ends (p_N − p₀ of a cyclic, unforced coordinate)",
+                    value: change,
+                    reason: "zero: the discrete equations conserve this momentum",
+                });
+            }
+            self.conserved.push(self.lambda_index(self.steps) + i);
+        }
+        Ok(())
+    }
+
     /// Holds the inputs at the global indices `held` at their values (rows u_j − value = 0 replace
     /// their stationarity conditions): the active bounds of a polishing solve.
     pub(super) fn hold(&mut self, held: Vec<(usize, f64)>) {
@@ -274,10 +382,10 @@ impl<M: DiscreteActuated, C: RunningCost> NewtonSystem for Kkt<'_, M, C> {
         self.dim
     }
 
-    /// ∇𝓛, with u_j − value for a held input.
+    /// ∇𝓛, with u_j − value for a held input and λ_N^i for a conserved momentum.
     fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
         self.gradient(x, r);
-        for &(j, value) in &self.held {
+        for (j, value) in self.fixed() {
             r[j] = x[j] - value;
         }
         // A NaN or infinite entry is core Newton's to report (the model's non-finite result).
@@ -289,7 +397,8 @@ impl<M: DiscreteActuated, C: RunningCost> NewtonSystem for Kkt<'_, M, C> {
         self.lu = None;
         let mut kkt = self.hessian(x);
         let (kl, ku) = kkt.bandwidths();
-        for &(j, _) in &self.held {
+        let fixed: Vec<usize> = self.fixed().map(|(j, _)| j).collect();
+        for j in fixed {
             for c in j.saturating_sub(kl)..=(j + ku).min(self.dim - 1) {
                 let v = kkt.get(j, c);
                 kkt.add(j, c, f64::from(c == j) - v);

@@ -43,6 +43,12 @@
 //! bounds). The double integrator with |u| ≤ U has a closed form as well (u saturated near both
 //! ends, a ramp between), met at second order (`tests/discrete/bounded_control.rs`).
 //!
+//! End positions can be left free ([`OptimalControl::free_end_positions`]: a reaction wheel's angle
+//! after a slew). A coordinate whose momentum the discrete equations conserve (cyclic, and no force
+//! on it: a spacecraft's attitude angle about a fixed axis) makes one of them redundant, and the KKT
+//! matrix singular; the solver finds such coordinates at the guess and drops their last equation, or
+//! refuses ends that ask the conserved momentum to change.
+//!
 //! With C = uᵀRu the problem is the discrete minimum-effort problem. For the double integrator q̈ = u
 //! the midpoint rule is exact for piecewise-constant inputs, and the discrete optimum from rest at 0 to
 //! rest at 1 in time T has the closed form u_k = u(t_k + h/2)/(1 − (h/T)²), J_d = 12/(T(T² − h²)),
@@ -246,6 +252,7 @@ pub struct OptimalControl<M, C> {
     cost: C,
     newton: Newton,
     bounds: Option<InputBounds>,
+    free_end: Vec<usize>,
 }
 
 impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
@@ -261,6 +268,7 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
                 .map(|n| n.reuse_jacobian(false))
                 .expect("valid settings"),
             bounds: None,
+            free_end: Vec::new(),
         }
     }
 
@@ -312,6 +320,28 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
         Ok(self)
     }
 
+    /// Leaves the end positions of the coordinates `components` free: q_N's entries there become
+    /// unknowns (the end position given to `solve` holds their guess), the end velocities still hold.
+    /// For a coordinate whose end value does not matter — a reaction wheel's angle after a slew, the
+    /// cart's position after a swing-up. The end momenta p_N = ∂L/∂q̇ are taken at the given end
+    /// position, so they must not depend on the free entries (as at rest for an L quadratic in q̇, or
+    /// for cyclic coordinates); `solve` checks this at the solution and reports
+    /// [`Error::Unsupported`] otherwise. A component ≥ n or repeated is [`Error::InvalidParameter`].
+    pub fn free_end_positions(mut self, components: &[usize]) -> Result<Self> {
+        let n = self.model.dof();
+        for (i, &c) in components.iter().enumerate() {
+            if c >= n || components[..i].contains(&c) {
+                return Err(Error::InvalidParameter {
+                    name: "free end position component",
+                    value: c as f64,
+                    reason: "a coordinate index below the number of coordinates, each once",
+                });
+            }
+        }
+        self.free_end = components.to_vec();
+        Ok(self)
+    }
+
     /// The optimal path from (q, q̇) = `start` at `t0` to `end` at `t1` in `steps` steps, from the
     /// straight line between the ends with zero inputs.
     pub fn solve(
@@ -335,7 +365,7 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
     }
 
     /// As [`solve`](Self::solve) from the guess `nodes` (N + 1 positions; the first and last are
-    /// replaced by the ends) and `inputs` (N input vectors), N ≥ 1 steps. Wrong lengths are
+    /// replaced by the ends, but for the free end positions, whose guess the last holds) and `inputs` (N input vectors), N ≥ 1 steps. Wrong lengths are
     /// [`Error::Dimension`], non-finite data [`Error::NonFinite`], t₁ ≤ t₀
     /// [`Error::InvalidParameter`]; a singular KKT matrix [`Error::SingularMatrix`], no convergence
     /// [`Error::NewtonDiverged`].
@@ -404,17 +434,27 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
         }
         let mut kkt = Kkt::new(self, (t0, t1), (start, end), steps)?;
         let mut x = kkt.initial_unknowns(nodes, inputs);
-        let Some(bounds) = &self.bounds else {
-            let info = self.newton.solve(&mut kkt, &mut x)?;
-            return Ok(kkt.path(&x, info, 0));
-        };
-        for k in 0..steps {
-            let j = kkt.u_index(k);
-            for (i, u) in x[j..j + m].iter_mut().enumerate() {
-                *u = u.clamp(bounds.lower[i], bounds.upper[i]);
+        kkt.drop_conserved(&x)?;
+        let (info, iterations) = match &self.bounds {
+            None => (self.newton.solve(&mut kkt, &mut x)?, 0),
+            Some(bounds) => {
+                for k in 0..steps {
+                    let j = kkt.u_index(k);
+                    for (i, u) in x[j..j + m].iter_mut().enumerate() {
+                        *u = u.clamp(bounds.lower[i], bounds.upper[i]);
+                    }
+                }
+                sqp::solve(&mut kkt, &mut x, bounds, &self.newton)?
             }
+        };
+        if kkt
+            .end_momenta_change(&x, t1, end.1)?
+            .is_some_and(|change| change > 1e-12)
+        {
+            return Err(Error::Unsupported(
+                "free end positions on which the end momenta p = ∂L/∂q̇ depend",
+            ));
         }
-        let (info, iterations) = sqp::solve(&mut kkt, &mut x, bounds, &self.newton)?;
         Ok(kkt.path(&x, info, iterations))
     }
 }

@@ -147,8 +147,10 @@ impl Layout {
                 }
             }
         }
+        // A conserved momentum's λ_N^i stays 0 and its equation out (Kkt::drop_conserved).
         let mut z_pos = vec![0; kkt.dim];
         lambda.iter().for_each(|&j| z_pos[j] = usize::MAX);
+        lambda.retain(|j| !kkt.conserved.contains(j));
         let z: Vec<usize> = (0..kkt.dim).filter(|&j| z_pos[j] != usize::MAX).collect();
         z.iter().enumerate().for_each(|(a, &j)| z_pos[j] = a);
         Layout {
