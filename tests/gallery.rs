@@ -306,6 +306,11 @@ fn closed_form_cart_pole_lqr() {
 }
 
 #[test]
+fn closed_form_satellite_slew() {
+    assert_example_passes("satellite_slew");
+}
+
+#[test]
 fn closed_form_swing_up() {
     assert_example_passes("swing_up");
 }

@@ -378,7 +378,45 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
         nodes: &[Vec<f64>],
         inputs: &[Vec<f64>],
     ) -> Result<OptimalPath> {
+        self.check(t0, (start, end), t1, nodes, inputs)?;
+        let (m, steps) = (self.model.inputs(), inputs.len());
+        let mut kkt = Kkt::new(self, (t0, t1), (start, end), steps)?;
+        let mut x = kkt.initial_unknowns(nodes, inputs);
+        kkt.drop_conserved(&x)?;
+        let (info, iterations) = match &self.bounds {
+            None => (self.newton.solve(&mut kkt, &mut x)?, 0),
+            Some(bounds) => {
+                for k in 0..steps {
+                    let j = kkt.u_index(k);
+                    for (i, u) in x[j..j + m].iter_mut().enumerate() {
+                        *u = u.clamp(bounds.lower[i], bounds.upper[i]);
+                    }
+                }
+                sqp::solve(&mut kkt, &mut x, bounds, &self.newton)?
+            }
+        };
+        if kkt
+            .end_momenta_change(&x, t1, end.1)?
+            .is_some_and(|change| change > 1e-12)
+        {
+            return Err(Error::Unsupported(
+                "free end positions on which the end momenta p = ∂L/∂q̇ depend",
+            ));
+        }
+        Ok(kkt.path(&x, info, iterations))
+    }
+
+    /// The errors of [`solve_from`](Self::solve_from)'s data.
+    fn check(
+        &self,
+        t0: f64,
+        ends: (Endpoint<'_>, Endpoint<'_>),
+        t1: f64,
+        nodes: &[Vec<f64>],
+        inputs: &[Vec<f64>],
+    ) -> Result<()> {
         let (n, m) = (self.model.dof(), self.model.inputs());
+        let (start, end) = ends;
         if !t0.is_finite() {
             return Err(Error::InvalidParameter {
                 name: "optimal-control start time t₀",
@@ -432,29 +470,6 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
             check_len("optimal-control guess inputs", u, m)?;
             check_finite("optimal-control guess inputs", u)?;
         }
-        let mut kkt = Kkt::new(self, (t0, t1), (start, end), steps)?;
-        let mut x = kkt.initial_unknowns(nodes, inputs);
-        kkt.drop_conserved(&x)?;
-        let (info, iterations) = match &self.bounds {
-            None => (self.newton.solve(&mut kkt, &mut x)?, 0),
-            Some(bounds) => {
-                for k in 0..steps {
-                    let j = kkt.u_index(k);
-                    for (i, u) in x[j..j + m].iter_mut().enumerate() {
-                        *u = u.clamp(bounds.lower[i], bounds.upper[i]);
-                    }
-                }
-                sqp::solve(&mut kkt, &mut x, bounds, &self.newton)?
-            }
-        };
-        if kkt
-            .end_momenta_change(&x, t1, end.1)?
-            .is_some_and(|change| change > 1e-12)
-        {
-            return Err(Error::Unsupported(
-                "free end positions on which the end momenta p = ∂L/∂q̇ depend",
-            ));
-        }
-        Ok(kkt.path(&x, info, iterations))
+        Ok(())
     }
 }
