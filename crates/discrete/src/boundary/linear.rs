@@ -2,7 +2,7 @@
 //! fixed subspaces of symmetries): [`BoundaryValue::solve_linear`](super::BoundaryValue::solve_linear).
 
 use super::{BoundaryValue, DiscreteField};
-use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian};
+use crate::lagrangian::{DiscreteDerivatives, DiscreteLagrangian, StepEnd};
 use nalgebra::{DMatrix, DVector};
 use noether_core::ad;
 use noether_core::error::check_finite;
@@ -18,12 +18,13 @@ pub struct LinearPath {
     pub t: Vec<f64>,
     /// Node positions q_k = A_k y.
     pub q: Vec<DVector<f64>>,
-    /// The discrete action S_d(y).
+    /// The discrete action S_d(y) (of L_d alone, with forces).
     pub action: f64,
     /// Statistics of the Newton solve.
     pub newton: NewtonInfo,
     /// Number of negative eigenvalues of the reduced Hessian ∂²S_d/∂y² (0: a local minimum within the
-    /// family).
+    /// family). With forces, of the symmetric part of Newton's Jacobian (there is no action whose
+    /// Hessian it would be).
     pub morse_index: usize,
     /// Its eigenvalues, ascending.
     pub hessian_eigenvalues: DVector<f64>,
@@ -40,6 +41,11 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
     /// symmetry group of S_d, whose stationary points are stationary for the full action (Palais'
     /// principle of symmetric criticality). Symmetries of S_d left in the family (a rotation of a
     /// loop) make the Hessian singular and must be removed by the family.
+    ///
+    /// With forces (the model's Q) the path solves the discrete Lagrange-d'Alembert equations over the
+    /// family instead, Σ_k A_kᵀ (D₁L_d + f⁻_k) + A_{k+1}ᵀ (D₂L_d + f⁺_k) = 0, with the forces'
+    /// derivatives in the Jacobian: a loop family then gives the periodic response of a driven,
+    /// damped system.
     pub fn solve_linear(&self, t0: f64, t1: f64, maps: &[DMatrix<f64>], y0: &[f64]) -> Result<LinearPath> {
         let n = self.ld.dof();
         let d = y0.len();
@@ -67,11 +73,6 @@ impl<Ld: DiscreteLagrangian> BoundaryValue<Ld> {
                 value: t1 - t0,
                 reason: "t₀ and t₁ must be finite and distinct",
             });
-        }
-        if self.ld.has_discrete_force() {
-            return Err(Error::Unsupported(
-                "stationary paths of a forced discrete Lagrangian (no action to make stationary)",
-            ));
         }
         let h = (t1 - t0) / steps as f64;
         let problem = LinearFamily {
@@ -157,13 +158,20 @@ impl<Ld: DiscreteLagrangian> noether_core::newton::DenseProblem for LinearFamily
         let q = self.nodes(y);
         let n = self.ld.dof();
         let (mut g1, mut g2) = (DVector::zeros(n), DVector::zeros(n));
+        let (mut fm, mut fp) = (DVector::zeros(n), DVector::zeros(n));
+        let forced = self.ld.has_discrete_force();
         let mut acc = DVector::zeros(y.len());
         for k in 0..q.len() - 1 {
             let t = self.t0 + k as f64 * self.h;
-            self.ld
-                .d1(t, self.h, q[k].as_slice(), q[k + 1].as_slice(), g1.as_mut_slice());
-            self.ld
-                .d2(t, self.h, q[k].as_slice(), q[k + 1].as_slice(), g2.as_mut_slice());
+            let (a, b) = (q[k].as_slice(), q[k + 1].as_slice());
+            self.ld.d1(t, self.h, a, b, g1.as_mut_slice());
+            self.ld.d2(t, self.h, a, b, g2.as_mut_slice());
+            if forced {
+                self.ld
+                    .discrete_force(t, self.h, a, b, fm.as_mut_slice(), fp.as_mut_slice());
+                g1 += &fm;
+                g2 += &fp;
+            }
             acc.gemv_tr(1.0, &self.maps[k], &g1, 1.0);
             acc.gemv_tr(1.0, &self.maps[k + 1], &g2, 1.0);
         }
@@ -175,6 +183,8 @@ impl<Ld: DiscreteLagrangian> noether_core::newton::DenseProblem for LinearFamily
         let q = self.nodes(y);
         let n = self.ld.dof();
         let (mut d11, mut d12, mut d22) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        // ∂f⁻/∂q_k, ∂f⁺/∂q_k, ∂f⁻/∂q_{k+1}, ∂f⁺/∂q_{k+1} (zero without forces).
+        let mut df: [DMatrix<f64>; 4] = std::array::from_fn(|_| DMatrix::zeros(n, n));
         j.fill(0.0);
         for k in 0..q.len() - 1 {
             let t = self.t0 + k as f64 * self.h;
@@ -182,16 +192,21 @@ impl<Ld: DiscreteLagrangian> noether_core::newton::DenseProblem for LinearFamily
             self.ld.d11(t, self.h, a, b, &mut d11);
             self.ld.d12(t, self.h, a, b, &mut d12);
             self.ld.d22(t, self.h, a, b, &mut d22);
+            let [m0, p0, m1, p1] = &mut df;
+            self.ld
+                .force_derivatives(t, self.h, (a, b), StepEnd::Left, (m0, p0));
+            self.ld
+                .force_derivatives(t, self.h, (a, b), StepEnd::Right, (m1, p1));
             let (ak, an) = (&self.maps[k], &self.maps[k + 1]);
-            // [A_k; A_{k+1}]ᵀ [D₁₁ D₁₂; D₂₁ D₂₂] [A_k; A_{k+1}].
-            let upper = &d11 * ak + &d12 * an;
-            let lower = d12.transpose() * ak + &d22 * an;
+            // [A_k; A_{k+1}]ᵀ [D₁₁ + ∂f⁻/∂q_k, D₁₂ + ∂f⁻/∂q_{k+1}; D₂₁ + ∂f⁺/∂q_k, D₂₂ + ∂f⁺/∂q_{k+1}] [A_k; A_{k+1}].
+            let upper = (&d11 + &df[0]) * ak + (&d12 + &df[2]) * an;
+            let lower = (d12.transpose() + &df[1]) * ak + (&d22 + &df[3]) * an;
             j.gemm_tr(1.0, ak, &upper, 1.0);
             j.gemm_tr(1.0, an, &lower, 1.0);
         }
         if j.iter().any(|v| !v.is_finite()) {
             return Err(Error::NonFiniteResult {
-                what: "Hessian of the discrete action over a linear family",
+                what: "Jacobian of the discrete equations over a linear family",
                 t: self.t0,
                 component: None,
             });
