@@ -70,6 +70,7 @@ pub(crate) mod jets;
 pub mod nonholonomic;
 pub mod projection;
 pub mod rattle;
+pub mod reduced;
 pub mod set;
 
 pub use dynamics::Constrained;
@@ -81,6 +82,7 @@ pub use impulse::{generalized_impulse, Impact, ImpactResult, StruckPoints};
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
 pub use projection::{project, Projected, Projection, ProjectionReport};
 pub use rattle::{Rattle, RattleInfo};
+pub use reduced::Reduced;
 pub use set::ConstraintSet;
 
 /// Models, constraints, and the integrators to step them, in one import. `Error` and `Result` here
