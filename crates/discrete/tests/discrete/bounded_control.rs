@@ -5,16 +5,15 @@
 //! likewise, the globalisation of a swing-up where Newton alone
 //! diverges, and bad bounds.
 
-use crate::optimal_control::{replay, replay_of};
+use crate::optimal_control::{least_effort, replay, replay_of, swing_up};
 use noether_core::Error;
-use noether_discrete::optimal_control::{Effort, Failure, NoOptimalPath, OptimalControl, OptimalPath};
-use noether_discrete::Midpoint;
+use noether_discrete::optimal_control::{Failure, NoOptimalPath, OptimalPath};
 use noether_testkit::control::{CartPole, DoubleIntegrator, Pendubot};
 use std::f64::consts::PI;
 
 /// q̈ = u from rest at 0 to rest at 1 in T = 1 with |u| ≤ `bound`, minimum ∫u² dt, N steps.
 fn double_integrator(bound: f64, steps: usize) -> noether_core::Result<OptimalPath> {
-    OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0])?)
+    least_effort(DoubleIntegrator)
         .input_bounds(&[-bound], &[bound])?
         .solve(0.0, (&[0.0], &[0.0]), 1.0, (&[1.0], &[0.0]), steps)
 }
@@ -134,33 +133,12 @@ fn infeasible_bounds_are_a_typed_error_with_their_data() {
 #[test]
 fn cart_pole_swing_up_with_a_bounded_force() {
     let swing = |bound: f64| {
-        OptimalControl::new(
-            Midpoint::new(CartPole::default()),
-            Effort::new(vec![1.0]).unwrap(),
-        )
-        .input_bounds(&[-bound], &[bound])
-        .unwrap()
-        .solve(
-            0.0,
-            (&[0.0, PI], &[0.0, 0.0]),
-            2.0,
-            (&[0.0, 0.0], &[0.0, 0.0]),
-            100,
-        )
-        .unwrap()
+        let problem = least_effort(CartPole::default())
+            .input_bounds(&[-bound], &[bound])
+            .unwrap();
+        swing_up(&problem, 2.0).unwrap()
     };
-    let free = OptimalControl::new(
-        Midpoint::new(CartPole::default()),
-        Effort::new(vec![1.0]).unwrap(),
-    )
-    .solve(
-        0.0,
-        (&[0.0, PI], &[0.0, 0.0]),
-        2.0,
-        (&[0.0, 0.0], &[0.0, 0.0]),
-        100,
-    )
-    .unwrap();
+    let free = swing_up(&least_effort(CartPole::default()), 2.0).unwrap();
     let unbounded = swing(f64::INFINITY);
     assert!((unbounded.cost - free.cost).abs() < 1e-12 * free.cost);
     let bounded = swing(12.0);
@@ -181,22 +159,11 @@ fn cart_pole_swing_up_with_a_bounded_force() {
 /// iterations), a motion of the forced variational integrator as above.
 #[test]
 fn sqp_globalises_a_swing_up_newton_cannot_solve() {
-    let problem = || {
-        OptimalControl::new(
-            Midpoint::new(CartPole::default()),
-            Effort::new(vec![1.0]).unwrap(),
-        )
-    };
-    let ends = (
-        (&[0.0, PI][..], &[0.0, 0.0][..]),
-        (&[0.0, 0.0][..], &[0.0, 0.0][..]),
-    );
-    assert!(problem().solve(0.0, ends.0, 2.5, ends.1, 100).is_err());
-    let path = problem()
+    assert!(swing_up(&least_effort(CartPole::default()), 2.5).is_err());
+    let globalised = least_effort(CartPole::default())
         .input_bounds(&[f64::NEG_INFINITY], &[f64::INFINITY])
-        .unwrap()
-        .solve(0.0, ends.0, 2.5, ends.1, 100)
         .unwrap();
+    let path = swing_up(&globalised, 2.5).unwrap();
     let (worst, v_end) = replay(&path, &[0.0, 0.0]);
     println!(
         "T = 2.5: cost {:.6}, {} SQP + {} Newton iterations; replay within {worst:.1e}, end velocity \
@@ -210,7 +177,7 @@ fn sqp_globalises_a_swing_up_newton_cannot_solve() {
 /// their data.
 #[test]
 fn bad_bounds_are_refused() {
-    let problem = || OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap());
+    let problem = || least_effort(DoubleIntegrator);
     assert!(matches!(
         problem().input_bounds(&[0.0, 1.0], &[1.0]).err(),
         Some(Error::Dimension {
@@ -246,20 +213,17 @@ fn bad_bounds_are_refused() {
 #[test]
 fn pendubot_swing_up_with_a_bounded_torque() {
     let bound = 20.0;
-    let path = OptimalControl::new(
-        Midpoint::new(Pendubot::default()),
-        Effort::new(vec![1.0]).unwrap(),
-    )
-    .input_bounds(&[-bound], &[bound])
-    .unwrap()
-    .solve(
-        0.0,
-        (&[0.0, 0.0], &[0.0, 0.0]),
-        3.0,
-        (&[PI, PI], &[0.0, 0.0]),
-        100,
-    )
-    .unwrap();
+    let path = least_effort(Pendubot::default())
+        .input_bounds(&[-bound], &[bound])
+        .unwrap()
+        .solve(
+            0.0,
+            (&[0.0, 0.0], &[0.0, 0.0]),
+            3.0,
+            (&[PI, PI], &[0.0, 0.0]),
+            100,
+        )
+        .unwrap();
     let peak = path.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
     let (worst, v_end) = replay_of(Pendubot::default(), &path, &[0.0, 0.0]);
     println!(

@@ -10,9 +10,29 @@ use noether_discrete::{DiscreteActuated, Midpoint, Trapezoidal, VariationalInteg
 use noether_testkit::control::{CartPole, DoubleIntegrator, ReactionWheel};
 use std::f64::consts::PI;
 
+/// The least-effort problem (∫u² dt) of a one-input model, by the midpoint rule.
+pub(crate) fn least_effort<L: Actuated>(model: L) -> OptimalControl<Midpoint<L>, Effort> {
+    OptimalControl::new(Midpoint::new(model), Effort::new(vec![1.0]).unwrap())
+}
+
+/// The cart-pole swung up by `problem` from hanging at rest to upright at rest, the cart back at
+/// x = 0, in `t_end` with N = 100 steps, from the straight line.
+pub(crate) fn swing_up(
+    problem: &OptimalControl<Midpoint<CartPole>, Effort>,
+    t_end: f64,
+) -> noether_core::Result<OptimalPath> {
+    problem.solve(
+        0.0,
+        (&[0.0, PI], &[0.0, 0.0]),
+        t_end,
+        (&[0.0, 0.0], &[0.0, 0.0]),
+        100,
+    )
+}
+
 /// The minimum-effort transfer of q̈ = u from rest at 0 to rest at 1 in time T, N steps.
 fn double_integrator(t_end: f64, steps: usize) -> OptimalPath {
-    let problem = OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap());
+    let problem = least_effort(DoubleIntegrator);
     problem
         .solve(0.0, (&[0.0], &[0.0]), t_end, (&[1.0], &[0.0]), steps)
         .unwrap()
@@ -142,19 +162,7 @@ fn cart_transfer_is_a_motion_of_the_forced_variational_integrator() {
 /// 1e-13 as above, measured 8e-15 after the swing; end velocity measured 3e-14).
 #[test]
 fn cart_pole_swing_up_reaches_the_top() {
-    let problem = OptimalControl::new(
-        Midpoint::new(CartPole::default()),
-        Effort::new(vec![1.0]).unwrap(),
-    );
-    let path = problem
-        .solve(
-            0.0,
-            (&[0.0, PI], &[0.0, 0.0]),
-            2.0,
-            (&[0.0, 0.0], &[0.0, 0.0]),
-            100,
-        )
-        .unwrap();
+    let path = swing_up(&least_effort(CartPole::default()), 2.0).unwrap();
     let (worst, v_end) = replay(&path, &[0.0, 0.0]);
     println!(
         "swing-up: cost {:.6}, {} Newton iterations, largest |u| {:.3}; replay within {worst:.1e}, end \
@@ -201,7 +209,7 @@ fn trapezoidal_and_midpoint_transfers_share_their_limit() {
 
 #[test]
 fn bad_input_is_refused_with_its_data() {
-    let problem = OptimalControl::new(Midpoint::new(DoubleIntegrator), Effort::new(vec![1.0]).unwrap());
+    let problem = least_effort(DoubleIntegrator);
     let (start, end) = ((&[0.0][..], &[0.0][..]), (&[1.0][..], &[0.0][..]));
     assert!(matches!(
         problem.solve(0.0, start, 1.0, end, 0),
@@ -279,7 +287,7 @@ fn reaction_wheel_slew_meets_its_closed_form() {
     let (t_end, steps, angle) = (10.0, 50, 1.0);
     let h = t_end / steps as f64;
     let rest = [0.0, 0.0];
-    let problem = || OptimalControl::new(Midpoint::new(wheel), Effort::new(vec![1.0]).unwrap());
+    let problem = || least_effort(wheel);
     let free = problem()
         .free_end_positions(&[1])
         .unwrap()
@@ -318,7 +326,7 @@ fn reaction_wheel_slew_meets_its_closed_form() {
 #[test]
 fn a_conserved_momentum_cannot_change() {
     let wheel = ReactionWheel::default();
-    let problem = || OptimalControl::new(Midpoint::new(wheel), Effort::new(vec![1.0]).unwrap());
+    let problem = || least_effort(wheel);
     let err = problem()
         .solve(
             0.0,
