@@ -30,7 +30,7 @@
 //!
 //! each a generic function of its window (q_k, q_{k+1}, u_k, λ_k, λ_{k+1}): λ_k·D₁L_d + λ_{k+1}·D₂L_d is
 //! the derivative of L_d along (λ_k, λ_{k+1}), one more dual layer. Newton on ∇𝓛 = 0 takes the gradient
-//! and Hessian of each φ_k from core's [`ad`]; the Hessian of 𝓛 is the KKT matrix
+//! and Hessian of each φ_k from core's [`ad`](noether_core::ad); the Hessian of 𝓛 is the KKT matrix
 //! [[∇²_zz 𝓛, ∇cᵀ], [∇c, 0]], which with the unknowns ordered node by node (q_k, λ_k, u_k) is banded
 //! (half-bandwidth 4n + m − 1 for n coordinates and m inputs) and factored by core's banded LU with
 //! partial pivoting: O(N (4n + m)³) per iteration, as the boundary-value solver.
