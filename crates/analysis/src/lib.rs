@@ -41,7 +41,7 @@ pub mod sensitivity;
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
 pub use linearize::{linearize, linearize_step, HeldInputs, HeldStart, Linearization, StepLinearization};
-pub use lqr::{dlqr, lqr, Lqr};
+pub use lqr::{dlqr, lqr, tvlqr, Lqr, TimeVaryingLqr};
 pub use lyapunov::{Lyapunov, Spectrum};
 pub use modes::{linear_stability, normal_modes, LinearStability, NormalModes, SmallOscillations};
 pub use periodic::{floquet, Floquet, PeriodicOrbit, Shooting, Stability};

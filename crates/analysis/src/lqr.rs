@@ -341,3 +341,71 @@ fn hewer_step(
     let next = DMatrix::from_column_slice(n, n, &v);
     Ok((&next + next.transpose()) * 0.5)
 }
+
+/// A finite-horizon, time-varying LQR design along a trajectory ([`tvlqr`]).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct TimeVaryingLqr {
+    /// K_k (m × 2n), k = 0..N−1: the feedback δu_k = −K_k δx_k over step k.
+    pub gains: Vec<DMatrix<f64>>,
+    /// P_k, k = 0..=N: the optimal cost-to-go from δx_k is δx_kᵀ P_k δx_k.
+    pub cost_to_go: Vec<DMatrix<f64>>,
+}
+
+/// The time-varying LQR gains along a trajectory of N steps, each linearised by
+/// [`linearize_step`](crate::linearize_step) (δx_{k+1} = A_k δx_k + B_k δu_k, the inputs held over a
+/// step): the feedback δu_k = −K_k δx_k that minimises
+/// Σ_k (δx_kᵀ Q δx_k + δu_kᵀ R δu_k) + δx_Nᵀ Q_N δx_N, by the backward Riccati recursion
+///
+/// ```text
+/// P_N = Q_N,   K_k = (R + B_kᵀ P_{k+1} B_k)⁻¹ B_kᵀ P_{k+1} A_k,   P_k = Q + A_kᵀ P_{k+1} (A_k − B_k K_k),
+/// ```
+///
+/// (P_k symmetrised at each step against rounding). The tracking controller of a planned motion (a
+/// DMOC path: linearise its steps about the path's nodes and inputs), and, for steps all alike and a
+/// long horizon, the recursion that converges to [`dlqr`]'s stationary gain. Errors: no steps,
+/// dimensions, non-finite or indefinite weights (R positive definite, Q and Q_N symmetric positive
+/// semidefinite as given), R + BᵀPB singular.
+pub fn tvlqr(
+    steps: &[StepLinearization],
+    q: &DMatrix<f64>,
+    r: &DMatrix<f64>,
+    q_final: &DMatrix<f64>,
+) -> Result<TimeVaryingLqr> {
+    let first = steps.first().ok_or(noether_core::Error::InvalidParameter {
+        name: "time-varying LQR steps",
+        value: 0.0,
+        reason: "at least one step",
+    })?;
+    let (n, m) = (first.a.nrows(), first.b.ncols());
+    weights(n, &first.b, q, r)?;
+    weights(n, &first.b, q_final, r)?;
+    for step in steps {
+        for (what, mat, rows, cols) in [
+            ("time-varying LQR step matrix A_k", &step.a, n, n),
+            ("time-varying LQR step matrix B_k", &step.b, n, m),
+        ] {
+            if mat.nrows() != rows || mat.ncols() != cols {
+                return Err(noether_core::Error::Dimension {
+                    what,
+                    expected: rows * cols,
+                    got: mat.nrows() * mat.ncols(),
+                }
+                .into());
+            }
+            check_finite(what, mat.as_slice())?;
+        }
+    }
+    let mut cost_to_go = vec![q_final.clone()];
+    let mut gains = Vec::with_capacity(steps.len());
+    for step in steps.iter().rev() {
+        let p = cost_to_go.last().expect("P_N first");
+        let k = discrete_gain(&step.a, &step.b, r, p)?;
+        let next = q + step.a.transpose() * p * (&step.a - &step.b * &k);
+        cost_to_go.push((&next + next.transpose()) * 0.5);
+        gains.push(k);
+    }
+    gains.reverse();
+    cost_to_go.reverse();
+    Ok(TimeVaryingLqr { gains, cost_to_go })
+}
