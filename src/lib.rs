@@ -154,7 +154,7 @@ examples! {
     galerkin_orders: "Galerkin variational integrators of order 4 and 6 on Kepler: observed orders, angular momentum kept, no energy drift",
     cart_pole_lqr: "cart-pole balanced by LQR: textbook linearisation, closed-loop eigenvalues, cost x₀ᵀXx₀, a sampled design",
     satellite_slew: "spacecraft slewed rest to rest by a reaction wheel (DMOC, free wheel angle, conserved momentum): least effort and bounded torque vs closed forms",
-    swing_up: "cart-pole swung up by discrete optimal control (DMOC), caught by LQR: the double integrator's discrete optimum in closed form, order 2",
+    swing_up: "cart-pole swung up by discrete optimal control (DMOC), with a bounded force, tracked by time-varying LQR, caught by LQR: the double integrator's discrete optimum in closed form, order 2",
     equations_of_motion: "equations of motion derived on the graph and printed: double pendulum, heavy top, Hénon-Heiles as in the textbooks",
     compiled_chain: "a 40-link chain compiled and by dual numbers: the same run, the compiled one faster",
     charged_particle: "charge in uniform B: cyclotron frequency and radius, uniform motion along B",
