@@ -157,7 +157,7 @@ fn cart_transfer_is_a_motion_of_the_forced_variational_integrator() {
 }
 
 /// The cart-pole swung up from hanging (θ = π) to upright (θ = 0), at rest at both ends with the cart
-/// back at x = 0, in T = 2 with N = 100 steps and minimum ∫u² dt (no bound on u yet): Newton from the
+/// back at x = 0, in T = 2 with N = 100 steps and minimum ∫u² dt: Newton from the
 /// straight line converges (measured 12 iterations), and the replay ends upright at rest (nodes within
 /// 1e-13 as above, measured 8e-15 after the swing; end velocity measured 3e-14).
 #[test]
