@@ -321,8 +321,8 @@ fn reaction_wheel_slew_meets_its_closed_form() {
 
 /// The ends may not ask a conserved momentum to change: the slew ending with the body turning at
 /// θ̇ = 0.1 and the wheel at rest relative to it needs p_θ = (J + I_w)·0.1 = 1.24 from 0, which no
-/// internal torque gives — refused with the change. A free end component out of range or repeated is
-/// refused too.
+/// internal torque gives — refused with the change. A free end position the end momenta depend on,
+/// and a free end component out of range or repeated, are refused too.
 #[test]
 fn a_conserved_momentum_cannot_change() {
     let wheel = ReactionWheel::default();
@@ -345,6 +345,14 @@ fn a_conserved_momentum_cannot_change() {
         }
         other => panic!("{other:?}"),
     }
+    // A free end position on which the end momenta depend: the cart-pole's pole angle left free with
+    // the cart moving at the end (p_θ = m l ẋ cos θ + m l² θ̇ changes with θ) is refused after the
+    // solve, as the momenta were taken at the given θ_N.
+    let moving = least_effort(CartPole::default())
+        .free_end_positions(&[1])
+        .unwrap()
+        .solve(0.0, (&[0.0, PI], &[0.0, 0.0]), 2.0, (&[1.0, PI], &[0.5, 0.0]), 50);
+    assert!(matches!(moving, Err(Error::Unsupported(_))), "{moving:?}");
     for components in [&[2][..], &[1, 1][..]] {
         assert!(matches!(
             problem().free_end_positions(components).err(),
