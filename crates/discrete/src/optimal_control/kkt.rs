@@ -331,8 +331,8 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
     /// the KKT matrix is singular. Such an i shows at the guess `x` as a sum of the rows ∇c_k^i that
     /// vanishes (to 1e-12 of their entries). Its last equation c_N^i is then dropped and λ_N^i held at
     /// 0 — unless p₀^i ≠ p_N^i: the ends ask the conserved momentum to change, and no path does
-    /// ([`Error::InvalidParameter`] with the change).
-    pub(super) fn drop_conserved(&mut self, x: &[f64]) -> Result<()> {
+    /// ([`Error::InvalidParameter`] with the change). `true` when it found one.
+    pub(super) fn drop_conserved(&mut self, x: &[f64]) -> Result<bool> {
         let h = self.hessian(x);
         let (kl, ku) = h.bandwidths();
         let mut is_lambda = vec![false; self.dim];
@@ -367,7 +367,7 @@ impl<'a, M: DiscreteActuated, C: RunningCost> Kkt<'a, M, C> {
             }
             self.conserved.push(self.lambda_index(self.steps) + i);
         }
-        Ok(())
+        Ok(!self.conserved.is_empty())
     }
 
     /// Holds the inputs at the global indices `held` at their values (rows u_j − value = 0 replace

@@ -46,8 +46,9 @@
 //! End positions can be left free ([`OptimalControl::free_end_positions`]: a reaction wheel's angle
 //! after a slew). A coordinate whose momentum the discrete equations conserve (cyclic, and no force
 //! on it: a spacecraft's attitude angle about a fixed axis) makes one of them redundant, and the KKT
-//! matrix singular; the solver finds such coordinates at the guess and drops their last equation, or
-//! refuses ends that ask the conserved momentum to change.
+//! matrix singular; when Newton meets that singular matrix the solver looks for such coordinates at
+//! the guess (the bounded solve looks first), drops their last equation and starts again, or refuses
+//! ends that ask the conserved momentum to change.
 //!
 //! With C = uᵀRu the problem is the discrete minimum-effort problem. For the double integrator q̈ = u
 //! the midpoint rule is exact for piecewise-constant inputs, and the discrete optimum from rest at 0 to
@@ -382,10 +383,23 @@ impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
         let (m, steps) = (self.model.inputs(), inputs.len());
         let mut kkt = Kkt::new(self, (t0, t1), (start, end), steps)?;
         let mut x = kkt.initial_unknowns(nodes, inputs);
-        kkt.drop_conserved(&x)?;
         let (info, iterations) = match &self.bounds {
-            None => (self.newton.solve(&mut kkt, &mut x)?, 0),
+            // A conserved momentum makes the KKT matrix singular: looked for only then (its test
+            // costs a Hessian), and the solve restarted without the redundant equation.
+            None => {
+                let mut y = x.clone();
+                match self.newton.solve(&mut kkt, &mut y) {
+                    Err(Error::SingularMatrix { .. }) if kkt.drop_conserved(&x)? => {
+                        (self.newton.solve(&mut kkt, &mut x)?, 0)
+                    }
+                    solved => {
+                        x = y;
+                        (solved?, 0)
+                    }
+                }
+            }
             Some(bounds) => {
+                kkt.drop_conserved(&x)?;
                 for k in 0..steps {
                     let j = kkt.u_index(k);
                     for (i, u) in x[j..j + m].iter_mut().enumerate() {
