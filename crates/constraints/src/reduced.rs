@@ -153,8 +153,7 @@ impl<L: Lagrangian, C: Holonomic> Reduced<L, C> {
 
     /// The full configuration and velocity of the reduced state (t, q_i, q̇_i).
     pub fn state(&self, t: f64, qi: &[f64], vi: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let q = self.complete(t, qi);
-        let v = self.velocity(t, &q, vi);
+        let (q, v, _) = self.lift(t, qi, vi);
         (q, v)
     }
 
@@ -227,10 +226,13 @@ impl<L: Lagrangian, C: Holonomic> Reduced<L, C> {
         q
     }
 
-    /// q̇ = (q̇_i, −Φ_d⁻¹ (Φ_i q̇_i + ∂φ/∂t)) at the full configuration q.
-    fn velocity<D: Scalar>(&self, t: D, q: &[D], vi: &[D]) -> Vec<D> {
+    /// The full state (q, q̇) of the reduced one (t, q_i, q̇_i) with the constraint Jacobians (Φ_i, Φ_d)
+    /// at q: q by [`complete`](Self::complete), q̇ = (q̇_i, −Φ_d⁻¹ (Φ_i q̇_i + ∂φ/∂t)).
+    #[allow(clippy::type_complexity)] // the state and the two Jacobians, computed once
+    fn lift<D: Scalar>(&self, t: D, qi: &[D], vi: &[D]) -> (Vec<D>, Vec<D>, (Vec<Vec<D>>, Vec<Vec<D>>)) {
+        let q = self.complete(t, qi);
         let m = self.constraints.count();
-        let (phi_i, phi_d) = self.jacobians(t, q);
+        let (phi_i, phi_d) = self.jacobians(t, &q);
         let qt: Vec<Dual<D, f64>> = q.iter().map(|&x| Dual::from_re(x)).collect();
         let mut rate = vec![Dual::from_re(D::zero()); m];
         self.constraints
@@ -238,22 +240,21 @@ impl<L: Lagrangian, C: Holonomic> Reduced<L, C> {
         let mut rhs: Vec<D> = (0..m)
             .map(|r| rate[r].eps + phi_i[r].iter().zip(vi).fold(D::zero(), |s, (a, v)| s + *a * *v))
             .collect();
-        let mut v = vec![D::zero(); q.len()];
-        if solve_in_place(phi_d, &mut rhs).is_none() {
-            return vec![D::from(f64::NAN); q.len()];
+        let mut v = vec![D::from(f64::NAN); q.len()];
+        if solve_in_place(phi_d.clone(), &mut rhs).is_some() {
+            for (&i, &x) in self.independent.iter().zip(vi) {
+                v[i] = x;
+            }
+            for (&d, x) in self.dependent.iter().zip(&rhs) {
+                v[d] = -*x;
+            }
         }
-        for (&i, &x) in self.independent.iter().zip(vi) {
-            v[i] = x;
-        }
-        for (&d, x) in self.dependent.iter().zip(&rhs) {
-            v[d] = -*x;
-        }
-        v
+        (q, v, (phi_i, phi_d))
     }
 
-    /// Q_r = Pᵀ Q for a force `full` on the n coordinates, P = [I; −Φ_d⁻¹ Φ_i].
-    fn project<D: Scalar>(&self, t: D, q: &[D], full: &[D], out: &mut [D]) {
-        let (phi_i, phi_d) = self.jacobians(t, q);
+    /// Q_r = Pᵀ Q for a force `full` on the n coordinates, P = [I; −Φ_d⁻¹ Φ_i], with the Jacobians
+    /// (Φ_i, Φ_d) of [`lift`](Self::lift).
+    fn project<D: Scalar>(&self, (phi_i, phi_d): &(Vec<Vec<D>>, Vec<Vec<D>>), full: &[D], out: &mut [D]) {
         // Pᵀ Q = Q_i − Φ_iᵀ (Φ_d⁻ᵀ Q_d).
         let m = phi_d.len();
         let transposed: Vec<Vec<D>> = (0..m).map(|r| (0..m).map(|c| phi_d[c][r]).collect()).collect();
@@ -274,8 +275,7 @@ impl<L: Lagrangian, C: Holonomic> Lagrangian for Reduced<L, C> {
     }
 
     fn lagrangian<D: Scalar>(&self, t: D, qi: &[D], vi: &[D]) -> D {
-        let q = self.complete(t, qi);
-        let v = self.velocity(t, &q, vi);
+        let (q, v, _) = self.lift(t, qi, vi);
         self.model.lagrangian(t, &q, &v)
     }
 
@@ -284,11 +284,10 @@ impl<L: Lagrangian, C: Holonomic> Lagrangian for Reduced<L, C> {
     }
 
     fn generalized_force<D: Scalar>(&self, t: D, qi: &[D], vi: &[D], out: &mut [D]) {
-        let q = self.complete(t, qi);
-        let v = self.velocity(t, &q, vi);
+        let (q, v, jacobians) = self.lift(t, qi, vi);
         let mut full = vec![D::zero(); q.len()];
         self.model.generalized_force(t, &q, &v, &mut full);
-        self.project(t, &q, &full, out);
+        self.project(&jacobians, &full, out);
     }
 }
 
@@ -298,11 +297,10 @@ impl<A: Actuated, C: Holonomic> Actuated for Reduced<A, C> {
     }
 
     fn input_force<D: Scalar>(&self, t: D, qi: &[D], vi: &[D], u: &[D], out: &mut [D]) {
-        let q = self.complete(t, qi);
-        let v = self.velocity(t, &q, vi);
+        let (q, v, jacobians) = self.lift(t, qi, vi);
         let mut full = vec![D::zero(); q.len()];
         self.model.input_force(t, &q, &v, u, &mut full);
-        self.project(t, &q, &full, out);
+        self.project(&jacobians, &full, out);
     }
 }
 
