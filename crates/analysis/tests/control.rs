@@ -210,6 +210,16 @@ fn rk4_step_linearization_is_rk4_on_the_linearization() {
     assert_eq!(step.next.amax(), 0.0);
 }
 
+/// The scalar sampled system δx_{k+1} = a δx_k + b δu_k as a step linearisation.
+fn scalar_step(a: f64, b: f64) -> StepLinearization {
+    StepLinearization {
+        a: DMatrix::from_element(1, 1, a),
+        b: DMatrix::from_element(1, 1, b),
+        next: nalgebra::DVector::zeros(2),
+        h: 1.0,
+    }
+}
+
 /// The scalar discrete Riccati equation x = a²x − (abx)²/(r + b²x) + q is the quadratic
 /// b²x² + (r(1 − a²) − q b²) x − q r = 0, whose positive root is the stabilising solution, with gain
 /// k = abx/(r + b²x) and closed loop a − bk inside the unit circle; `dlqr` meets it to rounding
@@ -217,12 +227,7 @@ fn rk4_step_linearization_is_rk4_on_the_linearization() {
 #[test]
 fn closed_form_scalar_discrete_riccati() {
     let (a, b, q, r) = (1.2_f64, 0.5_f64, 1.0_f64, 0.3_f64);
-    let step = StepLinearization {
-        a: DMatrix::from_element(1, 1, a),
-        b: DMatrix::from_element(1, 1, b),
-        next: nalgebra::DVector::zeros(2),
-        h: 1.0,
-    };
+    let step = scalar_step(a, b);
     let design = dlqr(
         &step,
         &DMatrix::from_element(1, 1, q),
@@ -554,12 +559,7 @@ fn constrained_cart_pole_moves_as_the_textbook_one() {
 #[test]
 fn tvlqr_recursion_by_hand_and_in_the_limit() {
     let (a, b, q, r, p) = (1.2_f64, 0.5_f64, 1.0_f64, 0.3_f64, 1.5_f64);
-    let step = StepLinearization {
-        a: DMatrix::from_element(1, 1, a),
-        b: DMatrix::from_element(1, 1, b),
-        next: nalgebra::DVector::zeros(2),
-        h: 1.0,
-    };
+    let step = scalar_step(a, b);
     let scalar = |x: f64| DMatrix::from_element(1, 1, x);
     let one = tvlqr(std::slice::from_ref(&step), &scalar(q), &scalar(r), &scalar(p)).unwrap();
     let k = b * p * a / (r + b * b * p);
