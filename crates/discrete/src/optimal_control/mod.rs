@@ -231,7 +231,7 @@ pub type Endpoint<'a> = (&'a [f64], &'a [f64]);
 pub struct OptimalPath {
     /// Node times t_k = t₀ + k h, k = 0..=N.
     pub t: Vec<f64>,
-    /// Node positions q_k (q₀ and q_N as given).
+    /// Node positions q_k (q₀ as given, q_N too but for its free entries, `free_end_positions`).
     pub q: Vec<DVector<f64>>,
     /// Inputs u_k on [t_k, t_{k+1}], k = 0..N−1.
     pub u: Vec<DVector<f64>>,
