@@ -336,6 +336,20 @@ fn quoted_list(names: &[String]) -> String {
     }
 }
 
+/// Checks that the matrix `m` is rows × cols: `Dimension` naming the rows when they differ, else
+/// the columns.
+pub fn check_shape(what: &'static str, m: &nalgebra::DMatrix<f64>, rows: usize, cols: usize) -> Result<()> {
+    if m.nrows() == rows && m.ncols() == cols {
+        return Ok(());
+    }
+    let (expected, got) = if m.nrows() != rows {
+        (rows, m.nrows())
+    } else {
+        (cols, m.ncols())
+    };
+    Err(Error::Dimension { what, expected, got })
+}
+
 /// Checks that `x` has length `n`.
 #[inline]
 pub fn check_len(what: &'static str, x: &[f64], n: usize) -> Result<()> {

@@ -446,13 +446,7 @@ impl<P: Potential> Natural<P> {
         let n = self.dof();
         check_len("q", q, n)?;
         check_finite("q", q)?;
-        if out.shape() != (n, n) {
-            return Err(Error::Dimension {
-                what: "Hessian (output) rows and columns",
-                expected: n,
-                got: out.nrows().max(out.ncols()),
-            });
-        }
+        crate::error::check_shape("Hessian (output) rows and columns", out, n, n)?;
         ad::hessian(
             &PotentialField(&self.potential),
             0.0,

@@ -122,17 +122,7 @@ pub fn symplecticity_with_form<S: TangentStepper>(
     omega: &DMatrix<f64>,
 ) -> Result<SymplecticDefect<S::Partner>> {
     let n = stepper.dof();
-    if omega.nrows() != 2 * n || omega.ncols() != 2 * n {
-        return Err(Error::Dimension {
-            what: "symplectic form Ω (rows and columns)",
-            expected: 2 * n,
-            got: if omega.nrows() != 2 * n {
-                omega.nrows()
-            } else {
-                omega.ncols()
-            },
-        });
-    }
+    crate::error::check_shape("symplectic form Ω (rows and columns)", omega, 2 * n, 2 * n)?;
     if states.is_empty() {
         return Err(Error::InvalidParameter {
             name: "number of sampled states",

@@ -76,18 +76,7 @@ impl<S: TangentStepper + ?Sized> TangentStepper for Box<S> {
 
 /// Checks that `psi` is 2n × 2n for a system of `dof` degrees of freedom.
 pub(crate) fn check_tangent_shape(psi: &DMatrix<f64>, dof: usize) -> Result<()> {
-    if psi.nrows() != 2 * dof || psi.ncols() != 2 * dof {
-        return Err(crate::Error::Dimension {
-            what: "step Jacobian Ψ (rows and columns)",
-            expected: 2 * dof,
-            got: if psi.nrows() != 2 * dof {
-                psi.nrows()
-            } else {
-                psi.ncols()
-            },
-        });
-    }
-    Ok(())
+    crate::error::check_shape("step Jacobian Ψ (rows and columns)", psi, 2 * dof, 2 * dof)
 }
 
 /// Ψ of one step of the explicit Runge-Kutta method (A strictly lower triangular, b, c) from (t, q, v)

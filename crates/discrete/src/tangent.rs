@@ -71,23 +71,7 @@ use nalgebra::DMatrix;
 use noether_core::integrators::composition::{check_signed_step, step_forward_tangent};
 use noether_core::integrators::{SignedStepper, SignedTangentStepper};
 use noether_core::linalg::DenseFactor;
-use noether_core::{Error, Momenta, Result, State, StepInfo, TangentStepper};
-
-/// `Dimension` unless `psi` is 2n × 2n.
-fn check_shape(psi: &DMatrix<f64>, n: usize) -> Result<()> {
-    if psi.nrows() != 2 * n || psi.ncols() != 2 * n {
-        return Err(Error::Dimension {
-            what: "step Jacobian Ψ (rows and columns)",
-            expected: 2 * n,
-            got: if psi.nrows() != 2 * n {
-                psi.nrows()
-            } else {
-                psi.ncols()
-            },
-        });
-    }
-    Ok(())
-}
+use noether_core::{Momenta, Result, State, StepInfo, TangentStepper};
 
 /// Takes the map's signed step, then Ψ from `jacobian(map, q₀, p₀, q₁)`; when that fails, the state
 /// is put back and `psi` is not written.
@@ -99,7 +83,12 @@ fn step_then_jacobian<F: SignedStepper<Partner = Momenta>>(
     jacobian: impl FnOnce(&F, &[f64], &[f64], &[f64]) -> Result<DMatrix<f64>>,
 ) -> Result<StepInfo> {
     check_signed_step(map.dof(), state, h)?;
-    check_shape(psi, map.dof())?;
+    noether_core::error::check_shape(
+        "step Jacobian Ψ (rows and columns)",
+        psi,
+        2 * map.dof(),
+        2 * map.dof(),
+    )?;
     let (t, q0, p0) = (state.t, state.q.as_slice().to_vec(), state.v.as_slice().to_vec());
     let info = map.step_signed(state, h)?;
     match jacobian(map, &q0, &p0, state.q.as_slice()).and_then(|m| {
