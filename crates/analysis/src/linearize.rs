@@ -26,18 +26,10 @@ use noether_core::system::LinearizedDynamics;
 use noether_core::{
     Dynamics, EulerLagrange, Lagrangian, Momenta, Partner, Scalar, State, TangentStepper, Velocities,
 };
-use num_dual::Dual64;
 
-/// The linearisation (A, B) of an actuated system at an operating point, with the drift there.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Linearization {
-    /// A = ∂(q̇, q̈)/∂(q, q̇), 2n × 2n.
-    pub a: DMatrix<f64>,
-    /// B = ∂(q̇, q̈)/∂u, 2n × m.
-    pub b: DMatrix<f64>,
-    /// ẋ* = (q̇*, q̈*) at the point: zero at an equilibrium.
-    pub drift: DVector<f64>,
-}
+/// The linearisation (A, B) with the drift (core's type): here A = ∂(q̇, q̈)/∂(q, q̇) (2n × 2n),
+/// B = ∂(q̇, q̈)/∂u (2n × m), drift ẋ* = (q̇*, q̈*).
+pub use noether_core::control::Linearization;
 
 /// (A, B) of `model` at (t, q, q̇, u) (module docs). Errors: dimensions, non-finite input, and the
 /// errors of Lagrange's equations there (a singular mass matrix, more than 10 degrees of freedom for
@@ -53,20 +45,9 @@ pub fn linearize<A: Actuated>(model: &A, t: f64, q: &[f64], v: &[f64], u: &[f64]
     let mut drift = DVector::zeros(2 * n);
     let (dq, dv) = drift.as_mut_slice().split_at_mut(n);
     held.rates(t, q, v, dq, dv)?;
-    // ∂Q_u/∂u column by column, then M⁻¹.
+    // ∂Q_u/∂u, then M⁻¹.
+    let du = noether_core::control::input_jacobian(model, t, q, v, u);
     let m = u.len();
-    let (qd, vd) = (Buf::<Dual64, 16>::constants(q), Buf::<Dual64, 16>::constants(v));
-    let mut du = DMatrix::zeros(n, m);
-    let mut force = vec![Dual64::from(0.0); n];
-    for j in 0..m {
-        let ud: Vec<Dual64> = (0..m)
-            .map(|k| Dual64::new(u[k], if k == j { 1.0 } else { 0.0 }))
-            .collect();
-        model.input_force(Dual64::from(t), &qd, &vd, &ud, &mut force);
-        for i in 0..n {
-            du[(i, j)] = force[i].eps;
-        }
-    }
     let mass = held.mass_matrix(t, q, v)?;
     let factor = noether_core::linalg::factor_positive_mass(mass, t)?;
     let mut b = DMatrix::zeros(2 * n, m);

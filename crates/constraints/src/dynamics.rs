@@ -30,6 +30,7 @@ use nalgebra::{DMatrix, DVector};
 use noether_core::ad::{self, Block, Field};
 use noether_core::error::{check_len, check_phase_point, check_positive};
 use noether_core::linalg::DenseFactor;
+use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, Error as CoreError, EulerLagrange, Lagrangian, Scalar, State};
 use std::sync::OnceLock;
 
@@ -191,9 +192,26 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
         lambda: &mut [f64],
     ) -> Result<DMatrix<f64>> {
         self.check(t, q, v)?;
-        let (n, m) = (self.dof(), self.count());
+        let n = self.dof();
         check_len("q̈ (output)", qdd, n)?;
-        check_len("λ (output)", lambda, m)?;
+        check_len("λ (output)", lambda, self.count())?;
+        let (_, z, a) = self.saddle(t, q, v)?;
+        qdd.copy_from_slice(&z.as_slice()[..n]);
+        for (l, x) in lambda.iter_mut().zip(&z.as_slice()[n..]) {
+            *l = -x;
+        }
+        Ok(a)
+    }
+
+    /// The saddle-point system [M Aᵀ; A 0] at (t, q, q̇) factored, its solution z = (q̈, −λ) and A
+    /// (arguments checked by the caller).
+    pub(crate) fn saddle(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<(DenseFactor, DVector<f64>, DMatrix<f64>)> {
+        let (n, m) = (self.dof(), self.count());
         let mut a = DMatrix::zeros(m, n);
         self.set.matrix(t, q, v, &mut a);
         let mut kkt = DMatrix::zeros(n + m, n + m);
@@ -214,15 +232,13 @@ impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
         }
         // The KKT matrix [M Aᵀ; A 0] is symmetric indefinite: LU (core's factorization and pivot test).
         match DenseFactor::lu(kkt) {
-            Ok(f) => f.solve_in_place(rhs.as_mut_slice()),
+            Ok(f) => {
+                f.solve_in_place(rhs.as_mut_slice());
+                Ok((f, rhs, a))
+            }
             // Say why: redundant constraints, or a mass matrix degenerate on the allowed velocities.
-            Err(e) => return Err(rank_error(&a, t).unwrap_or(e.in_mass_matrix(t).into())),
+            Err(e) => Err(rank_error(&a, t).unwrap_or(e.in_mass_matrix(t).into())),
         }
-        qdd.copy_from_slice(&rhs.as_slice()[..n]);
-        for (l, x) in lambda.iter_mut().zip(&rhs.as_slice()[n..]) {
-            *l = -x;
-        }
-        Ok(a)
     }
 
     /// The multipliers λ at (t, q, q̇).
@@ -354,5 +370,63 @@ impl<L: Lagrangian, K: ConstraintSet> Dynamics for Constrained<L, K> {
     /// so h is conserved when neither L nor the constraints depend on t).
     fn energy(&self, t: f64, q: &[f64], v: &[f64]) -> noether_core::Result<f64> {
         self.el.energy(t, q, v)
+    }
+}
+
+/// The exact Jacobian J = ∂(q̇, q̈)/∂(q, q̇) of the constrained equations of motion, by implicit
+/// differentiation of the saddle-point system. With z = (q̈, −λ) solving K z = r, K = [M Aᵀ; A 0], the
+/// residual R = (E − Aᵀλ, A q̈ + c) (E = M q̈ − b the Euler-Lagrange residual) vanishes along the
+/// solution, so along a variation δ of the state
+///
+/// ```text
+/// K δz = −(δE − (δA)ᵀλ, (δA) q̈ + δc)      (q̈, λ held in δE, δA, δc),
+/// ```
+///
+/// with δE from core's [`EulerLagrange::residual_jacobian`] (third derivatives of L) and δA, δc from
+/// [`ConstraintSet::derivatives_along`] (nested duals): one factorization of K for all 2n columns,
+/// nothing differenced. Valid for holonomic and velocity constraints alike; the Jacobian is that of
+/// the index-1 vector field on all of ℝ²ⁿ, which leaves the constraint manifold invariant (restricted
+/// to the manifold in independent coordinates by [`linearize`](crate::linearize())). Errors: those
+/// of [`Constrained::solve`] and of the residual Jacobian (more than 10 coordinates).
+impl<L: Lagrangian, K: ConstraintSet> LinearizedDynamics for Constrained<L, K> {
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> noether_core::Result<()> {
+        self.check(t, q, v)?;
+        let n = self.dof();
+        noether_core::error::check_shape(
+            "Jacobian of the constrained equations (rows and columns)",
+            out,
+            2 * n,
+            2 * n,
+        )?;
+        let (factor, z, _) = self.saddle(t, q, v)?;
+        let (qdd, neg_lambda) = z.as_slice().split_at(n);
+        let mut de = DMatrix::zeros(n, 2 * n);
+        self.el.residual_jacobian(t, q, v, qdd, &mut de)?;
+        let mut rhs = DMatrix::zeros(z.len(), 2 * n);
+        let zeros = vec![0.0; n];
+        for j in 0..2 * n {
+            let mut e = vec![0.0; n];
+            e[j % n] = 1.0;
+            let dir = if j < n {
+                (&e[..], &zeros[..])
+            } else {
+                (&zeros[..], &e[..])
+            };
+            let d = self.set.derivatives_along(t, q, v, dir);
+            // −δE + (δA)ᵀλ with λ = −z₂, and −((δA) q̈ + δc).
+            let lift = d.matrix.tr_mul(&DVector::from_column_slice(neg_lambda));
+            for r in 0..n {
+                rhs[(r, j)] = -de[(r, j)] - lift[r];
+            }
+            let bend = &d.matrix * DVector::from_column_slice(qdd);
+            for (r, (b, c)) in bend.iter().zip(&d.bias).enumerate() {
+                rhs[(n + r, j)] = -(b + c);
+            }
+        }
+        let dz = factor.solve_matrix(&rhs);
+        out.fill(0.0);
+        out.view_mut((0, n), (n, n)).fill_with_identity();
+        out.view_mut((n, 0), (n, 2 * n)).copy_from(&dz.rows(0, n));
+        noether_core::error::check_result("Jacobian of the constrained equations", t, out.as_slice())
     }
 }

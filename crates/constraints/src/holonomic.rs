@@ -28,8 +28,8 @@
 //! # Ok::<(), noether_constraints::Error>(())
 //! ```
 
-use crate::jets::{self, Block, VectorField};
-use crate::set::ConstraintSet;
+use crate::jets::{self, Block, Variation, VectorField};
+use crate::set::{ConstraintSet, SetDerivatives};
 use crate::Result;
 use nalgebra::DMatrix;
 use noether_core::error::{check_finite, check_len, check_result};
@@ -247,5 +247,20 @@ impl<C: Holonomic> ConstraintSet for HolonomicSet<C> {
     fn positions(&self, t: f64, q: &[f64], out: &mut [f64]) -> bool {
         values_unchecked(&self.0, t, q, out);
         true
+    }
+    /// δA = δ(Φ_q) from the mixed second derivatives of φ; A q̇ + a = (d/ds) φ(t + s, q + s q̇) and
+    /// c = (d²/ds²) φ(t + s, q + s q̇) varied with (q, q̇) in one `Dual2<Dual64>` evaluation.
+    fn derivatives_along(&self, t: f64, q: &[f64], v: &[f64], (dq, dv): (&[f64], &[f64])) -> SetDerivatives {
+        let mut d = SetDerivatives::zeros(self.0.count(), self.0.dof());
+        let point = Variation {
+            ex: dq,
+            edx: dv,
+            ..Variation::default()
+        };
+        jets::jacobian_varied(&Field(&self.0), t, (q, &[]), point, Block::X, &mut d.matrix);
+        let mut value = vec![0.0; self.0.count()];
+        let out = [&mut value[..], &mut d.residual[..], &mut d.bias[..]];
+        jets::along_varied(&Field(&self.0), t, (q, &[]), (1.0, v, &[]), point, out);
+        d
     }
 }

@@ -11,11 +11,15 @@
 //!   evaluation (velocity constraints Φ_q q̇ + φ_t, the bias g_t + g_q q̇ of a velocity constraint);
 //! - [`along2`]: the first and second derivatives along a straight line, one `Dual2_64` evaluation.
 //!   With δ = (1, q̇) the second derivative of φ(t, q) is q̇ᵀφ_qq q̇ + 2 φ_qt q̇ + φ_tt = (Φ_q q̇)_q q̇ + …,
-//!   the acceleration term of a holonomic constraint, without forming any Hessian.
+//!   the acceleration term of a holonomic constraint, without forming any Hessian;
+//! - [`jacobian_varied`] and [`along_varied`]: the same quantities differentiated once more, along a
+//!   variation ε of the point (and of the line's direction), over nested duals: what the exact
+//!   Jacobian of the constrained equations of motion needs
+//!   ([`Constrained`](crate::Constrained)'s `LinearizedDynamics`).
 
 use nalgebra::{Const, DMatrix, U1};
 use noether_core::Scalar;
-use num_dual::{Dual2_64, Dual64, DualVec};
+use num_dual::{Dual, Dual2, Dual2_64, Dual64, DualVec};
 
 /// A vector-valued function g(t, x, y) ∈ ℝᵐ, generic over the scalar type.
 pub trait VectorField {
@@ -105,6 +109,98 @@ pub fn along2<F: VectorField>(
         *a = gk.v1;
         *b = gk.v2;
     }
+}
+
+/// A variation of a point (x, y) and of a line's direction (δx, δy) through it: the point moves to
+/// (x + ε ex, y + ε ey) and the direction to (δx + ε edx, δy + ε edy). Empty slices mean zero.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Variation<'a> {
+    /// ∂x/∂ε.
+    pub ex: &'a [f64],
+    /// ∂y/∂ε.
+    pub ey: &'a [f64],
+    /// ∂(δx)/∂ε.
+    pub edx: &'a [f64],
+    /// ∂(δy)/∂ε.
+    pub edy: &'a [f64],
+}
+
+/// `d[i]`, or 0 beyond the length of `d`.
+fn at(d: &[f64], i: usize) -> f64 {
+    d.get(i).copied().unwrap_or(0.0)
+}
+
+/// ∂/∂ε of the Jacobian ∂g/∂(block) at (t, x + ε ex, y + ε ey) into `out` (outputs × len(block)):
+/// one evaluation per column over `Dual<Dual64>` (outer part: the column's unit direction, inner: ε).
+pub fn jacobian_varied<F: VectorField>(
+    f: &F,
+    t: f64,
+    (x, y): (&[f64], &[f64]),
+    var: Variation<'_>,
+    block: Block,
+    out: &mut DMatrix<f64>,
+) {
+    type D = Dual<Dual64, f64>;
+    let mut g = Buf::<D>::filled(f.outputs(), D::from_re(Dual64::from_re(0.0)));
+    for j in 0..block.pick(x, y).len() {
+        let (ux, uy) = match block {
+            Block::X => (Some(j), None),
+            Block::Y => (None, Some(j)),
+        };
+        let xs = nested(x, var.ex, ux);
+        let ys = nested(y, var.ey, uy);
+        f.eval(D::from_re(Dual64::from_re(t)), &xs, &ys, &mut g);
+        for (k, gk) in g.iter().enumerate() {
+            out[(k, j)] = gk.eps.eps;
+        }
+    }
+}
+
+/// The point x + ε e as `Dual<Dual64>` with the outer part seeded on entry `unit` (if any).
+fn nested(x: &[f64], e: &[f64], unit: Option<usize>) -> Buf<Dual<Dual64, f64>> {
+    Buf::new(x.len(), |i| {
+        let seed = if unit == Some(i) { 1.0 } else { 0.0 };
+        Dual::new(Dual64::new(x[i], at(e, i)), Dual64::from_re(seed))
+    })
+}
+
+/// ∂/∂ε of g, of dg/ds and of d²g/ds² at s = ε = 0 for g(t + s δt, x(s, ε), y(s, ε)) along the line
+/// x(s, ε) = x + ε ex + s (δx + ε edx) (and y likewise) into `out` (each of length `outputs()`): one
+/// evaluation over `Dual2<Dual64>` (outer: s to second order, inner: ε). With δ = (1, q̇) the three
+/// are the derivatives of a velocity constraint's residual and acceleration bias with respect to the
+/// state, the direction q̇ varied with it.
+pub fn along_varied<F: VectorField>(
+    f: &F,
+    t: f64,
+    (x, y): (&[f64], &[f64]),
+    dir: (f64, &[f64], &[f64]),
+    var: Variation<'_>,
+    out: [&mut [f64]; 3],
+) {
+    type D = Dual2<Dual64, f64>;
+    let (dt, dx, dy) = dir;
+    let xs = line_varied(x, dx, var.ex, var.edx);
+    let ys = line_varied(y, dy, var.ey, var.edy);
+    let mut g = Buf::<D>::filled(f.outputs(), D::from_re(Dual64::from_re(0.0)));
+    let tt = D::new(Dual64::from_re(t), Dual64::from_re(dt), Dual64::from_re(0.0));
+    f.eval(tt, &xs, &ys, &mut g);
+    let [value, first, second] = out;
+    for (k, gk) in g.iter().enumerate() {
+        value[k] = gk.re.eps;
+        first[k] = gk.v1.eps;
+        second[k] = gk.v2.eps;
+    }
+}
+
+/// x + ε e + s (δx + ε eδx) as `Dual2<Dual64>`.
+fn line_varied(x: &[f64], dx: &[f64], e: &[f64], edx: &[f64]) -> Buf<Dual2<Dual64, f64>> {
+    Buf::new(x.len(), |i| {
+        Dual2::new(
+            Dual64::new(x[i], at(e, i)),
+            Dual64::new(at(dx, i), at(edx, i)),
+            Dual64::from_re(0.0),
+        )
+    })
 }
 
 #[cfg(test)]

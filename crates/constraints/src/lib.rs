@@ -65,6 +65,7 @@ pub mod forces;
 pub mod gibbs_appell;
 pub mod holonomic;
 pub mod impulse;
+pub mod linearize;
 // The vector-valued AD kernels: unchecked, for this crate's own checked functions only.
 pub(crate) mod jets;
 pub mod nonholonomic;
@@ -79,11 +80,12 @@ pub use forces::ConstraintForces;
 pub use gibbs_appell::{GibbsAppell, GibbsAppellEquations, QuasiVelocities, RigidPart};
 pub use holonomic::{Holonomic, HolonomicSet};
 pub use impulse::{generalized_impulse, Impact, ImpactResult, StruckPoints};
+pub use linearize::linearize;
 pub use nonholonomic::{Nonholonomic, NonholonomicSet};
 pub use projection::{project, Projected, Projection, ProjectionReport};
 pub use rattle::{Rattle, RattleInfo};
 pub use reduced::Reduced;
-pub use set::ConstraintSet;
+pub use set::{ConstraintSet, SetDerivatives};
 
 /// Models, constraints, and the integrators to step them, in one import. `Error` and `Result` here
 /// are this crate's (which wrap core's and convert from it with `?`).

@@ -25,8 +25,8 @@
 //! assert_eq!(a.as_slice(), &[0.0, 1.0, 0.0]);
 //! ```
 
-use crate::jets::{self, Block, VectorField};
-use crate::set::ConstraintSet;
+use crate::jets::{self, Block, Variation, VectorField};
+use crate::set::{ConstraintSet, SetDerivatives};
 use nalgebra::DMatrix;
 use noether_core::Scalar;
 
@@ -78,5 +78,21 @@ impl<C: Nonholonomic> ConstraintSet for NonholonomicSet<C> {
     }
     fn positions(&self, _t: f64, _q: &[f64], _out: &mut [f64]) -> bool {
         false
+    }
+    /// δA = δ(∂g/∂v) from the mixed second derivatives of g; g itself and
+    /// c = (d/ds) g(t + s, q + s q̇, q̇) varied with (q, q̇) in one `Dual2<Dual64>` evaluation.
+    fn derivatives_along(&self, t: f64, q: &[f64], v: &[f64], (dq, dv): (&[f64], &[f64])) -> SetDerivatives {
+        let mut d = SetDerivatives::zeros(self.0.count(), self.0.dof());
+        let point = Variation {
+            ex: dq,
+            ey: dv,
+            edx: dv,
+            edy: &[],
+        };
+        jets::jacobian_varied(&Field(&self.0), t, (q, v), point, Block::Y, &mut d.matrix);
+        let mut unused = vec![0.0; self.0.count()];
+        let out = [&mut d.residual[..], &mut d.bias[..], &mut unused[..]];
+        jets::along_varied(&Field(&self.0), t, (q, v), (1.0, v, &[]), point, out);
+        d
     }
 }

@@ -74,6 +74,31 @@ pub struct Reduced<L, C> {
     reference: Vec<f64>,
 }
 
+/// The m dependent coordinates left by n − m `independent` ones (indices into q, each once, in
+/// range), in increasing order. Errors: the wrong count (`Dimension`), a repeated or out-of-range
+/// index (`InvalidParameter`).
+pub(crate) fn dependent_coordinates(n: usize, m: usize, independent: &[usize]) -> Result<Vec<usize>> {
+    if independent.len() != n.saturating_sub(m) {
+        return Err(noether_core::Error::Dimension {
+            what: "independent coordinates (n − m)",
+            expected: n.saturating_sub(m),
+            got: independent.len(),
+        }
+        .into());
+    }
+    for (k, &i) in independent.iter().enumerate() {
+        if i >= n || independent[..k].contains(&i) {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "independent coordinate index",
+                value: i as f64,
+                reason: "below the number of coordinates, each once",
+            }
+            .into());
+        }
+    }
+    Ok((0..n).filter(|i| !independent.contains(i)).collect())
+}
+
 /// Newton steps in the scalar's arithmetic after the real solve (exact derivatives through order
 /// 2³ − 1 = 7).
 const DUAL_STEPS: usize = 3;
@@ -96,27 +121,9 @@ impl<L: Lagrangian, C: Holonomic> Reduced<L, C> {
             }
             .into());
         }
-        if independent.len() != n.saturating_sub(m) {
-            return Err(noether_core::Error::Dimension {
-                what: "independent coordinates (n − m)",
-                expected: n.saturating_sub(m),
-                got: independent.len(),
-            }
-            .into());
-        }
+        let dependent = dependent_coordinates(n, m, independent)?;
         check_len("reference configuration", reference, n)?;
         check_finite("reference configuration", reference)?;
-        for (k, &i) in independent.iter().enumerate() {
-            if i >= n || independent[..k].contains(&i) {
-                return Err(noether_core::Error::InvalidParameter {
-                    name: "independent coordinate index",
-                    value: i as f64,
-                    reason: "below the number of coordinates, each once",
-                }
-                .into());
-            }
-        }
-        let dependent = (0..n).filter(|i| !independent.contains(i)).collect();
         let reduced = Reduced {
             model,
             constraints,

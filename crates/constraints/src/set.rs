@@ -39,6 +39,34 @@ pub trait ConstraintSet {
     /// For holonomic sets, φ(t, q) into `out` and `true`; `false` (and `out` untouched) for velocity
     /// constraints, which have no position-level residual.
     fn positions(&self, t: f64, q: &[f64], out: &mut [f64]) -> bool;
+    /// The derivatives of A, of the velocity residual A q̇ + a and of the acceleration bias c along a
+    /// variation δ = (δq, δq̇) of the state (t, q, q̇), exact by nested dual numbers: the pieces of
+    /// the exact Jacobian of the constrained equations of motion and of the tangent space of the
+    /// constraint manifold.
+    fn derivatives_along(&self, t: f64, q: &[f64], v: &[f64], dir: (&[f64], &[f64])) -> SetDerivatives;
+}
+
+/// The derivatives of a [`ConstraintSet`] along a variation of the state
+/// ([`ConstraintSet::derivatives_along`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetDerivatives {
+    /// δA (m × n).
+    pub matrix: DMatrix<f64>,
+    /// δ(A q̇ + a) (length m).
+    pub residual: Vec<f64>,
+    /// δc (length m).
+    pub bias: Vec<f64>,
+}
+
+impl SetDerivatives {
+    /// Zeros for m constraints on n coordinates.
+    pub(crate) fn zeros(m: usize, n: usize) -> Self {
+        SetDerivatives {
+            matrix: DMatrix::zeros(m, n),
+            residual: vec![0.0; m],
+            bias: vec![0.0; m],
+        }
+    }
 }
 
 impl<C: ConstraintSet + ?Sized> ConstraintSet for &C {
@@ -59,5 +87,8 @@ impl<C: ConstraintSet + ?Sized> ConstraintSet for &C {
     }
     fn positions(&self, t: f64, q: &[f64], out: &mut [f64]) -> bool {
         (**self).positions(t, q, out)
+    }
+    fn derivatives_along(&self, t: f64, q: &[f64], v: &[f64], dir: (&[f64], &[f64])) -> SetDerivatives {
+        (**self).derivatives_along(t, q, v, dir)
     }
 }

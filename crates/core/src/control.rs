@@ -55,6 +55,43 @@ pub trait Actuated: Lagrangian {
     fn input_force<D: Scalar>(&self, t: D, q: &[D], v: &[D], u: &[D], out: &mut [D]);
 }
 
+/// ∂Q_u/∂u (n × m) of `model` at (t, q, q̇, u): one `Dual64` evaluation of the input force per
+/// input. No checks (the linearisations that call it check their arguments first).
+pub fn input_jacobian<A: Actuated + ?Sized>(
+    model: &A,
+    t: f64,
+    q: &[f64],
+    v: &[f64],
+    u: &[f64],
+) -> DMatrix<f64> {
+    use num_dual::Dual64;
+    let (n, m) = (model.dof(), u.len());
+    let (qd, vd) = (Buf::<Dual64, 16>::constants(q), Buf::<Dual64, 16>::constants(v));
+    let mut du = DMatrix::zeros(n, m);
+    let mut force = vec![Dual64::from(0.0); n];
+    for j in 0..m {
+        let ud = Buf::<Dual64, 16>::new(m, |k| Dual64::new(u[k], if k == j { 1.0 } else { 0.0 }));
+        model.input_force(Dual64::from(t), &qd, &vd, &ud, &mut force);
+        for (i, f) in force.iter().enumerate() {
+            du[(i, j)] = f.eps;
+        }
+    }
+    du
+}
+
+/// The linearisation (A, B) of an actuated system at an operating point, with the drift there:
+/// δẋ = A δx + B δu about x*, u*, where ẋ* = `drift`. Made by `noether_analysis::linearize` (x = (q, q̇))
+/// and, for constrained models in independent coordinates, `noether_constraints::linearize`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Linearization {
+    /// A = ∂ẋ/∂x.
+    pub a: DMatrix<f64>,
+    /// B = ∂ẋ/∂u.
+    pub b: DMatrix<f64>,
+    /// ẋ* at the point: zero at an equilibrium.
+    pub drift: nalgebra::DVector<f64>,
+}
+
 impl<A: Actuated + ?Sized> Actuated for &A {
     fn inputs(&self) -> usize {
         (**self).inputs()

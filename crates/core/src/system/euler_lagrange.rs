@@ -1,7 +1,7 @@
 //! The system traits of [`EulerLagrange`]: Lagrange's equations on (q, q̇).
 
 use crate::{EulerLagrange, Lagrangian, Result, Velocities};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 use super::{Dynamics, LinearizedDynamics};
 
@@ -47,36 +47,91 @@ impl<L: crate::Lagrangian> LinearizedDynamics for crate::EulerLagrange<L> {
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         let n = self.dof();
         crate::error::check_phase_point(n, t, q, v, "q̇")?;
-        if out.nrows() != 2 * n || out.ncols() != 2 * n {
-            return Err(crate::Error::Dimension {
-                what: "Jacobian of Lagrange's equations (rows and columns)",
-                expected: 2 * n,
-                got: if out.nrows() != 2 * n {
-                    out.nrows()
-                } else {
-                    out.ncols()
-                },
-            });
+        crate::error::check_shape(
+            "Jacobian of Lagrange's equations (rows and columns)",
+            out,
+            2 * n,
+            2 * n,
+        )?;
+        let columns = directional_terms(self.lagrangian(), t, q, v)?;
+        out.fill(0.0);
+        out.view_mut((0, n), (n, n)).fill_with_identity();
+        let Some((b0, m0)) = columns.first() else {
+            return Ok(());
+        };
+        // M and q̈ = M⁻¹b from the real parts (the same in every column).
+        let factor = crate::linalg::factor_positive_mass(m0.map(|x| x.re), t)?;
+        let acc = factor.solve_matrix(&DMatrix::from_fn(n, 1, |r, _| b0[r].re));
+        let mut residual = DMatrix::zeros(n, 2 * n);
+        residual_columns(&columns, acc.as_slice(), &mut residual);
+        // ∂q̈/∂x = −M⁻¹ ∂E/∂x.
+        let dqdd = -factor.solve_matrix(&residual);
+        out.view_mut((n, 0), (n, 2 * n)).copy_from(&dqdd);
+        crate::error::check_result("Jacobian of Lagrange's equations", t, out.as_slice())
+    }
+}
+
+impl<L: Lagrangian> crate::EulerLagrange<L> {
+    /// The Jacobian ∂E/∂(q, q̇) (n × 2n, into `out`) of the residual of Lagrange's equations
+    ///
+    /// ```text
+    /// E(t, q, q̇, q̈) = M(t, q, q̇) q̈ − b(t, q, q̇) = d/dt(∂L/∂q̇) − ∂L/∂q − Q
+    /// ```
+    ///
+    /// at a fixed acceleration q̈ (any, not only the one Lagrange's equations give): column j is
+    /// (δM) q̈ − δb along δ = e_j, exact (third derivatives of L by the jets of the
+    /// [`LinearizedDynamics`] impl). It is what implicit differentiation of a larger system built on
+    /// Lagrange's equations needs: the saddle-point system of a constrained model, [M Aᵀ; A 0], is
+    /// differentiated this way by noether-constraints. Errors: dimensions, non-finite input or
+    /// result, more than 10 degrees of freedom ([`Error::Unsupported`](crate::Error::Unsupported)).
+    pub fn residual_jacobian(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        qdd: &[f64],
+        out: &mut DMatrix<f64>,
+    ) -> Result<()> {
+        let n = self.dof();
+        crate::error::check_phase_point(n, t, q, v, "q̇")?;
+        crate::error::check_len("q̈", qdd, n)?;
+        crate::error::check_finite("q̈", qdd)?;
+        crate::error::check_shape("Jacobian of the Euler-Lagrange residual (rows)", out, n, 2 * n)?;
+        let columns = directional_terms(self.lagrangian(), t, q, v)?;
+        residual_columns(&columns, qdd, out);
+        crate::error::check_result("Jacobian of the Euler-Lagrange residual", t, out.as_slice())
+    }
+}
+
+/// (b, M) with their derivatives along each δ = e_j, j < 2n (q directions first, then q̇), over
+/// `Dual64`: [`lagrange_terms_along`] (and the generalized force's derivatives) for n ≤ 10.
+type Directional = Vec<(DVector<num_dual::Dual64>, DMatrix<num_dual::Dual64>)>;
+
+fn directional_terms<L: Lagrangian>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Result<Directional> {
+    match l.dof() {
+        0 => Ok(Vec::new()),
+        1 => Ok(directional_terms_n::<_, 1>(l, t, q, v)),
+        2 => Ok(directional_terms_n::<_, 2>(l, t, q, v)),
+        3 => Ok(directional_terms_n::<_, 3>(l, t, q, v)),
+        4 => Ok(directional_terms_n::<_, 4>(l, t, q, v)),
+        5 => Ok(directional_terms_n::<_, 5>(l, t, q, v)),
+        6 => Ok(directional_terms_n::<_, 6>(l, t, q, v)),
+        7 => Ok(directional_terms_n::<_, 7>(l, t, q, v)),
+        8 => Ok(directional_terms_n::<_, 8>(l, t, q, v)),
+        9 => Ok(directional_terms_n::<_, 9>(l, t, q, v)),
+        10 => Ok(directional_terms_n::<_, 10>(l, t, q, v)),
+        _ => Err(crate::Error::Unsupported(
+            "the Jacobian of Lagrange's equations for more than 10 degrees of freedom",
+        )),
+    }
+}
+
+/// Column j of ∂E/∂x at the acceleration `qdd`: (δM) q̈ − δb from the dual parts.
+fn residual_columns(columns: &Directional, qdd: &[f64], out: &mut DMatrix<f64>) {
+    for (j, (b, m)) in columns.iter().enumerate() {
+        for r in 0..b.len() {
+            out[(r, j)] = (0..qdd.len()).map(|c| m[(r, c)].eps * qdd[c]).sum::<f64>() - b[r].eps;
         }
-        let l = self.lagrangian();
-        let jac = match n {
-            0 => Ok(DMatrix::zeros(0, 0)),
-            1 => lagrange_jacobian::<_, 1>(l, t, q, v),
-            2 => lagrange_jacobian::<_, 2>(l, t, q, v),
-            3 => lagrange_jacobian::<_, 3>(l, t, q, v),
-            4 => lagrange_jacobian::<_, 4>(l, t, q, v),
-            5 => lagrange_jacobian::<_, 5>(l, t, q, v),
-            6 => lagrange_jacobian::<_, 6>(l, t, q, v),
-            7 => lagrange_jacobian::<_, 7>(l, t, q, v),
-            8 => lagrange_jacobian::<_, 8>(l, t, q, v),
-            9 => lagrange_jacobian::<_, 9>(l, t, q, v),
-            10 => lagrange_jacobian::<_, 10>(l, t, q, v),
-            _ => Err(crate::Error::Unsupported(
-                "the Jacobian of Lagrange's equations for more than 10 degrees of freedom",
-            )),
-        }?;
-        out.copy_from(&jac);
-        Ok(())
     }
 }
 
@@ -137,19 +192,11 @@ fn force_along<L: Lagrangian, const N: usize>(
     out.into()
 }
 
-/// J of Lagrange's equations for N degrees of freedom, column by column (see the
-/// [`LinearizedDynamics`](LinearizedDynamics) impl of `EulerLagrange`).
-fn lagrange_jacobian<L: Lagrangian, const N: usize>(
-    l: &L,
-    t: f64,
-    q: &[f64],
-    v: &[f64],
-) -> Result<DMatrix<f64>> {
+/// (b, M) and their derivatives along every unit direction of (q, q̇) for N degrees of freedom.
+fn directional_terms_n<L: Lagrangian, const N: usize>(l: &L, t: f64, q: &[f64], v: &[f64]) -> Directional {
     let f = crate::lagrange::LagrangianField(l);
     let zeros = [0.0; N];
-    let mut jac = DMatrix::zeros(2 * N, 2 * N);
-    jac.view_mut((0, N), (N, N)).fill_with_identity();
-    let columns: Vec<_> = (0..2 * N)
+    (0..2 * N)
         .map(|j| {
             let mut e = [0.0; N];
             e[j % N] = 1.0;
@@ -162,22 +209,10 @@ fn lagrange_jacobian<L: Lagrangian, const N: usize>(
             if l.has_generalized_force() {
                 b += force_along::<L, N>(l, t, (q, v), dir);
             }
-            (b, m)
+            (
+                DVector::from_column_slice(b.as_slice()),
+                DMatrix::from_column_slice(N, N, m.as_slice()),
+            )
         })
-        .collect();
-    let Some((b0, m0)) = columns.first() else {
-        return Ok(jac);
-    };
-    // M and q̈ = M⁻¹b from the real parts (the same in every column).
-    let factor = crate::linalg::factor_positive_mass(DMatrix::from_fn(N, N, |r, c| m0[(r, c)].re), t)?;
-    let acc = factor.solve_matrix(&DMatrix::from_fn(N, 1, |r, _| b0[r].re));
-    for (j, (b, m)) in columns.iter().enumerate() {
-        // δb − (δM) q̈, then M⁻¹.
-        let rhs = DMatrix::from_fn(N, 1, |r, _| {
-            b[r].eps - (0..N).map(|c| m[(r, c)].eps * acc[(c, 0)]).sum::<f64>()
-        });
-        jac.view_mut((N, j), (N, 1)).copy_from(&factor.solve_matrix(&rhs));
-    }
-    crate::error::check_result("Jacobian of Lagrange's equations", t, jac.as_slice())?;
-    Ok(jac)
+        .collect()
 }
