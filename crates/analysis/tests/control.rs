@@ -442,7 +442,7 @@ fn variational_step_linearization_is_the_cayley_transform() {
 /// bob's Cartesian position — with the rod as a holonomic constraint φ = ((x_b − x_c)² + y_b² − l²)/2:
 ///
 ///   L = ½ M ẋ_c² + ½ m (ẋ_b² + ẏ_b²) − m g y_b,   Q_u = (u, 0, 0).
-struct CartesianCartPole(CartPole);
+pub(crate) struct CartesianCartPole(pub(crate) CartPole);
 
 impl Lagrangian for CartesianCartPole {
     fn dof(&self) -> usize {
@@ -466,7 +466,7 @@ impl Actuated for CartesianCartPole {
 }
 
 /// The rod of [`CartesianCartPole`].
-struct Rod(f64);
+pub(crate) struct Rod(pub(crate) f64);
 
 impl noether_constraints::Holonomic for Rod {
     fn dof(&self) -> usize {
@@ -479,6 +479,26 @@ impl noether_constraints::Holonomic for Rod {
         let dx = q[1] - q[0];
         out[0] = (dx * dx + q[2] * q[2] - self.0 * self.0) * 0.5;
     }
+}
+
+/// The textbook upright (A, B) of the cart-pole (`CartPole::upright_linearization`, in (x, θ)) in
+/// the Cartesian cart-pole's independent coordinates (x_c, x_b): x_c = x, x_b = x + l sin θ, so
+/// δ(x_c, x_b) = J δ(x, θ) with J = [[1, 0], [1, l]] at θ = 0, and at rest the velocities map by the
+/// same J: (S A S⁻¹, S B) with S = diag(J, J).
+pub(crate) fn textbook_in_cartesian(cp: &CartPole) -> (DMatrix<f64>, DMatrix<f64>) {
+    let (a, b) = cp.upright_linearization();
+    let (a, b) = (
+        DMatrix::from_fn(4, 4, |i, j| a[i][j]),
+        DMatrix::from_column_slice(4, 1, &b),
+    );
+    let mut s = DMatrix::zeros(4, 4);
+    for k in [0, 2] {
+        s[(k, k)] = 1.0;
+        s[(k + 1, k)] = 1.0;
+        s[(k + 1, k + 1)] = cp.l;
+    }
+    let s_inv = s.clone().try_inverse().unwrap();
+    (&s * &a * &s_inv, &s * &b)
 }
 
 /// Linearisation with holonomic constraints in dependent coordinates, reduced to independent ones as
@@ -495,19 +515,7 @@ fn constrained_cart_pole_reduces_to_the_textbook_linearization() {
     let cp = CartPole::default();
     let reduced = Reduced::new(CartesianCartPole(cp), Rod(cp.l), &[0, 1], &[0.0, 0.0, cp.l]).unwrap();
     let lin = linearize(&reduced, 0.0, &[0.0, 0.0], &[0.0, 0.0], &[0.0]).unwrap();
-    let (a, b) = cp.upright_linearization();
-    let (a, b) = (
-        DMatrix::from_fn(4, 4, |i, j| a[i][j]),
-        DMatrix::from_column_slice(4, 1, &b),
-    );
-    let mut s = DMatrix::zeros(4, 4);
-    for k in [0, 2] {
-        s[(k, k)] = 1.0;
-        s[(k + 1, k)] = 1.0;
-        s[(k + 1, k + 1)] = cp.l;
-    }
-    let s_inv = s.clone().try_inverse().unwrap();
-    let (a_exact, b_exact) = (&s * &a * &s_inv, &s * &b);
+    let (a_exact, b_exact) = textbook_in_cartesian(&cp);
     let (ea, eb) = (
         (&lin.a - &a_exact).amax() / a_exact.amax(),
         (&lin.b - &b_exact).amax() / b_exact.amax(),

@@ -19,6 +19,7 @@
 //! | [`agreement`] | the relative difference of two vectors, reproducible uniform random numbers | noether-compile's tests, `equations_of_motion` |
 //! | [`closed_form`] | K, E, sn, cn, dn, Kepler's equation, the free top's Ω(t) | the gallery (`noether_gallery::closed_form`), rigid's tests |
 //! | `gibbs_appell` | the four-particle top, the rolling disk and sphere, their closed forms (feature `constraints`) | constraints' tests, `gibbs_appell`, `rolling_sphere` |
+//! | `coin` | the coin rolling on a table in dependent coordinates, its steady turns and their stability (feature `constraints`) | analysis' control tests |
 //! | `boundary` | the boundary-value problems (feature `discrete`) | discrete's tests, `boundary_value` |
 //! | `canonical`, `hamilton_jacobi` | canonical maps, generating and phase functions, complete integrals (feature `canonical`) | canonical's tests, `canonical_transformation`, `poisson_brackets`, `action_angle`, `hamilton_jacobi` |
 
@@ -28,6 +29,8 @@ pub mod boundary;
 #[cfg(feature = "canonical")]
 pub mod canonical;
 pub mod closed_form;
+#[cfg(feature = "constraints")]
+pub mod coin;
 pub mod control;
 #[cfg(feature = "constraints")]
 pub mod gibbs_appell;
