@@ -57,6 +57,7 @@ use noether_core as core;
 use noether_discrete as discrete;
 #[cfg(feature = "ensemble")]
 use noether_ensemble as ensemble;
+use noether_multibody as multibody;
 use noether_particles as particles;
 #[cfg(feature = "plot")]
 use noether_plot as plot;
@@ -94,6 +95,9 @@ pub enum Error {
     /// Rigid bodies: quaternions, inertia.
     #[error(transparent)]
     Rigid(rigid::Error),
+    /// Multibody systems: a mechanism described wrongly (a mass, an inertia, a parent, an axis).
+    #[error(transparent)]
+    Multibody(multibody::Error),
     /// Compiled models: a model that cannot be recorded (it reads the value of its scalar).
     #[error(transparent)]
     Compile(compile::Error),
@@ -153,7 +157,7 @@ macro_rules! from_crates {
 
 from_crates!(discrete => Discrete, constraints => Constraints, particles => Particles,
              analysis => Analysis, canonical => Canonical, rigid => Rigid,
-             compile => Compile);
+             multibody => Multibody, compile => Compile);
 
 #[cfg(feature = "ensemble")]
 impl From<ensemble::Error> for Error {

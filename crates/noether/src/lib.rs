@@ -16,6 +16,7 @@
 //! | [`compile`] | noether-compile | compiled models: the model recorded once, its equations derived and simplified on the graph, run without dual numbers (dual numbers as the guarded fallback): by an interpreter, or as native code compiled by Cranelift with the feature `jit` |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
+//! | [`multibody`] | noether-multibody | mechanisms from bodies and joints: the Lagrangian of a kinematic tree written for you |
 //! | `ensemble` (feature `ensemble`) | noether-ensemble | many runs on every core, and across MPI ranks (feature `mpi`): grids, random samples, reductions bit-identical for any thread count |
 //! | `plot` (feature `plot`) | noether-plot | SVG pictures of a run |
 //!
@@ -48,6 +49,7 @@ pub use noether_core as core;
 pub use noether_discrete as discrete;
 #[cfg(feature = "ensemble")]
 pub use noether_ensemble as ensemble;
+pub use noether_multibody as multibody;
 pub use noether_particles as particles;
 #[cfg(feature = "plot")]
 pub use noether_plot as plot;

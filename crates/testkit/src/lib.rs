@@ -20,6 +20,7 @@
 //! | [`closed_form`] | K, E, sn, cn, dn, Kepler's equation, the free top's Ω(t) | the gallery (`noether_gallery::closed_form`), rigid's tests |
 //! | `gibbs_appell` | the four-particle top, the rolling disk and sphere, their closed forms (feature `constraints`) | constraints' tests, `gibbs_appell`, `rolling_sphere` |
 //! | `coin` | the coin rolling on a table in dependent coordinates, its steady turns and their stability (feature `constraints`) | analysis' control tests |
+//! | `multibody` | the double pendulum from two hinges, a planar arm of three rods with its mass matrix and tip in closed form (feature `multibody`) | multibody's tests, `joints_double_pendulum`, `planar_arm` |
 //! | `boundary` | the boundary-value problems (feature `discrete`) | discrete's tests, `boundary_value` |
 //! | `canonical`, `hamilton_jacobi` | canonical maps, generating and phase functions, complete integrals (feature `canonical`) | canonical's tests, `canonical_transformation`, `poisson_brackets`, `action_angle`, `hamilton_jacobi` |
 
@@ -38,6 +39,8 @@ pub mod gibbs_appell;
 pub mod hamilton_jacobi;
 pub mod henon_heiles;
 pub mod kepler;
+#[cfg(feature = "multibody")]
+pub mod multibody;
 #[cfg(feature = "peer")]
 pub mod peer;
 pub mod pendulum;

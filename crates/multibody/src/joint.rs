@@ -1,0 +1,210 @@
+//! Joints: how a body moves relative to the frame it hangs from, with the coordinates that say so,
+//! and bodies: mass, centre of mass, inertia.
+//!
+//! A joint connects a *joint frame* fixed in the parent (its [`Placement`] in the parent's body frame)
+//! to the child's body frame, which coincides with the joint frame when the joint's coordinates are
+//! zero. A revolute joint turns the child about an axis of the joint frame by its angle q, a prismatic
+//! one slides it along an axis by q, a fixed one welds it. Springs (V = ½ k (q − q₀)²) and dampers
+//! (Q = −c q̇) act on the joint's coordinate.
+
+use crate::frames::{self, M3, V3};
+use noether_core::Scalar;
+
+/// What a joint allows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JointKind {
+    /// Rotation by the angle q about `axis` (of the joint frame; normalised when attached).
+    Revolute {
+        /// The axis.
+        axis: [f64; 3],
+    },
+    /// Translation by q along `axis` (of the joint frame; normalised when attached).
+    Prismatic {
+        /// The axis.
+        axis: [f64; 3],
+    },
+    /// No motion: the child is welded to the joint frame.
+    Fixed,
+}
+
+/// A joint: its kind, with an optional spring and damper on its coordinate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Joint {
+    pub(crate) kind: JointKind,
+    pub(crate) stiffness: f64,
+    pub(crate) rest: f64,
+    pub(crate) damping: f64,
+}
+
+impl Joint {
+    fn of(kind: JointKind) -> Self {
+        Joint {
+            kind,
+            stiffness: 0.0,
+            rest: 0.0,
+            damping: 0.0,
+        }
+    }
+
+    /// A revolute (hinge) joint about `axis`.
+    pub fn revolute(axis: [f64; 3]) -> Self {
+        Self::of(JointKind::Revolute { axis })
+    }
+
+    /// A prismatic (sliding) joint along `axis`.
+    pub fn prismatic(axis: [f64; 3]) -> Self {
+        Self::of(JointKind::Prismatic { axis })
+    }
+
+    /// A fixed joint (no coordinates).
+    pub fn fixed() -> Self {
+        Self::of(JointKind::Fixed)
+    }
+
+    /// A spring on the coordinate: V = ½ k (q − q₀)² (checked finite and k ≥ 0 when attached).
+    pub fn spring(mut self, stiffness: f64, rest: f64) -> Self {
+        self.stiffness = stiffness;
+        self.rest = rest;
+        self
+    }
+
+    /// A damper on the coordinate: Q = −c q̇ (checked finite and c ≥ 0 when attached).
+    pub fn damper(mut self, damping: f64) -> Self {
+        self.damping = damping;
+        self
+    }
+
+    /// The kind of joint.
+    pub fn kind(&self) -> JointKind {
+        self.kind
+    }
+
+    /// Its number of coordinates.
+    pub fn dof(&self) -> usize {
+        match self.kind {
+            JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
+            JointKind::Fixed => 0,
+        }
+    }
+
+    /// The axis, if the joint has one.
+    pub(crate) fn axis(&self) -> Option<[f64; 3]> {
+        match self.kind {
+            JointKind::Revolute { axis } | JointKind::Prismatic { axis } => Some(axis),
+            JointKind::Fixed => None,
+        }
+    }
+
+    /// The same joint with its axis made a unit vector.
+    pub(crate) fn normalised(mut self) -> Self {
+        if let JointKind::Revolute { axis } | JointKind::Prismatic { axis } = &mut self.kind {
+            let norm = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+            axis.iter_mut().for_each(|a| *a /= norm);
+        }
+        self
+    }
+
+    /// The child's frame in the joint frame at the coordinates q: rotation and translation.
+    pub(crate) fn motion<D: Scalar>(&self, q: &[D]) -> (M3<D>, V3<D>) {
+        match self.kind {
+            JointKind::Revolute { axis } => (frames::rotation(axis, q[0]), frames::zero()),
+            JointKind::Prismatic { axis } => (frames::identity(), frames::scaled(axis, q[0])),
+            JointKind::Fixed => (frames::identity(), frames::zero()),
+        }
+    }
+
+    /// The child's angular velocity and the velocity of its origin relative to the joint frame, in
+    /// the joint frame, at the rates q̇.
+    pub(crate) fn rates<D: Scalar>(&self, v: &[D]) -> (V3<D>, V3<D>) {
+        match self.kind {
+            JointKind::Revolute { axis } => (frames::scaled(axis, v[0]), frames::zero()),
+            JointKind::Prismatic { axis } => (frames::zero(), frames::scaled(axis, v[0])),
+            JointKind::Fixed => (frames::zero(), frames::zero()),
+        }
+    }
+}
+
+/// Where a joint frame sits in its parent's body frame (or in the world, for the ground): a rotation
+/// and a translation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    pub(crate) rotation: [[f64; 3]; 3],
+    pub(crate) translation: [f64; 3],
+}
+
+impl Placement {
+    /// The parent's own frame.
+    pub fn identity() -> Self {
+        Placement {
+            rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            translation: [0.0; 3],
+        }
+    }
+
+    /// The parent's axes, moved to the point `at` of the parent's frame.
+    pub fn at(at: [f64; 3]) -> Self {
+        Placement {
+            translation: at,
+            ..Self::identity()
+        }
+    }
+
+    /// This placement turned by `angle` about the unit `axis` (of the placement's own frame).
+    pub fn rotated(self, axis: [f64; 3], angle: f64) -> Self {
+        let turn = frames::rotation(axis, angle);
+        Placement {
+            rotation: frames::compose_const(&self.rotation, &turn),
+            ..self
+        }
+    }
+}
+
+/// A rigid body: its mass, its centre of mass in its body frame and its inertia tensor about the
+/// centre of mass in body axes. Point masses (zero inertia) and thin rods (an axis of zero moment) are
+/// bodies too.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Body {
+    pub(crate) mass: f64,
+    pub(crate) centre: [f64; 3],
+    pub(crate) inertia: [[f64; 3]; 3],
+}
+
+impl Body {
+    /// A body of `mass` with its centre of mass at `centre` and the inertia tensor `inertia` about it
+    /// (checked when attached: symmetric, its principal moments at least 0 and each at most the sum of
+    /// the other two).
+    pub fn new(mass: f64, centre: [f64; 3], inertia: [[f64; 3]; 3]) -> Self {
+        Body {
+            mass,
+            centre,
+            inertia,
+        }
+    }
+
+    /// A point mass at `at`.
+    pub fn point(mass: f64, at: [f64; 3]) -> Self {
+        Self::new(mass, at, [[0.0; 3]; 3])
+    }
+
+    /// A uniform thin rod of `mass` from `from` to `to`: centre at the midpoint, inertia
+    /// (m ℓ²/12)(I − e eᵀ) about it, e the rod's unit direction and ℓ its length.
+    pub fn rod(mass: f64, from: [f64; 3], to: [f64; 3]) -> Self {
+        let d: [f64; 3] = std::array::from_fn(|i| to[i] - from[i]);
+        let length2 = d.iter().map(|x| x * x).sum::<f64>();
+        let k = mass / 12.0;
+        let inertia = std::array::from_fn(|i| {
+            std::array::from_fn(|j| k * (if i == j { length2 } else { 0.0 } - d[i] * d[j]))
+        });
+        Self::new(mass, std::array::from_fn(|i| 0.5 * (from[i] + to[i])), inertia)
+    }
+
+    /// A frame without mass (a link that only carries others).
+    pub fn massless() -> Self {
+        Self::point(0.0, [0.0; 3])
+    }
+
+    /// The mass.
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+}

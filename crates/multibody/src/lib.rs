@@ -1,0 +1,37 @@
+//! # noether-multibody
+//!
+//! Multibody systems from bodies and joints: describe a mechanism — rigid bodies (mass, centre of
+//! mass, inertia) attached by revolute, prismatic and fixed joints to the ground or to each other, with
+//! springs, dampers and actuated joints — and get its Lagrangian written for you. [`Mechanism`] is an
+//! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
+//! so every integrator, the driver, linearisation and LQR, variational integrators, tangents and
+//! ensembles run it unchanged, with exact derivatives by dual numbers.
+//!
+//! ```
+//! use noether_core::prelude::*;
+//! use noether_multibody::{Body, Joint, Mechanism, Parent, Placement};
+//!
+//! // A double pendulum in the x-y plane, gravity along −y: two hinges about z, point bobs.
+//! let z = [0.0, 0.0, 1.0];
+//! let mut pendulum = Mechanism::new().gravity([0.0, -9.81, 0.0])?;
+//! let upper = pendulum.attach(Parent::Ground, Placement::identity(), Joint::revolute(z), Body::point(1.0, [0.0, -1.0, 0.0]))?;
+//! pendulum.attach(upper, Placement::at([0.0, -1.0, 0.0]), Joint::revolute(z), Body::point(1.0, [0.0, -1.0, 0.0]))?;
+//! // Hanging straight down it is at rest. In the joints' (relative) angles the mass matrix there is
+//! // [[m₁l₁² + m₂(l₁ + l₂)², m₂(l₂² + l₁l₂)], [·, m₂l₂²]] = [[5, 2], [2, 1]] for m = l = 1.
+//! let el = EulerLagrange::new(pendulum);
+//! let m = el.mass_matrix(0.0, &[0.0, 0.0], &[0.0, 0.0])?;
+//! assert!((m[(0, 0)] - 5.0).abs() < 1e-14 && (m[(0, 1)] - 2.0).abs() < 1e-14 && (m[(1, 1)] - 1.0).abs() < 1e-14);
+//! let mut a = [0.0; 2];
+//! el.accelerations(0.0, &[0.0, 0.0], &[0.0, 0.0], &mut a)?;
+//! assert_eq!(a, [0.0, 0.0]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod error;
+pub mod frames;
+pub mod joint;
+pub mod mechanism;
+
+pub use error::{Error, Result};
+pub use joint::{Body, Joint, JointKind, Placement};
+pub use mechanism::{BodyId, Mechanism, Parent};

@@ -1,0 +1,320 @@
+//! A kinematic tree of bodies and joints, and the Lagrangian it has.
+//!
+//! Bodies are attached in order, each by a [`Joint`] to the ground or to a body attached before it;
+//! the coordinates q are the joints' coordinates in that order. For given (q, q̇) one pass from the
+//! root outwards forms every body's orientation R_b, origin p_b, angular velocity ω_b and origin
+//! velocity v_b in the world frame: with P the parent's (R, p, ω, v), (R₀, t₀) the joint's placement
+//! in the parent, (R_j, t_j) the joint's motion and (ω_j, v_j) its rates in the joint frame,
+//!
+//! ```text
+//! R = R_P R₀ R_j,   p = p_P + R_P (t₀ + R₀ t_j),
+//! ω = ω_P + R_P R₀ ω_j,   v = v_P + ω_P × (p − p_P) + R_P R₀ v_j,
+//! ```
+//!
+//! and the centre of mass c = p + R c_b moves at v + ω × R c_b. Then
+//!
+//! ```text
+//! L = Σ_b [ ½ m_b |ċ_b|² + ½ (Rᵀω)·I_b (Rᵀω) + m_b g·c_b ] − Σ_joints ½ k (q − q₀)²,
+//! ```
+//!
+//! with I_b the inertia about the centre of mass in body axes and g the gravity vector. All of it is
+//! generic code over the scalar, so Lagrange's equations, their Jacobians, variational integrators,
+//! linearisations and tangents take exact derivatives of it like of any hand-written L. Joint
+//! dampers enter as the generalized force −c q̇, and joints named by [`Mechanism::actuate`] take the
+//! inputs u as forces or torques on their coordinates ([`Actuated`]).
+
+use crate::frames::{self, M3, V3};
+use crate::joint::{Body, Joint, Placement};
+use crate::{Error, Result};
+use nalgebra::{Matrix3, Vector3};
+use noether_core::control::Actuated;
+use noether_core::error::{check_finite, check_len};
+use noether_core::{Lagrangian, Scalar};
+
+/// A body of a [`Mechanism`], by the order in which it was attached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BodyId(pub usize);
+
+/// What a body is attached to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Parent {
+    /// The fixed world frame.
+    Ground,
+    /// A body attached before.
+    Body(BodyId),
+}
+
+impl From<BodyId> for Parent {
+    fn from(b: BodyId) -> Self {
+        Parent::Body(b)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Node {
+    parent: Parent,
+    placement: Placement,
+    joint: Joint,
+    body: Body,
+    /// The index of the joint's first coordinate in q.
+    offset: usize,
+}
+
+/// A kinematic tree of rigid bodies and joints under uniform gravity: a [`Lagrangian`] (module docs).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mechanism {
+    nodes: Vec<Node>,
+    gravity: [f64; 3],
+    dof: usize,
+    /// The coordinates the inputs act on, in input order.
+    actuated: Vec<usize>,
+}
+
+/// A body's pose and velocity in the world frame.
+struct Moving<D> {
+    r: M3<D>,
+    p: V3<D>,
+    w: V3<D>,
+    v: V3<D>,
+}
+
+impl Mechanism {
+    /// An empty mechanism without gravity.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Uniform gravity g (a vector in the world frame: (0, 0, −9.81) pulls down along z).
+    pub fn gravity(mut self, g: [f64; 3]) -> Result<Self> {
+        check_finite("gravity", &g)?;
+        self.gravity = g;
+        Ok(self)
+    }
+
+    /// Attaches `body` to `parent` by `joint`, whose frame sits at `placement` in the parent's body
+    /// frame; returns the new body. Errors: an unknown parent, a zero or non-finite axis, a spring or
+    /// damper constant that is negative or not finite, a negative or non-finite mass, an inertia
+    /// tensor no rigid body has (not symmetric, a negative moment, a moment above the sum of the other
+    /// two).
+    pub fn attach(
+        &mut self,
+        parent: impl Into<Parent>,
+        placement: Placement,
+        joint: Joint,
+        body: Body,
+    ) -> Result<BodyId> {
+        let (parent, id) = (parent.into(), self.nodes.len());
+        if let Parent::Body(BodyId(p)) = parent {
+            if p >= id {
+                return Err(Error::UnknownParent {
+                    body: id,
+                    parent: p,
+                    bodies: id,
+                });
+            }
+        }
+        let flat = |m: &[[f64; 3]; 3]| m.iter().flatten().copied().collect::<Vec<_>>();
+        check_finite("placement rotation", &flat(&placement.rotation))?;
+        check_finite("placement translation", &placement.translation)?;
+        if let Some(axis) = joint.axis() {
+            if !axis.iter().all(|a| a.is_finite()) || axis.iter().all(|a| *a == 0.0) {
+                return Err(Error::Axis { body: id, axis });
+            }
+        }
+        for (name, value) in [
+            ("joint stiffness", joint.stiffness),
+            ("joint damping", joint.damping),
+        ] {
+            let needs_coordinate = value != 0.0 && joint.dof() == 0;
+            if !(value.is_finite() && value >= 0.0) || needs_coordinate {
+                return Err(noether_core::Error::InvalidParameter {
+                    name,
+                    value,
+                    reason: "finite and at least 0, on a joint with a coordinate",
+                }
+                .into());
+            }
+        }
+        check_finite("joint spring rest position", &[joint.rest])?;
+        check_body(id, &body)?;
+        self.nodes.push(Node {
+            parent,
+            placement,
+            joint: joint.normalised(),
+            body,
+            offset: self.dof,
+        });
+        self.dof += joint.dof();
+        Ok(BodyId(id))
+    }
+
+    /// Makes the coordinates of `body`'s joint inputs: a force (prismatic) or torque (revolute) u on
+    /// each, in the order of the calls. Errors: an unknown body.
+    pub fn actuate(&mut self, body: BodyId) -> Result<()> {
+        let node = self.node(body)?;
+        self.actuated.extend(node.offset..node.offset + node.joint.dof());
+        Ok(())
+    }
+
+    /// The number of bodies.
+    pub fn bodies(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The coordinates of `body`'s joint: indices into q.
+    pub fn coordinates(&self, body: BodyId) -> Result<std::ops::Range<usize>> {
+        let node = self.node(body)?;
+        Ok(node.offset..node.offset + node.joint.dof())
+    }
+
+    fn node(&self, body: BodyId) -> Result<&Node> {
+        self.nodes.get(body.0).ok_or(Error::UnknownParent {
+            body: body.0,
+            parent: body.0,
+            bodies: self.nodes.len(),
+        })
+    }
+
+    /// The orientation R and the origin p of `body`'s frame in the world at the configuration q.
+    pub fn pose(&self, body: BodyId, q: &[f64]) -> Result<(Matrix3<f64>, Vector3<f64>)> {
+        check_len("q", q, self.dof)?;
+        check_finite("q", q)?;
+        self.node(body)?;
+        let zeros = vec![0.0; self.dof];
+        let frames = self.forward(q, &zeros);
+        let b = &frames[body.0];
+        Ok((Matrix3::from_fn(|i, j| b.r[i][j]), Vector3::from(b.p)))
+    }
+
+    /// Every body's pose and velocity at (q, q̇), root outwards (module docs).
+    fn forward<D: Scalar>(&self, q: &[D], v: &[D]) -> Vec<Moving<D>> {
+        let mut out: Vec<Moving<D>> = Vec::with_capacity(self.nodes.len());
+        for node in &self.nodes {
+            let ground = Moving {
+                r: frames::identity(),
+                p: frames::zero(),
+                w: frames::zero(),
+                v: frames::zero(),
+            };
+            let parent = match node.parent {
+                Parent::Ground => &ground,
+                Parent::Body(BodyId(p)) => &out[p],
+            };
+            let range = node.offset..node.offset + node.joint.dof();
+            let (rj, tj) = node.joint.motion(&q[range.clone()]);
+            let (wj, vj) = node.joint.rates(&v[range]);
+            let placed = frames::compose_const(&parent.r, &node.placement.rotation);
+            let p = frames::add(
+                frames::add(
+                    parent.p,
+                    frames::apply_const(&parent.r, node.placement.translation),
+                ),
+                frames::apply(&placed, tj),
+            );
+            let moving = Moving {
+                r: frames::compose(&placed, &rj),
+                w: frames::add(parent.w, frames::apply(&placed, wj)),
+                v: frames::add(
+                    frames::add(parent.v, frames::cross(parent.w, frames::sub(p, parent.p))),
+                    frames::apply(&placed, vj),
+                ),
+                p,
+            };
+            out.push(moving);
+        }
+        out
+    }
+}
+
+/// A body's data checked (the variant of [`Error`] says what is wrong).
+fn check_body(id: usize, body: &Body) -> Result<()> {
+    if !(body.mass.is_finite() && body.mass >= 0.0) {
+        return Err(Error::Mass {
+            body: id,
+            mass: body.mass,
+        });
+    }
+    check_finite("centre of mass", &body.centre)?;
+    let j = Matrix3::from_fn(|i, k| body.inertia[i][k]);
+    check_finite("inertia tensor", j.as_slice())?;
+    let scale = j.amax().max(f64::MIN_POSITIVE);
+    let bad = |reason, value| {
+        Err(Error::Inertia {
+            body: id,
+            reason,
+            value,
+        })
+    };
+    let asymmetry = (j - j.transpose()).amax() / scale;
+    if asymmetry > 1e-12 {
+        return bad("is not symmetric", asymmetry);
+    }
+    let moments = j.symmetric_eigen().eigenvalues;
+    let (smallest, total) = (moments.min(), moments.sum());
+    if smallest < -1e-12 * scale {
+        return bad("has a negative principal moment", smallest / scale);
+    }
+    let excess = moments
+        .iter()
+        .map(|m| 2.0 * m - total)
+        .fold(f64::NEG_INFINITY, f64::max)
+        / scale;
+    if excess > 1e-12 {
+        return bad("has a principal moment above the sum of the other two", excess);
+    }
+    Ok(())
+}
+
+impl Lagrangian for Mechanism {
+    fn dof(&self) -> usize {
+        self.dof
+    }
+
+    fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
+        let frames = self.forward(q, v);
+        let mut l = D::zero();
+        for (node, f) in self.nodes.iter().zip(&frames) {
+            let body = &node.body;
+            let arm = frames::apply_const(&f.r, body.centre);
+            let centre_velocity = frames::add(f.v, frames::cross(f.w, arm));
+            let spin = frames::apply_transpose(&f.r, f.w);
+            let momentum: V3<D> =
+                std::array::from_fn(|i| (0..3).fold(D::zero(), |s, k| s + spin[k] * body.inertia[i][k]));
+            let height = frames::dot(frames::add(f.p, arm), self.gravity.map(D::from));
+            l += (frames::dot(centre_velocity, centre_velocity) * body.mass + frames::dot(spin, momentum))
+                * 0.5
+                + height * body.mass;
+            if node.joint.stiffness != 0.0 {
+                let stretch = q[node.offset] - node.joint.rest;
+                l -= stretch * stretch * (0.5 * node.joint.stiffness);
+            }
+        }
+        l
+    }
+
+    fn has_generalized_force(&self) -> bool {
+        self.nodes.iter().any(|n| n.joint.damping != 0.0)
+    }
+
+    /// The joints' dampers: Q = −c q̇ on each damped coordinate.
+    fn generalized_force<D: Scalar>(&self, _t: D, _q: &[D], v: &[D], out: &mut [D]) {
+        out.fill(D::zero());
+        for n in self.nodes.iter().filter(|n| n.joint.damping != 0.0) {
+            out[n.offset] = -v[n.offset] * n.joint.damping;
+        }
+    }
+}
+
+/// The inputs act on the coordinates of the joints named by [`Mechanism::actuate`]: Q_u = u there.
+impl Actuated for Mechanism {
+    fn inputs(&self) -> usize {
+        self.actuated.len()
+    }
+
+    fn input_force<D: Scalar>(&self, _t: D, _q: &[D], _v: &[D], u: &[D], out: &mut [D]) {
+        out.fill(D::zero());
+        for (&c, &uk) in self.actuated.iter().zip(u) {
+            out[c] += uk;
+        }
+    }
+}
