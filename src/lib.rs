@@ -207,6 +207,8 @@ examples! {
     boundary_value: "boundary-value problems by the discrete Hamilton principle: projectile, oscillator conjugate points, sphere geodesic, figure-eight",
     scattering_monte_carlo: "Rutherford scattering as a Monte Carlo ensemble: 10⁵ random impact parameters, dσ/dΩ per bin vs (κ/4E)²/sin⁴(Θ/2), χ²",
     flip_map: "double pendulum: time to first flip over a grid of (θ₁, θ₂) (an ensemble), none where the energy forbids it",
+    joints_double_pendulum: "double pendulum from two hinges (multibody): its written-for-you L, M and q̈ are the hand-written ones, same motion, energy",
+    planar_arm: "three-link planar arm from bodies and joints: mass matrix and tip vs the textbook, gravity, (A, B) upright, balanced by LQR",
 }
 
 /// The README's examples, compiled and run as doc-tests so that they stay true.

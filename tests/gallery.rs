@@ -226,6 +226,16 @@ fn closed_form_top_nutation() {
 }
 
 #[test]
+fn closed_form_joints_double_pendulum() {
+    assert_example_passes("joints_double_pendulum");
+}
+
+#[test]
+fn closed_form_planar_arm() {
+    assert_example_passes("planar_arm");
+}
+
+#[test]
 fn closed_form_fast_top() {
     assert_example_passes("fast_top");
 }
