@@ -44,6 +44,21 @@ pub enum Error {
         /// How many bodies were attached before.
         bodies: usize,
     },
+    /// A loop closure whose constraint depends on those before it at the configuration checked
+    /// ([`Mechanism::check_loops`](crate::Mechanism::check_loops)): it restrains nothing the others do
+    /// not, and the multipliers of the closed mechanism would not be determined.
+    #[error(
+        "loop closure {closure}, direction {direction}: redundant (the closures before it already have \
+         rank {rank}); drop it, or close a planar loop along the plane's two directions only"
+    )]
+    RedundantClosure {
+        /// The closure (in the order of `close_loop`).
+        closure: usize,
+        /// Its direction (in the order given).
+        direction: usize,
+        /// The rank of the closures' Jacobian up to and including it.
+        rank: usize,
+    },
     /// A joint axis that is zero or not finite.
     #[error("body {body}: joint axis {axis:?} must be finite and nonzero")]
     Axis {

@@ -5,7 +5,9 @@
 //! springs, dampers and actuated joints — and get its Lagrangian written for you. [`Mechanism`] is an
 //! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
 //! so every integrator, the driver, linearisation and LQR, variational integrators, tangents and
-//! ensembles run it unchanged, with exact derivatives by dual numbers.
+//! ensembles run it unchanged, with exact derivatives by dual numbers. Closed loops (a four-bar, a
+//! slider-crank) are cut at a joint and closed again by [`Mechanism::close_loop`]: holonomic
+//! constraints ([`LoopClosures`]) for noether-constraints' multipliers, RATTLE and reduction.
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -27,11 +29,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod closure;
 pub mod error;
 pub mod frames;
 pub mod joint;
 pub mod mechanism;
 
+pub use closure::LoopClosures;
 pub use error::{Error, Result};
 pub use joint::{Body, Joint, JointKind, Placement};
 pub use mechanism::{BodyId, Mechanism, Parent};

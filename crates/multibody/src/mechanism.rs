@@ -68,6 +68,8 @@ pub struct Mechanism {
     dof: usize,
     /// The coordinates the inputs act on, in input order.
     actuated: Vec<usize>,
+    /// The joints that close loops ([`close_loop`](Self::close_loop)).
+    pub(crate) closures: Vec<crate::closure::Closure>,
 }
 
 /// A body's pose and velocity in the world frame.
@@ -104,15 +106,7 @@ impl Mechanism {
         body: Body,
     ) -> Result<BodyId> {
         let (parent, id) = (parent.into(), self.nodes.len());
-        if let Parent::Body(BodyId(p)) = parent {
-            if p >= id {
-                return Err(Error::UnknownParent {
-                    body: id,
-                    parent: p,
-                    bodies: id,
-                });
-            }
-        }
+        self.check_parent(parent, id)?;
         let flat = |m: &[[f64; 3]; 3]| m.iter().flatten().copied().collect::<Vec<_>>();
         check_finite("placement rotation", &flat(&placement.rotation))?;
         check_finite("placement translation", &placement.translation)?;
@@ -167,6 +161,19 @@ impl Mechanism {
         Ok(node.offset..node.offset + node.joint.dof())
     }
 
+    /// `UnknownParent` unless `parent` is the ground or one of the bodies attached so far (`body` is the
+    /// index the error names).
+    pub(crate) fn check_parent(&self, parent: Parent, body: usize) -> Result<()> {
+        match parent {
+            Parent::Body(BodyId(p)) if p >= self.nodes.len() => Err(Error::UnknownParent {
+                body,
+                parent: p,
+                bodies: self.nodes.len(),
+            }),
+            _ => Ok(()),
+        }
+    }
+
     fn node(&self, body: BodyId) -> Result<&Node> {
         self.nodes.get(body.0).ok_or(Error::UnknownParent {
             body: body.0,
@@ -184,6 +191,12 @@ impl Mechanism {
         let frames = self.forward(q, &zeros);
         let b = &frames[body.0];
         Ok((Matrix3::from_fn(|i, j| b.r[i][j]), Vector3::from(b.p)))
+    }
+
+    /// Every body's orientation and origin at q (the positions of [`forward`](Self::forward) alone).
+    pub(crate) fn poses<D: Scalar>(&self, q: &[D]) -> Vec<(M3<D>, V3<D>)> {
+        let still = vec![D::zero(); q.len()];
+        self.forward(q, &still).into_iter().map(|m| (m.r, m.p)).collect()
     }
 
     /// Every body's pose and velocity at (q, q̇), root outwards (module docs).

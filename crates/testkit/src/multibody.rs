@@ -120,3 +120,186 @@ impl PlanarArm {
         tip
     }
 }
+
+/// A slider-crank: a crank of length r (uniform rod, mass m_c) on a hinge at the origin, a connecting
+/// rod of length l > r (uniform, m_r) hinged at the crank pin, a piston (point mass m_p) sliding along
+/// x on a spring k towards x₀, the rod's far end pinned to the piston: a loop closed along x and y.
+/// q = (θ, φ, x): the crank angle, the rod's angle relative to the crank, the piston's position; the
+/// crank is actuated (a torque u).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliderCrank {
+    /// Crank length r.
+    pub crank: f64,
+    /// Connecting-rod length l.
+    pub rod: f64,
+    /// Masses (m_c, m_r, m_p).
+    pub masses: [f64; 3],
+    /// The piston spring's stiffness k and rest position x₀.
+    pub spring: (f64, f64),
+}
+
+impl Default for SliderCrank {
+    fn default() -> Self {
+        SliderCrank {
+            crank: 0.3,
+            rod: 1.0,
+            masses: [0.5, 0.8, 1.5],
+            spring: (40.0, 1.1),
+        }
+    }
+}
+
+impl SliderCrank {
+    /// The mechanism with its loop closure (the rod's end on the piston, along x and y).
+    pub fn mechanism(&self) -> Mechanism {
+        let built = || -> noether_multibody::Result<Mechanism> {
+            let (r, l, [mc, mr, mp]) = (self.crank, self.rod, self.masses);
+            let mut m = Mechanism::new();
+            let crank = m.attach(
+                Parent::Ground,
+                Placement::identity(),
+                Joint::revolute(Z),
+                Body::rod(mc, [0.0; 3], [r, 0.0, 0.0]),
+            )?;
+            let rod = m.attach(
+                crank,
+                Placement::at([r, 0.0, 0.0]),
+                Joint::revolute(Z),
+                Body::rod(mr, [0.0; 3], [l, 0.0, 0.0]),
+            )?;
+            let slide = Joint::prismatic([1.0, 0.0, 0.0]).spring(self.spring.0, self.spring.1);
+            let piston = m.attach(
+                Parent::Ground,
+                Placement::identity(),
+                slide,
+                Body::point(mp, [0.0; 3]),
+            )?;
+            m.actuate(crank)?;
+            m.close_loop(
+                (rod.into(), [l, 0.0, 0.0]),
+                (piston.into(), [0.0; 3]),
+                &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            )?;
+            Ok(m)
+        };
+        built().expect("the slider-crank's data are valid")
+    }
+
+    /// The piston's position x(θ) = r cos θ + √(l² − r² sin²θ) (the triangle of crank, rod and slide).
+    pub fn piston(&self, theta: f64) -> f64 {
+        let (r, l) = (self.crank, self.rod);
+        r * theta.cos() + (l * l - (r * theta.sin()).powi(2)).sqrt()
+    }
+
+    /// dx/dθ = −r sin θ − r² sin θ cos θ / √(l² − r² sin²θ).
+    pub fn piston_rate(&self, theta: f64) -> f64 {
+        let (r, l) = (self.crank, self.rod);
+        let (s, c) = theta.sin_cos();
+        -r * s - r * r * s * c / (l * l - (r * s).powi(2)).sqrt()
+    }
+
+    /// The crank torque that holds the mechanism at rest at θ against the piston's spring, by virtual
+    /// work: u δθ = k (x − x₀) δx, so u = k (x − x₀) dx/dθ.
+    pub fn holding_torque(&self, theta: f64) -> f64 {
+        self.spring.0 * (self.piston(theta) - self.spring.1) * self.piston_rate(theta)
+    }
+
+    /// The configuration on the loop at crank angle θ: the rod from the crank pin (r cos θ, r sin θ)
+    /// to the piston (x, 0), its absolute angle β = atan2(−r sin θ, x − r cos θ), φ = β − θ.
+    pub fn configuration(&self, theta: f64) -> [f64; 3] {
+        let x = self.piston(theta);
+        let beta = (-self.crank * theta.sin()).atan2(x - self.crank * theta.cos());
+        [theta, beta - theta, x]
+    }
+}
+
+/// A four-bar linkage in the plane: ground pivots O = (0, 0) and C = (d, 0), a crank of length a from
+/// O, a coupler b from the crank's end, a rocker c from C; the coupler's end pinned to the rocker's (a
+/// loop closed along x and y). Uniform rods of masses (m_a, m_b, m_c), no gravity. q = (θ, φ, ψ): the
+/// crank angle, the coupler's angle relative to the crank, the rocker's angle at C.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FourBar {
+    /// Link lengths (ground d, crank a, coupler b, rocker c).
+    pub lengths: [f64; 4],
+    /// Masses of crank, coupler, rocker.
+    pub masses: [f64; 3],
+}
+
+impl Default for FourBar {
+    fn default() -> Self {
+        FourBar {
+            lengths: [1.0, 0.3, 1.1, 0.7],
+            masses: [0.4, 1.0, 0.6],
+        }
+    }
+}
+
+impl FourBar {
+    /// The mechanism with its loop closure.
+    pub fn mechanism(&self) -> Mechanism {
+        let built = || -> noether_multibody::Result<Mechanism> {
+            let ([d, a, b, c], [ma, mb, mc]) = (self.lengths, self.masses);
+            let rod = |m: f64, l: f64| Body::rod(m, [0.0; 3], [l, 0.0, 0.0]);
+            let mut m = Mechanism::new();
+            let crank = m.attach(
+                Parent::Ground,
+                Placement::identity(),
+                Joint::revolute(Z),
+                rod(ma, a),
+            )?;
+            let coupler = m.attach(
+                crank,
+                Placement::at([a, 0.0, 0.0]),
+                Joint::revolute(Z),
+                rod(mb, b),
+            )?;
+            let rocker = m.attach(
+                Parent::Ground,
+                Placement::at([d, 0.0, 0.0]),
+                Joint::revolute(Z),
+                rod(mc, c),
+            )?;
+            m.close_loop(
+                (coupler.into(), [b, 0.0, 0.0]),
+                (rocker.into(), [c, 0.0, 0.0]),
+                &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            )?;
+            Ok(m)
+        };
+        built().expect("the four-bar's data are valid")
+    }
+
+    /// Grashof's condition s + ℓ ≤ p + q (shortest plus longest link at most the sum of the other
+    /// two): then some link turns fully; with the crank the shortest, the linkage is a crank-rocker.
+    pub fn grashof(&self) -> bool {
+        let mut l = self.lengths;
+        l.sort_by(f64::total_cmp);
+        l[0] + l[3] <= l[1] + l[2]
+    }
+
+    /// The rocker's extreme angles (ψ_min, ψ_max) of a crank-rocker: at the two toggle positions the
+    /// crank and the coupler are collinear, the rocker's pin B is e = b + a or b − a from O, and the
+    /// triangle O C B gives the angle γ at C by cos γ = (d² + c² − e²)/(2 d c); ψ = π − γ (B above the
+    /// ground line).
+    pub fn rocker_limits(&self) -> (f64, f64) {
+        let [d, a, b, c] = self.lengths;
+        let psi = |e: f64| std::f64::consts::PI - ((d * d + c * c - e * e) / (2.0 * d * c)).acos();
+        (psi(b + a), psi(b - a))
+    }
+
+    /// The configuration on the loop at crank angle θ with the rocker's pin above the ground line:
+    /// the crank's end A = a (cos θ, sin θ), the pin B where the circles |B − A| = b and |B − C| = c
+    /// meet (the intersection to the left of the directed line A → C), φ and ψ from A → B and C → B.
+    pub fn configuration(&self, theta: f64) -> [f64; 3] {
+        let [d, a, b, c] = self.lengths;
+        let (ax, ay) = (a * theta.cos(), a * theta.sin());
+        let (dx, dy) = (d - ax, -ay);
+        let e = (dx * dx + dy * dy).sqrt();
+        let along = (b * b - c * c + e * e) / (2.0 * e);
+        let across = (b * b - along * along).sqrt();
+        let (ux, uy) = (dx / e, dy / e);
+        let (bx, by) = (ax + along * ux - across * uy, ay + along * uy + across * ux);
+        let beta = (by - ay).atan2(bx - ax);
+        [theta, beta - theta, by.atan2(bx - d)]
+    }
+}
