@@ -208,6 +208,8 @@ examples! {
     scattering_monte_carlo: "Rutherford scattering as a Monte Carlo ensemble: 10⁵ random impact parameters, dσ/dΩ per bin vs (κ/4E)²/sin⁴(Θ/2), χ²",
     flip_map: "double pendulum: time to first flip over a grid of (θ₁, θ₂) (an ensemble), none where the energy forbids it",
     joints_double_pendulum: "double pendulum from two hinges (multibody): its written-for-you L, M and q̈ are the hand-written ones, same motion, energy",
+    slider_crank: "slider-crank with a loop closure (multibody): piston position and holding crank torque vs closed forms, RATTLE keeps the loop",
+    four_bar: "four-bar linkage (multibody, loop closed by a constraint): Grashof crank-rocker, closure to rounding over 10⁵ RATTLE steps, the rocker's toggle angles",
     planar_arm: "three-link planar arm from bodies and joints: mass matrix and tip vs the textbook, gravity, (A, B) upright, balanced by LQR",
 }
 

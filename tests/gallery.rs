@@ -231,6 +231,16 @@ fn closed_form_joints_double_pendulum() {
 }
 
 #[test]
+fn closed_form_slider_crank() {
+    assert_example_passes("slider_crank");
+}
+
+#[test]
+fn closed_form_four_bar() {
+    assert_example_passes("four_bar");
+}
+
+#[test]
 fn closed_form_planar_arm() {
     assert_example_passes("planar_arm");
 }

@@ -1,14 +1,10 @@
 //! Closed loops: a slider-crank and a four-bar linkage built from bodies, joints and a loop closure,
 //! against the closed forms of their kinematics and statics.
 
-use noether_constraints::{Holonomic, Rattle, Reduced};
-use noether_core::control::{ClosedLoop, Constant};
-use noether_core::prelude::*;
-use noether_discrete::Midpoint;
 use noether_testkit::multibody::{FourBar, SliderCrank};
 
-/// The slider-crank reduced to its crank angle θ (`Reduced`: the rod angle and the piston solved from
-/// the loop closure by Newton in dual arithmetic):
+/// The slider-crank reduced to its crank angle θ (`SliderCrank::reduced_near`: the rod angle and the
+/// piston solved from the loop closure by Newton in dual arithmetic):
 /// - the piston is at x(θ) = r cos θ + √(l² − r² sin²θ) and moves at ẋ = (dx/dθ) θ̇ (measured 0
 ///   and 2e-15 relative — the speed relative to ẋ, small near the dead centres —; tolerance 1e-14);
 /// - the crank torque u = k (x − x₀) dx/dθ (virtual work against the piston's spring) holds it at
@@ -17,24 +13,14 @@ use noether_testkit::multibody::{FourBar, SliderCrank};
 #[test]
 fn slider_crank_piston_and_crank_torque_closed_forms() {
     let sc = SliderCrank::default();
-    let mechanism = sc.mechanism();
     let (mut place, mut speed, mut held) = (0.0_f64, 0.0_f64, 0.0_f64);
     for theta in [0.4, 1.0, 2.2, 3.0, -0.7, -2.4] {
-        // The reduction is local (the implicit function theorem near its reference): a reference
-        // 0.05 rad away, off the point asked for, from which Newton solves the loop.
-        let near = sc.configuration(theta + 0.05);
-        let reduced = Reduced::new(mechanism.clone(), mechanism.loop_closures(), &[0], &near).unwrap();
-        let (q, v) = reduced.state(0.0, &[theta], &[0.7]);
+        let (q, v) = sc.reduced_near(theta).unwrap().state(0.0, &[theta], &[0.7]);
         place = place.max((q[2] - sc.piston(theta)).abs() / sc.piston(theta));
         let rate = sc.piston_rate(theta) * 0.7;
         speed = speed.max((v[2] - rate).abs() / rate.abs());
-        let under = |u: f64| {
-            let el = EulerLagrange::new(ClosedLoop::new(&reduced, Constant(vec![u])).unwrap());
-            let mut a = [0.0];
-            el.accelerations(0.0, &[theta], &[0.0], &mut a).unwrap();
-            a[0]
-        };
-        held = held.max(under(sc.holding_torque(theta)).abs() / under(0.0).abs());
+        let holding = sc.crank_acceleration(theta, sc.holding_torque(theta)).unwrap();
+        held = held.max(holding.abs() / sc.crank_acceleration(theta, 0.0).unwrap().abs());
     }
     println!("slider-crank: piston {place:e}, its speed {speed:e}, held by the closed-form torque {held:e}");
     assert!(place < 1e-14 && speed < 1e-14, "{place:e} {speed:e}");
@@ -43,48 +29,32 @@ fn slider_crank_piston_and_crank_torque_closed_forms() {
 
 /// The four-bar (ground 1, crank 0.3, coupler 1.1, rocker 0.7: Grashof, s + ℓ = 1.4 ≤ p + q = 1.7,
 /// with the crank the shortest link, so a crank-rocker) set spinning at θ̇ = 6 without gravity and
-/// stepped by RATTLE (midpoint rule, h = 10⁻³) for 10⁵ steps, about 90 turns of the crank:
+/// stepped by RATTLE (midpoint rule, h = 10⁻³) for 10⁵ steps (`FourBar::spin`), about 90 turns of the
+/// crank:
 /// - the loop stays closed: max |φ| ≤ 1e-12 (RATTLE solves the closure at every step by Newton;
 ///   measured 1.2e-13);
 /// - the energy has no drift: RATTLE is symplectic, its error O(h²) and bounded, of the size
 ///   (θ̇ h)² = 3.6e-5 (measured 3.5e-5 relative over the whole run; tolerance 1e-4);
 /// - the crank turns fully and the rocker swings between the toggle angles ψ = π − γ with
-///   cos γ = (d² + c² − e²)/(2dc), e = b ± a (`FourBar::rocker_limits`): the extremes of the sampled
-///   ψ meet them to the method's O(h²) and the sampling's (measured 4e-10; tolerance 1e-8).
+///   cos γ = (d² + c² − e²)/(2dc), e = b ± a (`FourBar::rocker_limits`): ψ never passes them (every
+///   state is on the loop; tolerance 1e-12) and its sampled extremes come within a step's reach,
+///   ½|ψ_θθ|(θ̇h/2)² ≈ 5e-6 (measured 4e-10 over 90 turns; tolerance 1e-5).
 #[test]
 fn four_bar_crank_rocker_keeps_its_loop_and_energy() {
     let fb = FourBar::default();
     assert!(fb.grashof());
-    let mechanism = fb.mechanism();
-    let closures = mechanism.loop_closures();
-    let q0 = fb.configuration(0.0);
-    let reduced = Reduced::new(mechanism.clone(), closures.clone(), &[0], &q0).unwrap();
-    let (q, v) = reduced.state(0.0, &[0.0], &[6.0]);
-    let el = EulerLagrange::new(mechanism.clone());
-    let e0 = el.energy(0.0, &q, &v).unwrap();
-    let rattle = Rattle::new(Midpoint::new(mechanism), closures.clone()).unwrap();
-    let mut state = rattle.state_from_velocities(0.0, &q, &v).unwrap();
-    let mut stepper = rattle;
-    let (mut gap, mut energy) = (0.0_f64, 0.0_f64);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut phi = [0.0; 2];
-    for _ in 0..100_000 {
-        stepper.step(&mut state, 1e-3).unwrap();
-        closures.constraints(0.0, state.q.as_slice(), &mut phi);
-        gap = gap.max(phi[0].abs().max(phi[1].abs()));
-        let vel = stepper.velocities(&state).unwrap();
-        energy = energy.max((el.energy(0.0, state.q.as_slice(), vel.as_slice()).unwrap() - e0).abs() / e0);
-        lo = lo.min(state.q[2]);
-        hi = hi.max(state.q[2]);
-    }
-    let turns = state.q[0] / std::f64::consts::TAU;
+    let run = fb.spin(6.0, 1e-3, 100_000).unwrap();
     let (psi_min, psi_max) = fb.rocker_limits();
-    let limits = (lo - psi_min).abs().max((hi - psi_max).abs());
-    println!("four-bar: {turns:.1} turns, closure {gap:e}, energy {energy:e}, rocker limits {limits:e}");
-    assert!(turns > 50.0, "{turns}");
-    assert!(gap < 1e-12, "{gap:e}");
-    assert!(energy < 1e-4, "{energy:e}");
-    assert!(limits < 1e-8, "{limits:e}");
+    let outside = (psi_min - run.rocker.0).max(run.rocker.1 - psi_max);
+    let limits = (run.rocker.0 - psi_min).abs().max((run.rocker.1 - psi_max).abs());
+    println!(
+        "four-bar: {:.1} turns, closure {:e}, energy {:e}, rocker limits {limits:e}",
+        run.turns, run.closure, run.energy
+    );
+    assert!(run.turns > 50.0, "{}", run.turns);
+    assert!(run.closure < 1e-12, "{:e}", run.closure);
+    assert!(run.energy < 1e-4, "{:e}", run.energy);
+    assert!(outside < 1e-12 && limits < 1e-5, "{outside:e} {limits:e}");
 }
 
 /// A loop closed wrongly is named: the four-bar closed along z as well (its third component vanishes

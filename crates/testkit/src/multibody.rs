@@ -3,7 +3,14 @@
 //! from two hinges, and a planar arm of three uniform rods with its textbook mass matrix and tip.
 
 use crate::systems::DoublePendulum;
+use noether_constraints::{Holonomic, Rattle, Reduced};
+use noether_core::control::{ClosedLoop, Constant};
+use noether_core::{EulerLagrange, Stepper};
+use noether_discrete::Midpoint;
 use noether_multibody::{Body, Joint, Mechanism, Parent, Placement};
+
+/// An error of any crate, for the runs here (sendable, as the gallery's).
+pub type Failure = Box<dyn std::error::Error + Send + Sync>;
 
 /// The z axis, about which every hinge here turns.
 pub const Z: [f64; 3] = [0.0, 0.0, 1.0];
@@ -204,6 +211,33 @@ impl SliderCrank {
         self.spring.0 * (self.piston(theta) - self.spring.1) * self.piston_rate(theta)
     }
 
+    /// The mechanism reduced to its crank angle near θ (`Reduced`, whose Newton solve of the loop is
+    /// local: its reference is the closed-form configuration 0.05 rad further on, not the point asked
+    /// for).
+    pub fn reduced_near(
+        &self,
+        theta: f64,
+    ) -> Result<Reduced<Mechanism, noether_multibody::LoopClosures>, Failure> {
+        let mechanism = self.mechanism();
+        let closures = mechanism.loop_closures();
+        Ok(Reduced::new(
+            mechanism,
+            closures,
+            &[0],
+            &self.configuration(theta + 0.05),
+        )?)
+    }
+
+    /// The crank's acceleration at rest at θ under the torque u (the reduced model's Lagrange
+    /// equation): zero under [`holding_torque`](Self::holding_torque).
+    pub fn crank_acceleration(&self, theta: f64, u: f64) -> Result<f64, Failure> {
+        let reduced = self.reduced_near(theta)?;
+        let el = EulerLagrange::new(ClosedLoop::new(&reduced, Constant(vec![u]))?);
+        let mut a = [0.0];
+        el.accelerations(0.0, &[theta], &[0.0], &mut a)?;
+        Ok(a[0])
+    }
+
     /// The configuration on the loop at crank angle θ: the rod from the crank pin (r cos θ, r sin θ)
     /// to the piston (x, 0), its absolute angle β = atan2(−r sin θ, x − r cos θ), φ = β − θ.
     pub fn configuration(&self, theta: f64) -> [f64; 3] {
@@ -301,5 +335,57 @@ impl FourBar {
         let (bx, by) = (ax + along * ux - across * uy, ay + along * uy + across * ux);
         let beta = (by - ay).atan2(bx - ax);
         [theta, beta - theta, by.atan2(bx - d)]
+    }
+}
+
+/// What [`FourBar::spin`] measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FourBarRun {
+    /// Full turns of the crank.
+    pub turns: f64,
+    /// max |φ| of the loop closure over the run.
+    pub closure: f64,
+    /// max |E − E₀|/E₀ over the run.
+    pub energy: f64,
+    /// The smallest and largest rocker angle ψ sampled at the steps.
+    pub rocker: (f64, f64),
+}
+
+impl FourBar {
+    /// The linkage set spinning from θ = 0 at crank rate `rate` (the other rates from the loop), no
+    /// gravity, stepped by RATTLE on the midpoint discrete Lagrangian for `steps` steps of `h`.
+    pub fn spin(&self, rate: f64, h: f64, steps: usize) -> Result<FourBarRun, Failure> {
+        let mechanism = self.mechanism();
+        let closures = mechanism.loop_closures();
+        let reduced = Reduced::new(
+            mechanism.clone(),
+            closures.clone(),
+            &[0],
+            &self.configuration(0.0),
+        )?;
+        let (q, v) = reduced.state(0.0, &[0.0], &[rate]);
+        let el = EulerLagrange::new(mechanism.clone());
+        let e0 = el.energy(0.0, &q, &v)?;
+        let mut rattle = Rattle::new(Midpoint::new(mechanism), closures.clone())?;
+        let mut state = rattle.state_from_velocities(0.0, &q, &v)?;
+        let mut run = FourBarRun {
+            turns: 0.0,
+            closure: 0.0,
+            energy: 0.0,
+            rocker: (f64::INFINITY, f64::NEG_INFINITY),
+        };
+        let mut phi = [0.0; 2];
+        for _ in 0..steps {
+            rattle.step(&mut state, h)?;
+            closures.constraints(0.0, state.q.as_slice(), &mut phi);
+            run.closure = run.closure.max(phi[0].abs().max(phi[1].abs()));
+            let vel = rattle.velocities(&state)?;
+            run.energy = run
+                .energy
+                .max((el.energy(0.0, state.q.as_slice(), vel.as_slice())? - e0).abs() / e0);
+            run.rocker = (run.rocker.0.min(state.q[2]), run.rocker.1.max(state.q[2]));
+        }
+        run.turns = state.q[0] / std::f64::consts::TAU;
+        Ok(run)
     }
 }
