@@ -87,6 +87,11 @@ impl Joint {
         }
     }
 
+    /// Whether the joint turns (else it slides or is fixed).
+    pub(crate) fn is_revolute(&self) -> bool {
+        matches!(self.kind, JointKind::Revolute { .. })
+    }
+
     /// The axis, if the joint has one.
     pub(crate) fn axis(&self) -> Option<[f64; 3]> {
         match self.kind {

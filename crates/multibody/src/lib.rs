@@ -34,8 +34,10 @@ pub mod error;
 pub mod frames;
 pub mod joint;
 pub mod mechanism;
+pub mod newton_euler;
 
 pub use closure::LoopClosures;
 pub use error::{Error, Result};
 pub use joint::{Body, Joint, JointKind, Placement};
 pub use mechanism::{BodyId, Mechanism, Parent};
+pub use newton_euler::NewtonEuler;

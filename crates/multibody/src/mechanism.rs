@@ -51,13 +51,13 @@ impl From<BodyId> for Parent {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Node {
-    parent: Parent,
+pub(crate) struct Node {
+    pub(crate) parent: Parent,
     placement: Placement,
-    joint: Joint,
-    body: Body,
+    pub(crate) joint: Joint,
+    pub(crate) body: Body,
     /// The index of the joint's first coordinate in q.
-    offset: usize,
+    pub(crate) offset: usize,
 }
 
 /// A kinematic tree of rigid bodies and joints under uniform gravity: a [`Lagrangian`] (module docs).
@@ -73,11 +73,11 @@ pub struct Mechanism {
 }
 
 /// A body's pose and velocity in the world frame.
-struct Moving<D> {
-    r: M3<D>,
-    p: V3<D>,
-    w: V3<D>,
-    v: V3<D>,
+pub(crate) struct Moving<D> {
+    pub(crate) r: M3<D>,
+    pub(crate) p: V3<D>,
+    pub(crate) w: V3<D>,
+    pub(crate) v: V3<D>,
 }
 
 impl Mechanism {
@@ -199,8 +199,36 @@ impl Mechanism {
         self.forward(q, &still).into_iter().map(|m| (m.r, m.p)).collect()
     }
 
+    /// The bodies in the order of attachment.
+    pub(crate) fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
+    /// The gravity vector g.
+    pub(crate) fn gravity_vector(&self) -> [f64; 3] {
+        self.gravity
+    }
+
+    /// Body `i`'s joint axis in the world (R_i a: a turn about a or a slide along it leaves a where it
+    /// is) and the index of its coordinate, for a joint with an axis.
+    pub(crate) fn world_axis(&self, i: usize, frames: &[Moving<f64>]) -> Option<([f64; 3], usize)> {
+        let node = &self.nodes[i];
+        node.joint
+            .axis()
+            .map(|a| (frames::apply_const(&frames[i].r, a), node.offset))
+    }
+
+    /// The joints' springs and dampers as generalized forces, −k (q − q₀) − c q̇, into `out`.
+    pub(crate) fn joint_forces(&self, q: &[f64], v: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        for n in self.nodes.iter().filter(|n| n.joint.dof() == 1) {
+            let k = n.offset;
+            out[k] = -n.joint.stiffness * (q[k] - n.joint.rest) - n.joint.damping * v[k];
+        }
+    }
+
     /// Every body's pose and velocity at (q, q̇), root outwards (module docs).
-    fn forward<D: Scalar>(&self, q: &[D], v: &[D]) -> Vec<Moving<D>> {
+    pub(crate) fn forward<D: Scalar>(&self, q: &[D], v: &[D]) -> Vec<Moving<D>> {
         let mut out: Vec<Moving<D>> = Vec::with_capacity(self.nodes.len());
         for node in &self.nodes {
             let ground = Moving {

@@ -39,6 +39,25 @@ pub fn joints_double_pendulum(dp: &DoublePendulum) -> Mechanism {
     built().expect("the double pendulum's data are valid")
 }
 
+/// A planar chain of uniform rods (masses m_i, lengths l_i) hinged end to end about z from the origin,
+/// each along its body x axis, under gravity g along −y, every joint actuated: the planar arm for
+/// any number of links (the benchmarks' 7-link arm).
+pub fn rod_chain(masses: &[f64], lengths: &[f64], g: f64) -> Mechanism {
+    let built = || -> noether_multibody::Result<Mechanism> {
+        let mut arm = Mechanism::new().gravity([0.0, -g, 0.0])?;
+        let mut parent = Parent::Ground;
+        let mut at = [0.0; 3];
+        for (&m, &l) in masses.iter().zip(lengths) {
+            let rod = Body::rod(m, [0.0; 3], [l, 0.0, 0.0]);
+            let link = arm.attach(parent, Placement::at(at), Joint::revolute(Z), rod)?;
+            arm.actuate(link)?;
+            (parent, at) = (link.into(), [l, 0.0, 0.0]);
+        }
+        Ok(arm)
+    };
+    built().expect("the chain's data are valid")
+}
+
 /// A planar arm of three uniform rods (masses m_i, lengths l_i) on hinges about z, each link along
 /// its body x axis, in relative joint angles q (q = 0: the arm straight along x), under gravity g
 /// along −y, every joint actuated (torques u).
@@ -65,19 +84,7 @@ impl Default for PlanarArm {
 impl PlanarArm {
     /// The mechanism: three rods from hinge to hinge, every joint actuated.
     pub fn mechanism(&self) -> Mechanism {
-        let built = || -> noether_multibody::Result<Mechanism> {
-            let mut arm = Mechanism::new().gravity([0.0, -self.g, 0.0])?;
-            let mut parent = Parent::Ground;
-            let mut at = [0.0; 3];
-            for (&m, &l) in self.masses.iter().zip(&self.lengths) {
-                let rod = Body::rod(m, [0.0; 3], [l, 0.0, 0.0]);
-                let link = arm.attach(parent, Placement::at(at), Joint::revolute(Z), rod)?;
-                arm.actuate(link)?;
-                (parent, at) = (link.into(), [l, 0.0, 0.0]);
-            }
-            Ok(arm)
-        };
-        built().expect("the arm's data are valid")
+        rod_chain(&self.masses, &self.lengths, self.g)
     }
 
     /// The mass matrix in closed form (Spong, Hutchinson and Vidyasagar, *Robot Modeling and
