@@ -231,6 +231,11 @@ fn closed_form_joints_double_pendulum() {
 }
 
 #[test]
+fn closed_form_reaction_wheel_pendulum() {
+    assert_example_passes("reaction_wheel_pendulum");
+}
+
+#[test]
 fn closed_form_slider_crank() {
     assert_example_passes("slider_crank");
 }

@@ -396,3 +396,89 @@ impl FourBar {
         Ok(run)
     }
 }
+
+/// A reaction-wheel pendulum: a uniform rod (mass m_r, length l) on a hinge about z at the origin,
+/// upright along +y at θ = 0, under gravity g along −y; at its tip a wheel (a uniform disk of mass m_w
+/// and radius ρ, spinning about z) on a motor hinge, q = (θ, φ) with φ the wheel's angle relative to
+/// the rod, the motor's torque u acting on φ (the rod feels −u). With J_p = m_r l²/3 + m_w l² (the rod
+/// and the wheel's mass about the pivot), J_w = m_w ρ²/2 and m g ℓ = (m_r/2 + m_w) g l,
+///
+/// ```text
+/// L = ½ J_p θ̇² + ½ J_w (θ̇ + φ̇)² − m g ℓ cos θ,
+/// ```
+///
+/// and upright (Åström, Block and Spong, *The Reaction Wheel Pendulum*, 2007, ch. 2):
+/// θ̈ = (m g ℓ θ − u)/J_p, φ̈ = ((J_p + J_w) u − J_w m g ℓ θ)/(J_p J_w).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReactionWheelPendulum {
+    /// Rod mass m_r and length l.
+    pub rod: (f64, f64),
+    /// Wheel mass m_w and radius ρ.
+    pub wheel: (f64, f64),
+    /// Gravity g.
+    pub g: f64,
+}
+
+impl Default for ReactionWheelPendulum {
+    fn default() -> Self {
+        ReactionWheelPendulum {
+            rod: (0.2, 0.5),
+            wheel: (0.3, 0.12),
+            g: 9.81,
+        }
+    }
+}
+
+impl ReactionWheelPendulum {
+    /// The mechanism, the wheel's motor actuated.
+    pub fn mechanism(&self) -> Mechanism {
+        let built = || -> noether_multibody::Result<Mechanism> {
+            let ((mr, l), (mw, rho)) = (self.rod, self.wheel);
+            let mut m = Mechanism::new().gravity([0.0, -self.g, 0.0])?;
+            let rod = m.attach(
+                Parent::Ground,
+                Placement::identity(),
+                Joint::revolute(Z),
+                Body::rod(mr, [0.0; 3], [0.0, l, 0.0]),
+            )?;
+            let disk = [
+                [mw * rho * rho / 4.0, 0.0, 0.0],
+                [0.0, mw * rho * rho / 4.0, 0.0],
+                [0.0, 0.0, mw * rho * rho / 2.0],
+            ];
+            let wheel = m.attach(
+                rod,
+                Placement::at([0.0, l, 0.0]),
+                Joint::revolute(Z),
+                Body::new(mw, [0.0; 3], disk),
+            )?;
+            m.actuate(wheel)?;
+            Ok(m)
+        };
+        built().expect("the reaction-wheel pendulum's data are valid")
+    }
+
+    /// (J_p, J_w, m g ℓ) of the module docs.
+    pub fn constants(&self) -> (f64, f64, f64) {
+        let ((mr, l), (mw, rho)) = (self.rod, self.wheel);
+        (
+            mr * l * l / 3.0 + mw * l * l,
+            mw * rho * rho / 2.0,
+            (mr / 2.0 + mw) * self.g * l,
+        )
+    }
+
+    /// The upright linearisation in closed form, state (θ, φ, θ̇, φ̇): (A, B) as rows.
+    pub fn upright_linearization(&self) -> ([[f64; 4]; 4], [f64; 4]) {
+        let (jp, jw, mgl) = self.constants();
+        (
+            [
+                [0.0, 0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0, 1.0],
+                [mgl / jp, 0.0, 0.0, 0.0],
+                [-mgl / jp, 0.0, 0.0, 0.0],
+            ],
+            [0.0, 0.0, -1.0 / jp, (jp + jw) / (jp * jw)],
+        )
+    }
+}
