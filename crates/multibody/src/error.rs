@@ -59,6 +59,14 @@ pub enum Error {
         /// The rank of the closures' Jacobian up to and including it.
         rank: usize,
     },
+    /// A body named that the mechanism does not have (in `actuate`, `coordinates`, `pose`).
+    #[error("no body {body}: the mechanism has {bodies}")]
+    UnknownBody {
+        /// The body named.
+        body: usize,
+        /// How many bodies the mechanism has.
+        bodies: usize,
+    },
     /// A joint axis that is zero or not finite.
     #[error("body {body}: joint axis {axis:?} must be finite and nonzero")]
     Axis {

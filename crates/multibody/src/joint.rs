@@ -23,6 +23,18 @@ pub enum JointKind {
         /// The axis.
         axis: [f64; 3],
     },
+    /// Rotation by q₀ about `axis` and translation by q₁ along it (a piston in its cylinder).
+    Cylindrical {
+        /// The axis.
+        axis: [f64; 3],
+    },
+    /// Motion in the plane normal to `normal`: translation by (q₀, q₁) along the plane's axes e₁, e₂
+    /// and rotation by q₂ about the normal n. e₁ is the coordinate axis least aligned with n made
+    /// orthogonal to it, e₂ = n × e₁ (for n = z: e₁ = x, e₂ = y).
+    Planar {
+        /// The plane's normal.
+        normal: [f64; 3],
+    },
     /// No motion: the child is welded to the joint frame.
     Fixed,
 }
@@ -56,19 +68,32 @@ impl Joint {
         Self::of(JointKind::Prismatic { axis })
     }
 
+    /// A cylindrical joint about and along `axis`: coordinates (angle, slide).
+    pub fn cylindrical(axis: [f64; 3]) -> Self {
+        Self::of(JointKind::Cylindrical { axis })
+    }
+
+    /// A planar joint in the plane normal to `normal`: coordinates (x, y, angle) (see
+    /// [`JointKind::Planar`] for the plane's axes).
+    pub fn planar(normal: [f64; 3]) -> Self {
+        Self::of(JointKind::Planar { normal })
+    }
+
     /// A fixed joint (no coordinates).
     pub fn fixed() -> Self {
         Self::of(JointKind::Fixed)
     }
 
-    /// A spring on the coordinate: V = ½ k (q − q₀)² (checked finite and k ≥ 0 when attached).
+    /// A spring on the coordinate: V = ½ k (q − q₀)² (checked finite and k ≥ 0 when attached, on a
+    /// joint of one coordinate).
     pub fn spring(mut self, stiffness: f64, rest: f64) -> Self {
         self.stiffness = stiffness;
         self.rest = rest;
         self
     }
 
-    /// A damper on the coordinate: Q = −c q̇ (checked finite and c ≥ 0 when attached).
+    /// A damper on the coordinate: Q = −c q̇ (checked finite and c ≥ 0 when attached, on a joint of
+    /// one coordinate).
     pub fn damper(mut self, damping: f64) -> Self {
         self.damping = damping;
         self
@@ -83,6 +108,8 @@ impl Joint {
     pub fn dof(&self) -> usize {
         match self.kind {
             JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
+            JointKind::Cylindrical { .. } => 2,
+            JointKind::Planar { .. } => 3,
             JointKind::Fixed => 0,
         }
     }
@@ -92,17 +119,24 @@ impl Joint {
         matches!(self.kind, JointKind::Revolute { .. })
     }
 
-    /// The axis, if the joint has one.
+    /// The axis (or the plane's normal), if the joint has one.
     pub(crate) fn axis(&self) -> Option<[f64; 3]> {
         match self.kind {
-            JointKind::Revolute { axis } | JointKind::Prismatic { axis } => Some(axis),
+            JointKind::Revolute { axis }
+            | JointKind::Prismatic { axis }
+            | JointKind::Cylindrical { axis }
+            | JointKind::Planar { normal: axis } => Some(axis),
             JointKind::Fixed => None,
         }
     }
 
     /// The same joint with its axis made a unit vector.
     pub(crate) fn normalised(mut self) -> Self {
-        if let JointKind::Revolute { axis } | JointKind::Prismatic { axis } = &mut self.kind {
+        if let JointKind::Revolute { axis }
+        | JointKind::Prismatic { axis }
+        | JointKind::Cylindrical { axis }
+        | JointKind::Planar { normal: axis } = &mut self.kind
+        {
             let norm = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
             axis.iter_mut().for_each(|a| *a /= norm);
         }
@@ -114,6 +148,12 @@ impl Joint {
         match self.kind {
             JointKind::Revolute { axis } => (frames::rotation(axis, q[0]), frames::zero()),
             JointKind::Prismatic { axis } => (frames::identity(), frames::scaled(axis, q[0])),
+            JointKind::Cylindrical { axis } => (frames::rotation(axis, q[0]), frames::scaled(axis, q[1])),
+            JointKind::Planar { normal } => {
+                let (e1, e2) = plane_axes(normal);
+                let slide = frames::add(frames::scaled(e1, q[0]), frames::scaled(e2, q[1]));
+                (frames::rotation(normal, q[2]), slide)
+            }
             JointKind::Fixed => (frames::identity(), frames::zero()),
         }
     }
@@ -124,9 +164,35 @@ impl Joint {
         match self.kind {
             JointKind::Revolute { axis } => (frames::scaled(axis, v[0]), frames::zero()),
             JointKind::Prismatic { axis } => (frames::zero(), frames::scaled(axis, v[0])),
+            JointKind::Cylindrical { axis } => (frames::scaled(axis, v[0]), frames::scaled(axis, v[1])),
+            JointKind::Planar { normal } => {
+                let (e1, e2) = plane_axes(normal);
+                let slide = frames::add(frames::scaled(e1, v[0]), frames::scaled(e2, v[1]));
+                (frames::scaled(normal, v[2]), slide)
+            }
             JointKind::Fixed => (frames::zero(), frames::zero()),
         }
     }
+}
+
+/// The in-plane axes (e₁, e₂) of a planar joint with unit normal n: e₁ the coordinate axis least
+/// aligned with n, made orthogonal to it and normalised; e₂ = n × e₁.
+pub(crate) fn plane_axes(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let k = (0..3)
+        .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+        .unwrap_or(0);
+    let mut e1 = [0.0; 3];
+    e1[k] = 1.0;
+    let along = n[k];
+    let e1: [f64; 3] = std::array::from_fn(|i| e1[i] - along * n[i]);
+    let norm = e1.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let e1 = e1.map(|x| x / norm);
+    let e2 = [
+        n[1] * e1[2] - n[2] * e1[1],
+        n[2] * e1[0] - n[0] * e1[2],
+        n[0] * e1[1] - n[1] * e1[0],
+    ];
+    (e1, e2)
 }
 
 /// Where a joint frame sits in its parent's body frame (or in the world, for the ground): a rotation

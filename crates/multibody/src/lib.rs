@@ -1,13 +1,15 @@
 //! # noether-multibody
 //!
 //! Multibody systems from bodies and joints: describe a mechanism — rigid bodies (mass, centre of
-//! mass, inertia) attached by revolute, prismatic and fixed joints to the ground or to each other, with
-//! springs, dampers and actuated joints — and get its Lagrangian written for you. [`Mechanism`] is an
+//! mass, inertia) attached by revolute, prismatic, cylindrical, planar and fixed joints to the ground
+//! or to each other, with springs, dampers and actuated joints — and get its Lagrangian written for
+//! you. [`Mechanism`] is an
 //! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
 //! so every integrator, the driver, linearisation and LQR, variational integrators, tangents and
 //! ensembles run it unchanged, with exact derivatives by dual numbers. Closed loops (a four-bar, a
 //! slider-crank) are cut at a joint and closed again by [`Mechanism::close_loop`]: holonomic
-//! constraints ([`LoopClosures`]) for noether-constraints' multipliers, RATTLE and reduction.
+//! constraints ([`LoopClosures`]) for noether-constraints' multipliers, RATTLE and reduction. A tree
+//! of one-coordinate joints also runs as [`NewtonEuler`], the recursive Newton-Euler algorithm on f64.
 //!
 //! ```
 //! use noether_core::prelude::*;

@@ -119,12 +119,12 @@ impl Mechanism {
             ("joint stiffness", joint.stiffness),
             ("joint damping", joint.damping),
         ] {
-            let needs_coordinate = value != 0.0 && joint.dof() == 0;
+            let needs_coordinate = value != 0.0 && joint.dof() != 1;
             if !(value.is_finite() && value >= 0.0) || needs_coordinate {
                 return Err(noether_core::Error::InvalidParameter {
                     name,
                     value,
-                    reason: "finite and at least 0, on a joint with a coordinate",
+                    reason: "finite and at least 0, on a joint with one coordinate",
                 }
                 .into());
             }
@@ -143,7 +143,7 @@ impl Mechanism {
     }
 
     /// Makes the coordinates of `body`'s joint inputs: a force (prismatic) or torque (revolute) u on
-    /// each, in the order of the calls. Errors: an unknown body.
+    /// each, in the order of the calls. Errors: an unknown body (`UnknownBody`).
     pub fn actuate(&mut self, body: BodyId) -> Result<()> {
         let node = self.node(body)?;
         self.actuated.extend(node.offset..node.offset + node.joint.dof());
@@ -175,9 +175,8 @@ impl Mechanism {
     }
 
     fn node(&self, body: BodyId) -> Result<&Node> {
-        self.nodes.get(body.0).ok_or(Error::UnknownParent {
+        self.nodes.get(body.0).ok_or(Error::UnknownBody {
             body: body.0,
-            parent: body.0,
             bodies: self.nodes.len(),
         })
     }

@@ -41,9 +41,16 @@ pub struct NewtonEuler {
 }
 
 impl NewtonEuler {
-    /// The tree `mechanism`. Errors: a mechanism with loop closures (`Unsupported`: a closed loop
-    /// needs its constraints, noether-constraints' `Constrained` or `Rattle`).
+    /// The tree `mechanism`. Errors (`Unsupported`): a mechanism with loop closures (a closed loop
+    /// needs its constraints, noether-constraints' `Constrained` or `Rattle`), or with a joint of more
+    /// than one coordinate (cylindrical, planar: not yet here; Lagrange's equations take them).
     pub fn new(mechanism: Mechanism) -> Result<Self> {
+        if mechanism.nodes().iter().any(|n| n.joint.dof() > 1) {
+            return Err(noether_core::Error::Unsupported(
+                "the Newton-Euler algorithm for joints of more than one coordinate (use EulerLagrange)",
+            )
+            .into());
+        }
         if mechanism.closure_count() > 0 {
             return Err(noether_core::Error::Unsupported(
                 "the Newton-Euler algorithm for a mechanism with loop closures (use Constrained or Rattle)",

@@ -254,6 +254,10 @@ fn bad_mechanisms_are_typed_errors() {
         .is_err());
     // Nothing was attached by the failed calls; a good body still is.
     assert_eq!(m.bodies(), 0);
+    assert!(matches!(
+        m.actuate(noether_multibody::BodyId(3)),
+        Err(Error::UnknownBody { body: 3, bodies: 0 })
+    ));
     let rod = m
         .attach(
             Parent::Ground,
@@ -263,4 +267,74 @@ fn bad_mechanisms_are_typed_errors() {
         )
         .unwrap();
     assert_eq!(m.coordinates(rod).unwrap(), 0..1);
+}
+
+/// A joint of several coordinates is the chain of one-coordinate joints it abbreviates, through
+/// massless links: a cylindrical joint about a (angle θ, slide s) is a revolute joint about a then a
+/// prismatic one along a (turning about an axis and sliding along it commute); a planar joint with
+/// normal z (x, y, θ) is prismatic along x, prismatic along y, revolute about z. The same body (full
+/// inertia tensor, off-centre) hangs from each, on a turned placement, under gravity: L agrees at 30
+/// random states (measured ≤ 6e-16 relative; tolerance 1e-14). Springs need a joint of one coordinate.
+#[test]
+fn cylindrical_and_planar_joints_are_their_chains() {
+    let body = Body::new(
+        1.3,
+        [0.2, -0.1, 0.3],
+        [[0.3, 0.02, 0.0], [0.02, 0.25, -0.01], [0.0, -0.01, 0.4]],
+    );
+    let at = Placement::at([0.1, 0.2, -0.3]).rotated([1.0, 0.0, 0.0], 0.5);
+    let axis = [0.0, 0.6, 0.8];
+    let chain = |joints: &[Joint]| {
+        let mut m = Mechanism::new().gravity([0.0, 0.0, -9.81]).unwrap();
+        let mut parent = Parent::Ground;
+        for (k, joint) in joints.iter().enumerate() {
+            let (place, carried) = if k == 0 {
+                (at, Body::massless())
+            } else {
+                (Placement::identity(), Body::massless())
+            };
+            let carried = if k + 1 == joints.len() { body } else { carried };
+            parent = m.attach(parent, place, *joint, carried).unwrap().into();
+        }
+        m
+    };
+    let pairs = [
+        (
+            chain(&[Joint::cylindrical(axis)]),
+            chain(&[Joint::revolute(axis), Joint::prismatic(axis)]),
+            "cylindrical",
+        ),
+        (
+            chain(&[Joint::planar(Z)]),
+            chain(&[
+                Joint::prismatic([1.0, 0.0, 0.0]),
+                Joint::prismatic([0.0, 1.0, 0.0]),
+                Joint::revolute(Z),
+            ]),
+            "planar",
+        ),
+    ];
+    let mut draw = uniform(17);
+    for (joint, links, name) in pairs {
+        let n = joint.dof();
+        assert_eq!(n, links.dof());
+        let mut worst = 0.0_f64;
+        for _ in 0..30 {
+            let q: Vec<f64> = (0..n).map(|_| draw(-PI, PI)).collect();
+            let v: Vec<f64> = (0..n).map(|_| draw(-2.0, 2.0)).collect();
+            let (a, b) = (joint.lagrangian(0.0, &q, &v), links.lagrangian(0.0, &q, &v));
+            worst = worst.max(relative(&[a], &[b]));
+        }
+        println!("{name} joint vs its chain: L {worst:e}");
+        assert!(worst < 1e-14, "{name}: {worst:e}");
+    }
+    let mut m = Mechanism::new();
+    assert!(m
+        .attach(
+            Parent::Ground,
+            at,
+            Joint::cylindrical(axis).spring(1.0, 0.0),
+            body
+        )
+        .is_err());
 }
