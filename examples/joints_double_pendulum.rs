@@ -95,7 +95,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         "θ(3) built vs by hand, from θ = (2, 2)",
         apart,
         0.0,
-        1e-9,
+        1e-11,
     ));
 
     let start = State::new(0.0, [2.0, 0.0], [0.0, 0.0]);

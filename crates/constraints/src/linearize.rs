@@ -25,9 +25,10 @@
 //! [`Reduced`](crate::Reduced) gives the same (A, B) by a reduced Lagrangian; this path needs no
 //! reference configuration and treats both kinds alike.
 //!
-//! Steady motions of nonholonomic systems (a rolling disk turning steadily, `tests`) are points
-//! with q̇ ≠ 0 and a drift whose q̇_i-part vanishes; their cyclic coordinates show as zero
-//! eigenvalues of A.
+//! Steady motions of nonholonomic systems are points with q̇ ≠ 0 and a drift whose q̇_i-part
+//! vanishes; their cyclic coordinates show as zero eigenvalues of A. A coin rolling on a table in
+//! q = (x, y, ψ, θ, φ), linearised about its steady turns with (ψ̇, θ̇, φ̇) independent, has the tilt
+//! frequency of Routh's reduced equations to rounding (`crates/analysis/tests/constrained.rs`).
 
 use crate::dynamics::Constrained;
 use crate::reduced::dependent_coordinates;

@@ -142,11 +142,21 @@ impl Mechanism {
         Ok(BodyId(id))
     }
 
-    /// Makes the coordinates of `body`'s joint inputs: a force (prismatic) or torque (revolute) u on
-    /// each, in the order of the calls. Errors: an unknown body (`UnknownBody`).
+    /// Makes the coordinates of `body`'s joint inputs: a force (a slide) or torque (a turn) u on
+    /// each, in the order of the calls. Errors: an unknown body (`UnknownBody`), a joint already
+    /// actuated or without coordinates (`InvalidParameter`).
     pub fn actuate(&mut self, body: BodyId) -> Result<()> {
         let node = self.node(body)?;
-        self.actuated.extend(node.offset..node.offset + node.joint.dof());
+        let range = node.offset..node.offset + node.joint.dof();
+        if range.is_empty() || self.actuated.contains(&range.start) {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "actuated body",
+                value: body.0 as f64,
+                reason: "a body whose joint has coordinates, actuated once",
+            }
+            .into());
+        }
+        self.actuated.extend(range);
         Ok(())
     }
 

@@ -267,6 +267,8 @@ fn bad_mechanisms_are_typed_errors() {
         )
         .unwrap();
     assert_eq!(m.coordinates(rod).unwrap(), 0..1);
+    m.actuate(rod).unwrap();
+    assert!(m.actuate(rod).is_err(), "actuated twice");
 }
 
 /// A joint of several coordinates is the chain of one-coordinate joints it abbreviates, through
