@@ -196,16 +196,33 @@ impl Mechanism {
         check_len("q", q, self.dof)?;
         check_finite("q", q)?;
         self.node(body)?;
-        let zeros = vec![0.0; self.dof];
-        let frames = self.forward(q, &zeros);
-        let b = &frames[body.0];
-        Ok((Matrix3::from_fn(|i, j| b.r[i][j]), Vector3::from(b.p)))
+        let (r, p) = self.poses(q)[body.0];
+        Ok((Matrix3::from_fn(|i, j| r[i][j]), Vector3::from(p)))
     }
 
-    /// Every body's orientation and origin at q (the positions of [`forward`](Self::forward) alone).
+    /// Every body's orientation and origin at q, root outwards (the positions of
+    /// [`forward`](Self::forward) without its velocities).
     pub(crate) fn poses<D: Scalar>(&self, q: &[D]) -> Vec<(M3<D>, V3<D>)> {
-        let still = vec![D::zero(); q.len()];
-        self.forward(q, &still).into_iter().map(|m| (m.r, m.p)).collect()
+        let mut out: Vec<(M3<D>, V3<D>)> = Vec::with_capacity(self.nodes.len());
+        for node in &self.nodes {
+            let parent = match node.parent {
+                Parent::Ground => (frames::identity(), frames::zero()),
+                Parent::Body(BodyId(p)) => out[p],
+            };
+            let (_, r, p) = self.place(node, &parent, q);
+            out.push((r, p));
+        }
+        out
+    }
+
+    /// A body's joint frame orientation R_P R₀ in the world, and its own orientation R and origin p,
+    /// from its parent's (R_P, p_P) and the configuration q (module docs).
+    fn place<D: Scalar>(&self, node: &Node, (pr, pp): &(M3<D>, V3<D>), q: &[D]) -> (M3<D>, M3<D>, V3<D>) {
+        let (rj, tj) = node.joint.motion(&q[node.offset..node.offset + node.joint.dof()]);
+        let placed = frames::compose_const(pr, &node.placement.rotation);
+        let origin = frames::add(*pp, frames::apply_const(pr, node.placement.translation));
+        let p = frames::add(origin, frames::apply(&placed, tj));
+        (placed, frames::compose(&placed, &rj), p)
     }
 
     /// The bodies in the order of attachment.
@@ -240,37 +257,25 @@ impl Mechanism {
     pub(crate) fn forward<D: Scalar>(&self, q: &[D], v: &[D]) -> Vec<Moving<D>> {
         let mut out: Vec<Moving<D>> = Vec::with_capacity(self.nodes.len());
         for node in &self.nodes {
-            let ground = Moving {
-                r: frames::identity(),
-                p: frames::zero(),
-                w: frames::zero(),
-                v: frames::zero(),
-            };
-            let parent = match node.parent {
-                Parent::Ground => &ground,
-                Parent::Body(BodyId(p)) => &out[p],
-            };
-            let range = node.offset..node.offset + node.joint.dof();
-            let (rj, tj) = node.joint.motion(&q[range.clone()]);
-            let (wj, vj) = node.joint.rates(&v[range]);
-            let placed = frames::compose_const(&parent.r, &node.placement.rotation);
-            let p = frames::add(
-                frames::add(
-                    parent.p,
-                    frames::apply_const(&parent.r, node.placement.translation),
+            let (pose, w_p, v_p) = match node.parent {
+                Parent::Ground => (
+                    (frames::identity(), frames::zero()),
+                    frames::zero(),
+                    frames::zero(),
                 ),
-                frames::apply(&placed, tj),
-            );
-            let moving = Moving {
-                r: frames::compose(&placed, &rj),
-                w: frames::add(parent.w, frames::apply(&placed, wj)),
+                Parent::Body(BodyId(b)) => ((out[b].r, out[b].p), out[b].w, out[b].v),
+            };
+            let (placed, r, p) = self.place(node, &pose, q);
+            let (wj, vj) = node.joint.rates(&v[node.offset..node.offset + node.joint.dof()]);
+            out.push(Moving {
+                r,
+                w: frames::add(w_p, frames::apply(&placed, wj)),
                 v: frames::add(
-                    frames::add(parent.v, frames::cross(parent.w, frames::sub(p, parent.p))),
+                    frames::add(v_p, frames::cross(w_p, frames::sub(p, pose.1))),
                     frames::apply(&placed, vj),
                 ),
                 p,
-            };
-            out.push(moving);
+            });
         }
         out
     }
@@ -322,6 +327,7 @@ impl Lagrangian for Mechanism {
 
     fn lagrangian<D: Scalar>(&self, _t: D, q: &[D], v: &[D]) -> D {
         let frames = self.forward(q, v);
+        let gravity = self.gravity.map(D::from);
         let mut l = D::zero();
         for (node, f) in self.nodes.iter().zip(&frames) {
             let body = &node.body;
@@ -330,7 +336,7 @@ impl Lagrangian for Mechanism {
             let spin = frames::apply_transpose(&f.r, f.w);
             let momentum: V3<D> =
                 std::array::from_fn(|i| (0..3).fold(D::zero(), |s, k| s + spin[k] * body.inertia[i][k]));
-            let height = frames::dot(frames::add(f.p, arm), self.gravity.map(D::from));
+            let height = frames::dot(frames::add(f.p, arm), gravity);
             l += (frames::dot(centre_velocity, centre_velocity) * body.mass + frames::dot(spin, momentum))
                 * 0.5
                 + height * body.mass;

@@ -184,7 +184,16 @@ impl Dynamics for NewtonEuler {
         let mut joint = vec![0.0; n];
         self.mechanism.joint_forces(q, v, &mut joint);
         b.iter_mut().zip(&joint).for_each(|(b, q)| *b = q - *b);
-        let still = self.mechanism.forward(q, &zeros);
+        // The same poses at rest: M's columns are the inverse dynamics without velocities.
+        let still: Vec<Moving<f64>> = moving
+            .iter()
+            .map(|m| Moving {
+                r: m.r,
+                p: m.p,
+                w: [0.0; 3],
+                v: [0.0; 3],
+            })
+            .collect();
         let mut mass = DMatrix::zeros(n, n);
         let mut e = vec![0.0; n];
         let mut column = vec![0.0; n];
