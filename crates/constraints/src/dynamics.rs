@@ -399,6 +399,23 @@ impl<L: Lagrangian, K: ConstraintSet> LinearizedDynamics for Constrained<L, K> {
             2 * n,
         )?;
         let (factor, z, _) = self.saddle(t, q, v)?;
+        self.jacobian_from(t, q, v, (&factor, &z), out)
+    }
+}
+
+impl<L: Lagrangian, K: ConstraintSet> Constrained<L, K> {
+    /// The Jacobian of the `LinearizedDynamics` impl from the factored saddle-point system and its
+    /// solution z = (q̈, −λ) at (t, q, q̇) ([`saddle`](Self::saddle)), for callers that need them too;
+    /// arguments checked by the caller.
+    pub(crate) fn jacobian_from(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        (factor, z): (&DenseFactor, &DVector<f64>),
+        out: &mut DMatrix<f64>,
+    ) -> noether_core::Result<()> {
+        let n = self.dof();
         let (qdd, neg_lambda) = z.as_slice().split_at(n);
         let mut de = DMatrix::zeros(n, 2 * n);
         self.el.residual_jacobian(t, q, v, qdd, &mut de)?;

@@ -38,7 +38,6 @@ use nalgebra::{DMatrix, DVector};
 use noether_core::control::{input_jacobian, Actuated, ClosedLoop, Constant, Linearization};
 use noether_core::error::{check_finite, check_len, check_phase_point};
 use noether_core::linalg::DenseFactor;
-use noether_core::system::LinearizedDynamics;
 use noether_core::{Dynamics, Error as CoreError};
 
 /// (A, B) and the drift of `model` under `constraints` at (t, q, q̇, u), restricted to the constraint
@@ -64,9 +63,9 @@ pub fn linearize<A: Actuated, K: ConstraintSet>(
     let dependent = dependent_coordinates(n, m, independent)?;
     let held = Constrained::new(ClosedLoop::new(model, Constant(u.to_vec()))?, constraints)?;
     held.admissible(t, q, v)?;
-    let mut jac = DMatrix::zeros(2 * n, 2 * n);
-    held.jacobian(t, q, v, &mut jac)?;
     let (factor, z, a) = held.saddle(t, q, v)?;
+    let mut jac = DMatrix::zeros(2 * n, 2 * n);
+    held.jacobian_from(t, q, v, (&factor, &z), &mut jac)?;
     let mut rhs = DMatrix::zeros(n + m, u.len());
     rhs.rows_mut(0, n).copy_from(&input_jacobian(model, t, q, v, u));
     let response = factor.solve_matrix(&rhs);
@@ -138,9 +137,14 @@ impl Split<'_> {
             if holonomic && r < n {
                 self.fill_dependent(&dependent, &independent, &mut dq, &[0.0; 0]);
             }
-            let bend = constraints
-                .derivatives_along(t, q, v, (&dq, &vec![0.0; n]))
-                .residual;
+            // g_q δq, for a step of the coordinates (a step of the velocities alone leaves it 0).
+            let bend = if r < n {
+                constraints
+                    .derivatives_along(t, q, v, (&dq, &vec![0.0; n]))
+                    .residual
+            } else {
+                Vec::new()
+            };
             self.fill_dependent(&dependent, &independent, &mut dv, &bend);
             basis.view_mut((0, c), (n, 1)).copy_from_slice(&dq);
             basis.view_mut((n, c), (n, 1)).copy_from_slice(&dv);
