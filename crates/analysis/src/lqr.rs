@@ -113,18 +113,7 @@ fn weights(
 ) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
     let m = b.ncols();
     for (what, mat, rows) in [("LQR weight Q", q, n), ("LQR weight R", r, m)] {
-        if mat.nrows() != rows || mat.ncols() != rows {
-            return Err(noether_core::Error::Dimension {
-                what,
-                expected: rows,
-                got: if mat.nrows() != rows {
-                    mat.nrows()
-                } else {
-                    mat.ncols()
-                },
-            }
-            .into());
-        }
+        noether_core::error::check_shape(what, mat, rows, rows)?;
         check_finite(what, mat.as_slice())?;
     }
     let r_factor = DenseFactor::symmetric(r.clone()).map_err(|e| e.in_matrix("LQR weight R"))?;
@@ -385,14 +374,7 @@ pub fn tvlqr(
             ("time-varying LQR step matrix A_k", &step.a, n, n),
             ("time-varying LQR step matrix B_k", &step.b, n, m),
         ] {
-            if mat.nrows() != rows || mat.ncols() != cols {
-                return Err(noether_core::Error::Dimension {
-                    what,
-                    expected: rows * cols,
-                    got: mat.nrows() * mat.ncols(),
-                }
-                .into());
-            }
+            noether_core::error::check_shape(what, mat, rows, cols)?;
             check_finite(what, mat.as_slice())?;
         }
     }

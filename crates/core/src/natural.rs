@@ -185,17 +185,7 @@ impl<P: Potential> Natural<P> {
     /// A dense mass matrix, which must be symmetric positive definite; it is factored here, once.
     pub fn dense(potential: P, mass: DMatrix<f64>) -> Result<Self> {
         let n = potential.dof();
-        if mass.shape() != (n, n) {
-            return Err(Error::Dimension {
-                what: "mass matrix (rows × columns)",
-                expected: n,
-                got: if mass.nrows() != n {
-                    mass.nrows()
-                } else {
-                    mass.ncols()
-                },
-            });
-        }
+        crate::error::check_shape("mass matrix (rows × columns)", &mass, n, n)?;
         check_finite("mass matrix", mass.as_slice())?;
         let asym = (&mass - mass.transpose()).amax();
         if asym > 1e-12 * mass.amax() {

@@ -74,8 +74,9 @@ impl<S: TangentStepper + ?Sized> TangentStepper for Box<S> {
     }
 }
 
-/// Checks that `psi` is 2n × 2n for a system of `dof` degrees of freedom.
-pub(crate) fn check_tangent_shape(psi: &DMatrix<f64>, dof: usize) -> Result<()> {
+/// Checks that `psi` is 2n × 2n for a system of `dof` degrees of freedom: the one check of a step
+/// Jacobian's shape, for every tangent stepper of the workspace.
+pub fn check_tangent_shape(psi: &DMatrix<f64>, dof: usize) -> Result<()> {
     crate::error::check_shape("step Jacobian Ψ (rows and columns)", psi, 2 * dof, 2 * dof)
 }
 

@@ -83,12 +83,7 @@ fn step_then_jacobian<F: SignedStepper<Partner = Momenta>>(
     jacobian: impl FnOnce(&F, &[f64], &[f64], &[f64]) -> Result<DMatrix<f64>>,
 ) -> Result<StepInfo> {
     check_signed_step(map.dof(), state, h)?;
-    noether_core::error::check_shape(
-        "step Jacobian Ψ (rows and columns)",
-        psi,
-        2 * map.dof(),
-        2 * map.dof(),
-    )?;
+    noether_core::tangent::check_tangent_shape(psi, map.dof())?;
     let (t, q0, p0) = (state.t, state.q.as_slice().to_vec(), state.v.as_slice().to_vec());
     let info = map.step_signed(state, h)?;
     match jacobian(map, &q0, &p0, state.q.as_slice()).and_then(|m| {
