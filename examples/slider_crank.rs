@@ -12,11 +12,9 @@
 //!
 //! Run: `cargo run --release --features examples --example slider_crank`.
 
-use noether::constraints::Rattle;
-use noether::discrete::Midpoint;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::multibody::SliderCrank;
+use noether_testkit::multibody::{rattle_run, SliderCrank};
 use std::process::ExitCode;
 
 const NAME: &str = "slider_crank";
@@ -59,25 +57,13 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
         1e-13,
     ));
 
-    let mechanism = sc.mechanism();
-    let closures = mechanism.loop_closures();
     let (q, v) = sc.reduced_near(0.5)?.state(0.0, &[0.5], &[0.0]);
-    let el = EulerLagrange::new(mechanism.clone());
-    let e0 = el.energy(0.0, &q, &v)?;
-    let mut rattle = Rattle::new(Midpoint::new(mechanism), closures.clone())?;
-    let mut state = rattle.state_from_velocities(0.0, &q, &v)?;
-    let (mut gap, mut off, mut energy) = (0.0_f64, 0.0_f64, 0.0_f64);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut phi = [0.0; 2];
-    for _ in 0..10_000 {
-        rattle.step(&mut state, 1e-3)?;
-        noether::constraints::holonomic::values(&closures, 0.0, state.q.as_slice(), &mut phi)?;
-        gap = gap.max(phi[0].abs().max(phi[1].abs()));
-        off = off.max((state.q[2] - sc.piston(state.q[0])).abs());
-        let vel = rattle.velocities(&state)?;
-        energy = energy.max((el.energy(0.0, state.q.as_slice(), vel.as_slice())? - e0).abs() / e0);
-        (lo, hi) = (lo.min(state.q[0]), hi.max(state.q[0]));
-    }
+    let (mut off, mut lo, mut hi) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
+    let run = rattle_run(&sc.mechanism(), (&q, &v), (1e-3, 10_000), |q| {
+        off = off.max((q[2] - sc.piston(q[0])).abs());
+        (lo, hi) = (lo.min(q[0]), hi.max(q[0]));
+    })?;
+    let (gap, energy) = (run.closure, run.energy);
     report.note(format!(
         "released at θ = 0.5: the crank swings over [{lo:.4}, {hi:.4}] in 10 s"
     ));

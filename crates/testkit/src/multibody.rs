@@ -358,42 +358,64 @@ pub struct FourBarRun {
     pub rocker: (f64, f64),
 }
 
+/// What [`rattle_run`] measured: the largest closure residual |φ| and relative energy error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopRun {
+    /// max |φ| of the loop closures over the run.
+    pub closure: f64,
+    /// max |E − E₀|/E₀ over the run.
+    pub energy: f64,
+}
+
+/// Steps a mechanism with loop closures by RATTLE on the midpoint discrete Lagrangian from (q, q̇)
+/// (on the loop) for `steps` steps of `h`, calling `watch` with q after each step.
+pub fn rattle_run(
+    mechanism: &Mechanism,
+    (q, v): (&[f64], &[f64]),
+    (h, steps): (f64, usize),
+    mut watch: impl FnMut(&[f64]),
+) -> Result<LoopRun, Failure> {
+    let closures = mechanism.loop_closures();
+    let el = EulerLagrange::new(mechanism.clone());
+    let e0 = el.energy(0.0, q, v)?;
+    let mut rattle = Rattle::new(Midpoint::new(mechanism.clone()), closures.clone())?;
+    let mut state = rattle.state_from_velocities(0.0, q, v)?;
+    let mut run = LoopRun {
+        closure: 0.0,
+        energy: 0.0,
+    };
+    let mut phi = vec![0.0; closures.count()];
+    for _ in 0..steps {
+        rattle.step(&mut state, h)?;
+        closures.constraints(0.0, state.q.as_slice(), &mut phi);
+        run.closure = phi.iter().fold(run.closure, |m, p| m.max(p.abs()));
+        let vel = rattle.velocities(&state)?;
+        let e = el.energy(0.0, state.q.as_slice(), vel.as_slice())?;
+        run.energy = run.energy.max((e - e0).abs() / e0);
+        watch(state.q.as_slice());
+    }
+    Ok(run)
+}
+
 impl FourBar {
     /// The linkage set spinning from θ = 0 at crank rate `rate` (the other rates from the loop), no
-    /// gravity, stepped by RATTLE on the midpoint discrete Lagrangian for `steps` steps of `h`.
+    /// gravity, stepped by RATTLE for `steps` steps of `h` ([`rattle_run`]).
     pub fn spin(&self, rate: f64, h: f64, steps: usize) -> Result<FourBarRun, Failure> {
         let mechanism = self.mechanism();
         let closures = mechanism.loop_closures();
-        let reduced = Reduced::new(
-            mechanism.clone(),
-            closures.clone(),
-            &[0],
-            &self.configuration(0.0),
-        )?;
+        let reduced = Reduced::new(mechanism.clone(), closures, &[0], &self.configuration(0.0))?;
         let (q, v) = reduced.state(0.0, &[0.0], &[rate]);
-        let el = EulerLagrange::new(mechanism.clone());
-        let e0 = el.energy(0.0, &q, &v)?;
-        let mut rattle = Rattle::new(Midpoint::new(mechanism), closures.clone())?;
-        let mut state = rattle.state_from_velocities(0.0, &q, &v)?;
-        let mut run = FourBarRun {
-            turns: 0.0,
-            closure: 0.0,
-            energy: 0.0,
-            rocker: (f64::INFINITY, f64::NEG_INFINITY),
-        };
-        let mut phi = [0.0; 2];
-        for _ in 0..steps {
-            rattle.step(&mut state, h)?;
-            closures.constraints(0.0, state.q.as_slice(), &mut phi);
-            run.closure = run.closure.max(phi[0].abs().max(phi[1].abs()));
-            let vel = rattle.velocities(&state)?;
-            run.energy = run
-                .energy
-                .max((el.energy(0.0, state.q.as_slice(), vel.as_slice())? - e0).abs() / e0);
-            run.rocker = (run.rocker.0.min(state.q[2]), run.rocker.1.max(state.q[2]));
-        }
-        run.turns = state.q[0] / std::f64::consts::TAU;
-        Ok(run)
+        let (mut rocker, mut crank) = ((f64::INFINITY, f64::NEG_INFINITY), 0.0);
+        let run = rattle_run(&mechanism, (&q, &v), (h, steps), |q| {
+            rocker = (rocker.0.min(q[2]), rocker.1.max(q[2]));
+            crank = q[0];
+        })?;
+        Ok(FourBarRun {
+            turns: crank / std::f64::consts::TAU,
+            closure: run.closure,
+            energy: run.energy,
+            rocker,
+        })
     }
 }
 
