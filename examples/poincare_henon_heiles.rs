@@ -17,7 +17,7 @@ use noether::canonical::section::{section, Plane};
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::henon_heiles::HenonHeiles;
+use noether_testkit::henon_heiles::{on_section, HenonHeiles};
 use std::process::ExitCode;
 
 const NAME: &str = "poincare_henon_heiles";
@@ -33,12 +33,6 @@ impl Hamiltonian for Uncoupled {
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
         (p[0] * p[0] + q[0] * q[0] + p[1] * p[1] + q[1] * q[1] * 2.0) * 0.5
     }
-}
-
-/// A start on H = E at x = 0 with (y, p_y) given and p_x > 0.
-fn start(e: f64, y: f64, py: f64) -> Option<State<Momenta>> {
-    let px2 = 2.0 * e - py * py - y * y + 2.0 * y * y * y / 3.0;
-    (px2 > 0.0).then(|| State::with_momenta(0.0, [0.0, y], [px2.sqrt(), py]))
 }
 
 /// The (y, p_y) points of one orbit's section, the largest |H − E| and the largest |x| there.
@@ -87,7 +81,7 @@ pub fn run(opts: &Options) -> Result<Report, BoxError> {
         let (mut de, mut dx): (f64, f64) = (0.0, 0.0);
         let mut count = 0;
         for &y in starts {
-            let Some(s0) = start(e, y, 0.0) else { continue };
+            let Some(s0) = on_section(e, y, 0.0) else { continue };
             let (pts, de1, dx1) = orbit_section(s0, e, t_end)?;
             count += pts.len();
             de = de.max(de1);

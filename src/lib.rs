@@ -202,6 +202,7 @@ examples! {
     periodic_orbits: "periodic orbits by shooting: pendulum period vs 4K, Lyapunov orbits about L1 unstable with λ ≈ 2700",
     figure_eight: "the figure-eight of three bodies by shooting from a rough guess vs the published orbit; linearly stable",
     lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
+    megno_map: "MEGNO stability map of Hénon-Heiles at E = 1/8 (an ensemble over the section): ⟨Y⟩ → 2 on tori, the chaotic cells those one sea orbit visits, time-reversal symmetric",
     sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
     symplecticity_check: "self-checks of integrators: ‖ΨᵀΩΨ − Ω‖ (RK4 h⁶/72 on the oscillator, O(h⁵)), observed orders, reversibility",
     boundary_value: "boundary-value problems by the discrete Hamilton principle: projectile, oscillator conjugate points, sphere geodesic, figure-eight",

@@ -470,6 +470,22 @@ fn closed_form_lyapunov_spectrum() {
     assert_example_passes("lyapunov_spectrum");
 }
 
+/// The gallery example maps 32 × 32 to t = 1000, its sea orbit to t = 10⁵ (`cargo run --release
+/// --example megno_map`); the test maps 24 × 24, the sea orbit to 5·10⁴ (as many crossings per cell),
+/// the same checks.
+#[test]
+fn chaos_map_megno() {
+    let report =
+        gallery::examples::megno_map::run_grid(24, 1000.0, 5e4, &Options::default()).expect("megno_map runs");
+    for c in &report.checks {
+        eprintln!("{c}");
+    }
+    for n in &report.notes {
+        eprintln!("{n}");
+    }
+    assert_report_passes("megno_map", &report);
+}
+
 #[test]
 fn closed_form_sensitivity() {
     assert_example_passes("sensitivity");

@@ -163,7 +163,28 @@ pub enum Error {
         /// Blocks asked for.
         blocks: usize,
     },
-    // --- end of helper B1's section ---
+
+    // ---- chaos indicators (chaos.rs) ----
+    /// The deviation of a MEGNO run is no longer a finite, nonzero vector after a step (the step's
+    /// Jacobian overflowed, or was given a zero deviation).
+    #[error(
+        "the deviation was lost at t = {t}: its length after the step is {growth:e} (a step too large for \
+         the orbit, or an orbit running off to infinity)"
+    )]
+    DeviationLost {
+        /// Time of the step.
+        t: f64,
+        /// |Ψδ| (or |δ| given).
+        growth: f64,
+    },
+    /// A stability map where no grid point has an orbit.
+    #[error(
+        "none of the {members} grid points has an orbit (the grid misses the energy surface, or is empty)"
+    )]
+    NoValidMember {
+        /// Number of grid points.
+        members: usize,
+    },
 }
 
 noether_core::crate_error_conversions!(Error);

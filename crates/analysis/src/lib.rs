@@ -5,6 +5,12 @@
 //! modes (K X = ω² M X with M and K by dual numbers) and the linear stability of equilibria with
 //! gyroscopic terms (rotating frames). Every derivative is exact (noether-core's AD kernels).
 //!
+//! And what a system does along its orbits, from the exact tangents of the numerical flow: Lyapunov
+//! spectra ([`lyapunov`]), the chaos indicators MEGNO and FLI and their stability maps over a grid of
+//! initial conditions ([`chaos`]; the maps with the feature `ensemble`), periodic orbits by shooting and
+//! their Floquet multipliers ([`periodic`]), sensitivities to parameters ([`sensitivity`]), and
+//! linearisation with LQR for control ([`linearize`](mod@linearize), [`lqr`](mod@lqr)).
+//!
 //! ```
 //! use noether_analysis::{normal_modes, EffectivePotential, EquilibriumFinder, Kind};
 //! use noether_core::{Lagrangian, Scalar};
@@ -28,6 +34,7 @@
 //! assert!((modes.omega2[0] - 25.0 * eq.q[0].sin().powi(2)).abs() < 1e-10); // ω² sin²θ₀
 //! ```
 
+pub mod chaos;
 pub mod equilibria;
 pub mod error;
 pub mod linearize;
@@ -38,6 +45,9 @@ pub mod periodic;
 pub mod potential;
 pub mod sensitivity;
 
+#[cfg(feature = "ensemble")]
+pub use chaos::{stability_map, StabilityMap};
+pub use chaos::{Indicators, Megno};
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
 pub use linearize::{linearize, linearize_step, HeldInputs, HeldStart, Linearization, StepLinearization};

@@ -198,19 +198,7 @@ impl<S: TangentStepper> Lyapunov<S> {
     /// Steps until the time is `t_end` (rounded to a whole number of steps; nothing when `t_end` is not
     /// ahead).
     pub fn advance_to(&mut self, t_end: f64) -> Result<()> {
-        let ahead = (t_end - self.state.t) / self.h;
-        if !ahead.is_finite() {
-            return Err(noether_core::Error::NonFinite {
-                what: "t_end",
-                index: 0,
-            }
-            .into());
-        }
-        if ahead > 0.0 {
-            // Rounded to the nearest step; `as` saturates for absurd values.
-            self.advance(ahead.round() as usize)?;
-        }
-        Ok(())
+        self.advance(steps_to(self.state.t, t_end, self.h)?)
     }
 
     /// Forgets the sums so far (keeping the orbit and the tangent vectors): the estimate restarts at
@@ -351,6 +339,20 @@ impl<S: TangentStepper> Lyapunov<S> {
             blocks,
         })
     }
+}
+
+/// The number of fixed steps h from t to `t_end`, rounded to the nearest (0 when `t_end` is not ahead;
+/// `as` saturates for absurd values): what `advance_to` of a fixed-step run takes.
+pub(crate) fn steps_to(t: f64, t_end: f64, h: f64) -> Result<usize> {
+    let ahead = (t_end - t) / h;
+    if !ahead.is_finite() {
+        return Err(noether_core::Error::NonFinite {
+            what: "t_end",
+            index: 0,
+        }
+        .into());
+    }
+    Ok(if ahead > 0.0 { ahead.round() as usize } else { 0 })
 }
 
 /// (S₁ … S_k, S_i + S_{k+1−i} for i ≤ k/2, Σ S_i).

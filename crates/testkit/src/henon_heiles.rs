@@ -1,10 +1,11 @@
 //! Hénon-Heiles and the unit double pendulum as Hamiltonians: the nonlinear and chaotic models of the
 //! tangent-flow tests, the Lyapunov spectra and the integrators' self-checks.
 //!
-//! Used by noether-core's tangent tests (`tests/tangent/`), noether-analysis' Lyapunov tests, and the
-//! gallery's `symplecticity_check` and `lyapunov_spectrum` examples.
+//! Used by noether-core's tangent tests (`tests/tangent/`), noether-analysis' Lyapunov and chaos
+//! tests, and the gallery's `symplecticity_check`, `lyapunov_spectrum`, `poincare_henon_heiles` and
+//! `megno_map` examples.
 
-use noether_core::{Hamiltonian, Potential, Scalar, Separable};
+use noether_core::{Hamiltonian, Momenta, Potential, Scalar, Separable, State};
 
 /// Hénon-Heiles, H = ½(p₁² + p₂²) + ½(q₁² + q₂²) + q₁²q₂ − q₂³/3: nonlinear, with third derivatives of
 /// unit size; chaotic above E ≈ 1/8.
@@ -46,6 +47,14 @@ impl Separable for HenonHeiles {
     fn potential<D: Scalar>(&self, q: &[D]) -> D {
         Potential::potential(self, q)
     }
+}
+
+/// The point (y, p_y) of the surface of section x = 0 on the energy surface H = E, crossed with
+/// p_x = √(2E − p_y² − y² + 2y³/3) > 0, as a state at t = 0; `None` where that root is not real and
+/// positive (off the energy surface).
+pub fn on_section(e: f64, y: f64, py: f64) -> Option<State<Momenta>> {
+    let px2 = 2.0 * e - py * py - y * y + 2.0 * y * y * y / 3.0;
+    (px2 > 0.0).then(|| State::with_momenta(0.0, [0.0, y], [px2.sqrt(), py]))
 }
 
 /// A symmetric composition of Störmer-Verlet steps with drift weights `gammas` (Kahan-Li 8's, say)

@@ -12,7 +12,7 @@
 //! |---|---|---|
 //! | [`systems`] | core's test systems (double pendulum, heavy top, chains, charge in a field, …) with their hand-derived equations | core's `ad` tests and benchmarks, the gallery's `double_pendulum` and `work_precision` |
 //! | [`kepler`], `peer` | Kepler's problem as benchmarked; ode_solvers' DOP853 and Kepler's right-hand side for it (feature `peer`) | core's benchmarks, the gallery's `work_precision` |
-//! | [`henon_heiles`] | Hénon-Heiles, the unit double pendulum as a Hamiltonian | core's tangent tests, analysis' Lyapunov tests, `symplecticity_check`, `lyapunov_spectrum` |
+//! | [`henon_heiles`] | Hénon-Heiles (and its surface of section), the unit double pendulum as a Hamiltonian | core's tangent tests, analysis' Lyapunov and chaos tests, `symplecticity_check`, `lyapunov_spectrum`, `poincare_henon_heiles`, `megno_map` |
 //! | [`three_body`] | the figure-eight (and its shooting problem), the restricted problem, L1 and its continuation | analysis' periodic-orbit tests, discrete's boundary tests, `figure_eight`, `periodic_orbits`, `boundary_value` |
 //! | [`top`] | the heavy top in Euler angles, Kepler in polar coordinates | canonical's Routh tests, `heavy_top`, `routh_reduction` |
 //! | [`pendulum`] | the pendulum of the ensembles and its quarter period | ensemble's tests and `mpi_scan` |

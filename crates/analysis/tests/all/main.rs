@@ -1,6 +1,8 @@
 //! noether-analysis's integration tests in one test binary (one link; what the files share is compiled
 //! once): one module per file of tests/.
 
+#[path = "../chaos.rs"]
+mod chaos;
 #[path = "../constrained.rs"]
 mod constrained;
 #[path = "../control.rs"]
