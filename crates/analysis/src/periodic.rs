@@ -41,6 +41,25 @@
 //! periodic orbit — with its quadratic rate degraded to a linear one with ratio O(δ), which at
 //! h^p ~ 1e-10 is indistinguishable from quadratic in a handful of iterations.
 //!
+//! # Multiple shooting
+//!
+//! With [`Shooting::segments`] m > 1 the period's N steps are cut into m arcs of N_j steps (N/m, the
+//! first N mod m one more), each started from a node y_j of its own; the unknowns are (y₀, …, y_{m−1},
+//! T, λ) and the periodicity equations become the continuity of the arcs,
+//!
+//! ```text
+//! Φ_h^{N_j}(y_j) − y_{j+1} = 0   (j < m − 1),     Φ_h^{N_{m−1}}(y_{m−1}) − y₀ + Σ_k λ_k ∇I_k(y₀) = 0,
+//! ```
+//!
+//! with the phase, levels and symmetries on y₀ as before. The Jacobian is block-cyclic: M_j (the arc's
+//! tangent map) in arc j's rows under y_j, −I under y_{j+1}, F(end of arc j)·N_j/N under T. Each M_j
+//! grows an error by only about the m-th root of the largest multiplier, which is what lets Newton
+//! converge on strongly unstable orbits (Stoer & Bulirsch, *Introduction to Numerical Analysis* §7.3.5;
+//! the shooting of AUTO and of the three-body catalogues). The system is solved densely by core's LU
+//! (2nm + 1 + k unknowns: a few hundred at most for the orbits this serves). The solution is the same
+//! orbit of the same discrete map as single shooting's; [`PeriodicOrbit::nodes`] lists the nodes and
+//! the monodromy is the product M_{m−1} ⋯ M₀ of the arcs' Jacobians at the solution.
+//!
 //! # Floquet multipliers
 //!
 //! The eigenvalues of M ([`floquet`]). A periodic orbit always has the multiplier 1 (the flow
@@ -261,6 +280,9 @@ pub fn floquet(m: &DMatrix<f64>, trivial: usize, tol: f64) -> Result<Floquet> {
 pub struct PeriodicOrbit<K: noether_core::Partner> {
     /// The initial state y₀ (at the guess's time), on the phase plane through the guess.
     pub initial: State<K>,
+    /// The nodes of multiple shooting, y₀ first, each at its time along the orbit (one node, y₀, for
+    /// single shooting).
+    pub nodes: Vec<State<K>>,
     /// The period T (of the discrete map: N steps of h = T/N).
     pub period: f64,
     /// The steps per period N.
@@ -271,7 +293,8 @@ pub struct PeriodicOrbit<K: noether_core::Partner> {
     /// the exact flow, O(h^p) for the method (what it fails to conserve over a period).
     pub unfolding: Vec<f64>,
     /// ‖y_N − y₀‖∞ at the solution: how well the discrete orbit closes (the unfolding terms included,
-    /// it is the Newton residual; this is without them).
+    /// it is the Newton residual; this is without them); with several segments the largest defect
+    /// ‖Φ_j(y_j) − y_{j+1}‖∞ of any segment's end against the next node.
     pub closure: f64,
     /// The Floquet multipliers and the verdict.
     pub floquet: Floquet,
@@ -295,6 +318,7 @@ pub struct Shooting<S> {
     fixed_period: bool,
     phase_coordinate: Option<(usize, f64)>,
     floquet_tol: f64,
+    segments: usize,
 }
 
 impl<S: TangentStepper> Shooting<S> {
@@ -326,7 +350,30 @@ impl<S: TangentStepper> Shooting<S> {
             fixed_period: false,
             phase_coordinate: None,
             floquet_tol: 1e-6,
+            segments: 1,
         })
+    }
+
+    /// Multiple shooting: the period is cut into `segments` ≥ 1 arcs of (nearly) equal step counts,
+    /// each started from a node of its own (see the module docs); 1 (the default) is single shooting.
+    /// At most one segment per step, else `InvalidParameter`.
+    pub fn segments(mut self, segments: usize) -> Result<Self> {
+        if segments == 0 || segments > self.steps {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "shooting segments",
+                value: segments as f64,
+                reason: "between 1 and the number of steps per period",
+            }
+            .into());
+        }
+        self.segments = segments;
+        Ok(self)
+    }
+
+    /// The steps of each segment: N/m, the first N mod m one more.
+    fn segment_steps(&self) -> Vec<usize> {
+        let (m, n) = (self.segments, self.steps);
+        (0..m).map(|j| n / m + usize::from(j < n % m)).collect()
     }
 
     /// Replaces the Newton settings.
@@ -398,10 +445,18 @@ impl<S: TangentStepper> Shooting<S> {
     ) -> Result<(State<S::Partner>, DMatrix<f64>)> {
         check_period(period)?;
         initial.validate(self.stepper.dof())?;
-        run(&mut self.stepper, self.steps, initial, period, true)
+        run(
+            &mut self.stepper,
+            self.steps,
+            initial,
+            period / self.steps as f64,
+            true,
+        )
     }
 
-    /// Finds the periodic orbit near `guess` (a state y*) with period near `period`.
+    /// Finds the periodic orbit near `guess` (a state y*) with period near `period`. With several
+    /// [`segments`](Self::segments) the other nodes start where the guess's own run with the guessed
+    /// period reaches them; [`solve_nodes`](Self::solve_nodes) takes them from elsewhere.
     ///
     /// Errors: a non-positive or non-finite period ([`Error::InvalidPeriod`], also when Newton drives
     /// T there), a guess of the wrong size or not finite, a guess at an equilibrium (F(y*) = 0,
@@ -410,18 +465,59 @@ impl<S: TangentStepper> Shooting<S> {
     /// undeclared integral or symmetry, or a degenerate orbit), no convergence
     /// ([`Error::ShootingDiverged`] with the iteration count and residual), and the stepper's errors.
     pub fn solve(&mut self, guess: &State<S::Partner>, period: f64) -> Result<PeriodicOrbit<S::Partner>> {
-        let n = self.stepper.dof();
         self.check_setup(guess, period)?;
+        let h = period / self.steps as f64;
+        let mut nodes = vec![guess.clone()];
+        let mut state = guess.clone();
+        for &steps in &self.segment_steps()[..self.segments - 1] {
+            for _ in 0..steps {
+                self.stepper.step(&mut state, h)?;
+            }
+            nodes.push(state.clone());
+        }
+        self.solve_nodes(&nodes, period)
+    }
+
+    /// Finds the periodic orbit through nodes near `nodes` (one per segment, in order along the orbit,
+    /// the first the guess y* that the phase conditions refer to) with period near `period`: the
+    /// start of a strongly unstable orbit from a guess of the whole orbit (a linearisation, or the
+    /// previous member of a family). Errors as [`solve`](Self::solve), and a count of nodes other than
+    /// the segments' (`Dimension`).
+    pub fn solve_nodes(
+        &mut self,
+        nodes: &[State<S::Partner>],
+        period: f64,
+    ) -> Result<PeriodicOrbit<S::Partner>> {
+        let n = self.stepper.dof();
+        let m = self.segments;
+        if nodes.len() != m {
+            return Err(noether_core::Error::Dimension {
+                what: "multiple-shooting nodes (one per segment)",
+                expected: m,
+                got: nodes.len(),
+            }
+            .into());
+        }
+        let guess = &nodes[0];
+        self.check_setup(guess, period)?;
+        for node in nodes {
+            node.validate(n)?;
+        }
         let k = self.integrals.len();
         let (speed, reference, (flow, reference_phase)) = self.phase_plane(guess)?;
-        let mut x0 = reference.clone();
+        let mut x0: Vec<f64> = nodes
+            .iter()
+            .flat_map(|y| y.q.iter().chain(y.v.iter()).copied().collect::<Vec<_>>())
+            .collect();
         if !self.fixed_period {
             x0.push(period);
         }
         x0.extend(std::iter::repeat_n(0.0, k));
+        let segment_steps = self.segment_steps();
         let problem = Problem {
             stepper: &mut self.stepper,
             steps: self.steps,
+            segment_steps: &segment_steps,
             n,
             t0: guess.t,
             fixed_period: self.fixed_period.then_some(period),
@@ -432,23 +528,26 @@ impl<S: TangentStepper> Shooting<S> {
         };
         let (x, info) =
             solve_dense(&self.newton, problem, &x0).map_err(|e| shooting_error(Error::from(e)))?;
-        let period = if self.fixed_period { period } else { x[2 * n] };
-        let initial = State::from_parts(guess.t, &x.as_slice()[..n], &x.as_slice()[n..2 * n]);
-        self.check_not_at_rest(&initial, speed)?;
-        let (end, monodromy) = run(&mut self.stepper, self.steps, &initial, period, true)?;
-        let closure = end
-            .q
-            .iter()
-            .chain(end.v.iter())
-            .zip(initial.q.iter().chain(initial.v.iter()))
-            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        let dim = 2 * n * m;
+        let period = if self.fixed_period { period } else { x[dim] };
+        let h = period / self.steps as f64;
+        let mut nodes = Vec::with_capacity(m);
+        let mut before = 0;
+        for (j, &steps) in segment_steps.iter().enumerate() {
+            let y = &x.as_slice()[2 * n * j..2 * n * (j + 1)];
+            nodes.push(State::from_parts(guess.t + before as f64 * h, &y[..n], &y[n..]));
+            before += steps;
+        }
+        self.check_not_at_rest(&nodes[0], speed)?;
+        let (monodromy, closure) = self.arcs_at(&nodes, &segment_steps, h)?;
         let floquet = floquet(
             &monodromy,
             self.trivial_multipliers().min(2 * n),
             self.floquet_tol,
         )?;
         Ok(PeriodicOrbit {
-            initial,
+            initial: nodes[0].clone(),
+            nodes,
             period,
             steps: self.steps,
             monodromy,
@@ -457,6 +556,31 @@ impl<S: TangentStepper> Shooting<S> {
             floquet,
             newton: info,
         })
+    }
+
+    /// The arcs at the solution: M = M_{m−1} ⋯ M₀ and the largest continuity defect
+    /// ‖Φ_h^{N_j}(y_j) − y_{j+1}‖∞ (the last arc against y₀).
+    fn arcs_at(
+        &mut self,
+        nodes: &[State<S::Partner>],
+        segment_steps: &[usize],
+        h: f64,
+    ) -> Result<(DMatrix<f64>, f64)> {
+        let d = 2 * self.stepper.dof();
+        let mut monodromy = DMatrix::identity(d, d);
+        let mut closure = 0.0_f64;
+        for (j, &steps) in segment_steps.iter().enumerate() {
+            let (end, mj) = run(&mut self.stepper, steps, &nodes[j], h, true)?;
+            monodromy = mj * monodromy;
+            let next = &nodes[(j + 1) % nodes.len()];
+            closure = end
+                .q
+                .iter()
+                .chain(end.v.iter())
+                .zip(next.q.iter().chain(next.v.iter()))
+                .fold(closure, |c, (a, b)| c.max((a - b).abs()));
+        }
+        Ok((monodromy, closure))
     }
 
     /// Checks the input of [`solve`](Self::solve): the period, the guess, the symmetry generators'
@@ -574,15 +698,14 @@ fn vector_field<S: TangentStepper>(
     }
 }
 
-/// N steps of h = T/N from `initial`; with `tangent`, also M = Ψ_{N−1} ⋯ Ψ₀ (else M is empty).
+/// `steps` steps of h from `initial`; with `tangent`, also M = Ψ_{N−1} ⋯ Ψ₀ (else M is empty).
 fn run<S: TangentStepper>(
     stepper: &mut S,
     steps: usize,
     initial: &State<S::Partner>,
-    period: f64,
+    h: f64,
     tangent: bool,
 ) -> Result<(State<S::Partner>, DMatrix<f64>)> {
-    let h = period / steps as f64;
     let mut state = initial.clone();
     if !tangent {
         for _ in 0..steps {
@@ -594,13 +717,13 @@ fn run<S: TangentStepper>(
     Ok((state, m))
 }
 
-/// The unknowns taken apart: y₀, T, the unfolding parameters.
-type Split<'x, K> = (State<K>, f64, &'x [f64]);
-
-/// The shooting equations as a dense Newton problem; unknowns (y₀, [T], λ).
+/// The shooting equations as a dense Newton problem; unknowns (y₀, …, y_{m−1}, [T], λ).
 struct Problem<'a, S> {
     stepper: &'a mut S,
+    /// Steps per period N (h = T/N).
     steps: usize,
+    /// Steps of each segment (m of them, summing to N).
+    segment_steps: &'a [usize],
     n: usize,
     t0: f64,
     fixed_period: Option<f64>,
@@ -612,36 +735,97 @@ struct Problem<'a, S> {
 }
 
 impl<S: TangentStepper> Problem<'_, S> {
-    fn split<'x>(&self, x: &'x [f64]) -> Result<Split<'x, S::Partner>> {
-        let n = self.n;
+    /// The period and the unfolding parameters from the unknowns.
+    fn split<'x>(&self, x: &'x [f64]) -> Result<(f64, &'x [f64])> {
+        let nodes = 2 * self.n * self.segment_steps.len();
         let (period, lambda) = match self.fixed_period {
-            Some(t) => (t, &x[2 * n..]),
-            None => (x[2 * n], &x[2 * n + 1..]),
+            Some(t) => (t, &x[nodes..]),
+            None => (x[nodes], &x[nodes + 1..]),
         };
         check_period(period)?;
-        let y0 = State::from_parts(self.t0, &x[..n], &x[n..2 * n]);
-        Ok((y0, period, lambda))
+        Ok((period, lambda))
     }
 
-    /// The residual; with `jac`, also the Jacobian.
-    fn evaluate(&mut self, x: &[f64], r: &mut [f64], jac: Option<&mut DMatrix<f64>>) -> Result<()> {
-        let n = self.n;
-        let (y0, period, lambda) = self.split(x)?;
-        let want_jac = jac.is_some();
-        let (end, m) = run(self.stepper, self.steps, &y0, period, want_jac)?;
-        let y0v = &x[..2 * n];
-        for i in 0..n {
-            r[i] = end.q[i] - y0v[i];
-            r[n + i] = end.v[i] - y0v[n + i];
+    /// The arcs' rows: Φ_h^{N_j}(y_j) − y_{j+1} into `r`; with `jac` (zeroed), their blocks M_j, −I and
+    /// ∂/∂T = F(end)·N_j/N.
+    fn arcs(
+        &mut self,
+        x: &[f64],
+        period: f64,
+        r: &mut [f64],
+        mut jac: Option<&mut DMatrix<f64>>,
+    ) -> Result<()> {
+        let (n, m) = (self.n, self.segment_steps.len());
+        let d = 2 * n;
+        let h = period / self.steps as f64;
+        let node = |j: usize| &x[d * j..d * (j + 1)];
+        let t_col = d * m;
+        let mut start = self.t0;
+        for (seg, &steps) in self.segment_steps.iter().enumerate() {
+            let y = node(seg);
+            let y_next = node((seg + 1) % m);
+            let from = State::from_parts(start, &y[..n], &y[n..]);
+            let (end, mj) = run(self.stepper, steps, &from, h, jac.is_some())?;
+            start += h * steps as f64;
+            let rows = d * seg;
+            for i in 0..n {
+                r[rows + i] = end.q[i] - y_next[i];
+                r[rows + n + i] = end.v[i] - y_next[n + i];
+            }
+            let Some(j) = jac.as_deref_mut() else { continue };
+            let next_cols = d * ((seg + 1) % m);
+            for a in 0..d {
+                for b in 0..d {
+                    j[(rows + a, d * seg + b)] += mj[(a, b)];
+                }
+                j[(rows + a, next_cols + a)] -= 1.0;
+            }
+            if self.fixed_period.is_none() {
+                // ∂ end / ∂T = F(end) · (the segment's share of the period, steps/N).
+                let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
+                vector_field(self.stepper, &end, &mut fq, &mut fv)?;
+                let share = steps as f64 / self.steps as f64;
+                for i in 0..n {
+                    j[(rows + i, t_col)] = fq[i] * share;
+                    j[(rows + n + i, t_col)] = fv[i] * share;
+                }
+            }
         }
-        // Integrals: unfolding terms in the periodicity rows, levels as their own rows.
+        Ok(())
+    }
+
+    /// The residual; with `jac`, also the Jacobian. Rows: the segments' continuity
+    /// Φ_j(y_j) − y_{j+1} (the last closing on y₀, with the unfolding terms), the phase, the levels,
+    /// the symmetries; columns: the nodes, T, λ.
+    fn evaluate(&mut self, x: &[f64], r: &mut [f64], mut jac: Option<&mut DMatrix<f64>>) -> Result<()> {
+        let (n, m) = (self.n, self.segment_steps.len());
+        let d = 2 * n;
+        let (period, lambda) = match self.split(x) {
+            Ok(split) => split,
+            // A correction that drives T to zero or below leaves the problem's domain: a non-finite
+            // residual, which Newton halves back toward the last iterate (the Jacobian is only asked
+            // for at accepted iterates, whose period is valid).
+            Err(Error::InvalidPeriod { .. }) if jac.is_none() => {
+                r.fill(f64::NAN);
+                return Ok(());
+            }
+            Err(e) => return Err(e),
+        };
+        if let Some(j) = jac.as_deref_mut() {
+            j.fill(0.0);
+        }
+        self.arcs(x, period, r, jac.as_deref_mut())?;
+        let y0v = &x[..d];
+        // Integrals at y₀: unfolding terms in the closing segment's rows, levels as their own rows.
+        let y0 = State::<S::Partner>::from_parts(self.t0, &y0v[..n], &y0v[n..]);
+        let closing = d * (m - 1);
         let mut grads = Vec::with_capacity(self.integrals.len());
         let (mut gq, mut gv) = (vec![0.0; n], vec![0.0; n]);
-        let mut row = 2 * n + 1;
+        let mut row = d * m + 1;
         for ((integral, level), &l) in self.integrals.iter().zip(lambda) {
             let value = integral.gradient(y0.q.as_slice(), y0.v.as_slice(), &mut gq, &mut gv)?;
             let g: Vec<f64> = gq.iter().chain(gv.iter()).copied().collect();
-            for (ri, gi) in r[..2 * n].iter_mut().zip(&g) {
+            for (ri, gi) in r[closing..closing + d].iter_mut().zip(&g) {
                 *ri += l * gi;
             }
             if let Some(c) = level {
@@ -651,32 +835,18 @@ impl<S: TangentStepper> Problem<'_, S> {
             grads.push((g, level.is_some()));
         }
         // Phase rows.
-        r[2 * n] = dot_diff(self.phase.0, y0v, self.phase.1);
+        r[d * m] = dot_diff(self.phase.0, y0v, self.phase.1);
         for g in self.symmetries {
             r[row] = dot_diff(g, y0v, self.reference);
             row += 1;
         }
         let Some(j) = jac else { return Ok(()) };
-        j.fill(0.0);
-        for a in 0..2 * n {
-            for b in 0..2 * n {
-                j[(a, b)] = m[(a, b)] - if a == b { 1.0 } else { 0.0 };
-            }
-        }
-        let mut col = 2 * n;
-        if self.fixed_period.is_none() {
-            let (mut fq, mut fv) = (vec![0.0; n], vec![0.0; n]);
-            vector_field(self.stepper, &end, &mut fq, &mut fv)?;
-            for i in 0..n {
-                j[(i, col)] = fq[i];
-                j[(n + i, col)] = fv[i];
-            }
-            col += 1;
-        }
-        let mut row = 2 * n + 1;
-        for (g, is_level) in &grads {
+        // The unfolding columns follow the nodes' and T's (if T is an unknown).
+        let first_lambda = d * m + usize::from(self.fixed_period.is_none());
+        let mut row = d * m + 1;
+        for (col, (g, is_level)) in (first_lambda..).zip(&grads) {
             for (a, gi) in g.iter().enumerate() {
-                j[(a, col)] = *gi;
+                j[(closing + a, col)] = *gi;
                 if *is_level {
                     j[(row, a)] = *gi;
                 }
@@ -684,10 +854,9 @@ impl<S: TangentStepper> Problem<'_, S> {
             if *is_level {
                 row += 1;
             }
-            col += 1;
         }
         for (b, fb) in self.phase.0.iter().enumerate() {
-            j[(2 * n, b)] = *fb;
+            j[(d * m, b)] = *fb;
         }
         for g in self.symmetries {
             for (b, gb) in g.iter().enumerate() {
@@ -708,7 +877,9 @@ fn dot_diff(a: &[f64], y: &[f64], y_ref: &[f64]) -> f64 {
 
 impl<S: TangentStepper> DenseProblem for Problem<'_, S> {
     fn dim(&self) -> usize {
-        2 * self.n + usize::from(self.fixed_period.is_none()) + self.integrals.len()
+        2 * self.n * self.segment_steps.len()
+            + usize::from(self.fixed_period.is_none())
+            + self.integrals.len()
     }
     fn residual(&mut self, x: &[f64], r: &mut [f64]) -> noether_core::Result<()> {
         Ok(self.evaluate(x, r, None)?)

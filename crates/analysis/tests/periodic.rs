@@ -149,6 +149,19 @@ fn published_figure_eight() {
     );
 }
 
+/// max |H − e| along the orbit of the restricted problem, stepped by RK4 with the orbit's own steps.
+fn energy_drift(mu: f64, orbit: &noether_analysis::PeriodicOrbit<Momenta>, e: f64) -> f64 {
+    let energy = Energy(Cr3bp { mu });
+    let mut rk = Rk4::new(HamiltonEquations::new(Cr3bp { mu }));
+    let mut st = orbit.initial.clone();
+    let mut drift = 0.0_f64;
+    for _ in 0..orbit.steps {
+        rk.step(&mut st, orbit.period / orbit.steps as f64).unwrap();
+        drift = drift.max((energy.value(st.q.as_slice(), st.v.as_slice()).unwrap() - e).abs());
+    }
+    drift
+}
+
 /// Planar Lyapunov orbits about L1 of the Earth-Moon system (μ = 0.01215), amplitudes 0.001 to 0.005
 /// (380 to 1900 km). The linearisation
 /// x = x_L − A cos ωt, y = k A sin ωt (ω² = (2 − c₂ + sqrt(9c₂² − 8c₂))/2, k = (ω² + 1 + 2c₂)/(2ω),
@@ -156,7 +169,8 @@ fn published_figure_eight() {
 /// amplitude (×1.5) starts from the secant through the last two orbits (the first from the last one
 /// scaled about L1). Single shooting over a whole period multiplies a guess error by the saddle's
 /// e^{λ_s T} ≈ 2700 and its square in the second-order terms, so Newton's basin is tiny: measured, the
-/// continuation fails at A ≈ 0.0076 even from the secant guess (larger orbits need multiple shooting). Each orbit is held at the Jacobi constant of its linear
+/// continuation fails at A ≈ 0.0076 even from the secant guess (without a line search, as here; with
+/// one, and with multiple shooting, the family goes on: `lyapunov_family_by_multiple_shooting`). Each orbit is held at the Jacobi constant of its linear
 /// guess. Checks: it closes, its Jacobi constant C = −2H is the one asked for and conserved along the
 /// orbit to RK4's accuracy, it is unstable with a real pair λ, 1/λ ≫ 1 of product 1 (symplectic), and
 /// as A → 0 its period tends to the linear 2π/ω as T₀ + cA² (the differences shrink by 4 per halving).
@@ -183,15 +197,8 @@ fn lyapunov_orbits_about_l1() {
         let orbit = shooting.solve(&guess, t_guess).unwrap();
         let fl = &orbit.floquet;
         let (big, small) = (fl.nontrivial()[0], fl.nontrivial()[1]);
-        // Jacobi constant along the orbit (RK4, the same steps).
-        let mut rk = Rk4::new(HamiltonEquations::new(Cr3bp { mu }));
-        let mut st = orbit.initial.clone();
-        let mut drift = 0.0_f64;
-        for _ in 0..orbit.steps {
-            rk.step(&mut st, orbit.period / orbit.steps as f64).unwrap();
-            let c = -2.0 * energy.value(st.q.as_slice(), st.v.as_slice()).unwrap();
-            drift = drift.max((c + 2.0 * e).abs());
-        }
+        // Jacobi constant along the orbit (RK4, the same steps): C = −2H.
+        let drift = 2.0 * energy_drift(mu, &orbit, e);
         let c0 = -2.0
             * energy
                 .value(orbit.initial.q.as_slice(), orbit.initial.v.as_slice())
@@ -238,6 +245,111 @@ fn lyapunov_orbits_about_l1() {
     }
 }
 
+/// The L1 Lyapunov family by multiple shooting, far past the amplitude where single shooting fails.
+/// Single shooting over a whole period multiplies a guess error by e^{λ_s T} ≈ 2700; multiple
+/// shooting cuts the period into 10 arcs, each growing an error by only e^{λ_s T/10} ≈ 2.2, and each
+/// member of the family starts from the secant through the last two members' nodes (every node
+/// extrapolated, not one state run through the unstable flow). RK4 with 4000 steps a period, Newton with
+/// its line search, A from 0.001 by factors 1.5 to 0.038 (15 000 km; T from 2.69 to 3.12, C from 3.188
+/// to 3.100). Single shooting from the same secant guess of y₀ (with the line search too) is tried at
+/// every amplitude: measured, it fails (a typed `ShootingDiverged`) at A = 0.0114, 0.0256 and 0.0384,
+/// where multiple shooting takes 3–4 iterations. Checks per orbit: the segments join (continuity
+/// defects, measured ≤ 7e-15: rounding of 400-step arcs; checked to 1e-13), the Jacobi constant is the
+/// one asked for (measured ≤ 2e-16; 1e-15) and conserved along the orbit to RK4's error (measured ≤
+/// 2.9e-14, growing with the orbit; 1e-13), the orbit is unstable with a real pair λ, 1/λ (λ from 2674
+/// down to 1115) of product 1 (the monodromy, the product of the segments' Jacobians, is symplectic to
+/// RK4's defect and the small one's rounding: measured ≤ 1.7e-9; 1e-8), and along the family T grows
+/// and C falls.
+#[test]
+fn lyapunov_family_by_multiple_shooting() {
+    let mu = 0.01215;
+    let (xl, c2) = l1(mu);
+    let (omega, k) = l1_linear(c2);
+    let t0 = 2.0 * PI / omega;
+    let energy = Energy(Cr3bp { mu });
+    let shooting = |segments: usize, e: f64| {
+        Shooting::new(Rk4::new(HamiltonEquations::new(Cr3bp { mu })), 4000)
+            .unwrap()
+            .segments(segments)
+            .unwrap()
+            .newton(
+                noether_core::Newton::default()
+                    .residual_tolerance(1e-14)
+                    .unwrap()
+                    .line_search(true),
+            )
+            .level(Energy(Cr3bp { mu }), e)
+    };
+    type Member = (f64, Vec<State<Momenta>>, f64);
+    let (mut last, mut before): (Option<Member>, Option<Member>) = (None, None);
+    let mut family: Vec<(f64, f64, f64)> = Vec::new();
+    let mut single_fails_from: Option<f64> = None;
+    let mut amplitude = 0.001;
+    while amplitude < 0.05 {
+        // The secant guess of every node (the linearisation when there is no member yet).
+        let node = |j: usize| {
+            let pick = |m: &Option<Member>| m.as_ref().map(|(a, nodes, t)| (*a, nodes[j].clone(), *t));
+            l1_guess((xl, omega, k, t0), amplitude, &pick(&last), &pick(&before))
+        };
+        let (guess, t_guess) = node(0);
+        let e = energy.value(guess.q.as_slice(), guess.v.as_slice()).unwrap();
+        let single = shooting(1, e).solve(&guess, t_guess);
+        if single.is_err() && single_fails_from.is_none() {
+            println!(
+                "single shooting fails at A = {amplitude}: {:?}",
+                single.as_ref().err()
+            );
+            single_fails_from = Some(amplitude);
+        }
+        let mut multiple = shooting(10, e);
+        let orbit = match &last {
+            None => multiple.solve(&guess, t_guess),
+            Some(_) => multiple.solve_nodes(&(0..10).map(|j| node(j).0).collect::<Vec<_>>(), t_guess),
+        }
+        .unwrap();
+        let fl = &orbit.floquet;
+        let (big, small) = (fl.nontrivial()[0], fl.nontrivial()[1]);
+        let drift = energy_drift(mu, &orbit, e);
+        let level = energy
+            .value(orbit.initial.q.as_slice(), orbit.initial.v.as_slice())
+            .unwrap()
+            - e;
+        println!(
+            "A = {amplitude:.5}: T = {:.10}, C = {:.12}, defects {:.1e}, level {level:.1e}, H drift {drift:.1e}, \
+             Newton {}/{:.1e}, multipliers {:.1} · {:.3e} − 1 = {:.1e}, trivial within {:.1e}, single {}",
+            orbit.period,
+            -2.0 * e,
+            orbit.closure,
+            orbit.newton.iterations,
+            orbit.newton.residual,
+            big.re,
+            small.re,
+            (big * small).norm() - 1.0,
+            fl.trivial_deviation,
+            if single.is_ok() { "ok" } else { "failed" }
+        );
+        assert_eq!(orbit.nodes.len(), 10);
+        assert!(orbit.closure < 1e-13, "defects {:e}", orbit.closure);
+        assert!(level.abs() < 1e-15);
+        assert!(drift < 1e-13, "H drift {drift:e}");
+        assert_eq!(fl.stability, Stability::Unstable);
+        assert!(big.im == 0.0 && small.im == 0.0 && big.re > 1000.0);
+        assert!(((big * small).norm() - 1.0).abs() < 1e-8);
+        family.push((amplitude, orbit.period, -2.0 * e));
+        before = last.replace((amplitude, orbit.nodes.clone(), orbit.period));
+        amplitude *= 1.5;
+    }
+    println!("single shooting fails from A = {single_fails_from:?}");
+    assert!(single_fails_from.is_some_and(|a| a < 0.03));
+    assert_eq!(family.len(), 10);
+    for w in family.windows(2) {
+        assert!(
+            w[1].1 > w[0].1 && w[1].2 < w[0].2,
+            "T and C along the family: {w:?}"
+        );
+    }
+}
+
 /// Typed errors: a bad period, an equilibrium as guess, unbalanced declarations, no convergence.
 #[test]
 fn errors_are_typed() {
@@ -260,6 +372,31 @@ fn errors_are_typed() {
         shooting.solve(&rest, 2.0),
         Err(Error::Equilibrium { .. })
     ));
+    // Multiple shooting: between 1 and N segments, one node per segment.
+    assert!(Shooting::new(rk4(), 100).unwrap().segments(0).is_err());
+    assert!(Shooting::new(rk4(), 100).unwrap().segments(101).is_err());
+    let mut four = Shooting::new(rk4(), 100)
+        .unwrap()
+        .segments(4)
+        .unwrap()
+        .level(Energy(Pendulum { g }), -g * 0.5f64.cos());
+    assert!(matches!(
+        four.solve_nodes(&[guess.clone(), guess.clone()], 2.0),
+        Err(Error::Core(noether_core::Error::Dimension {
+            expected: 4,
+            got: 2,
+            ..
+        }))
+    ));
+    // And it finds the same orbit of the same discrete map as single shooting (the same 100 steps of
+    // h = T/100): period, start and closure (here the unfolding's O(h⁴) share, 2e-8), to Newton's
+    // residual tolerance (1e-12; the closures differ by 1e-13, through the unfolding parameter).
+    let orbit = four.solve(&guess, 2.0).unwrap();
+    let one = shooting.solve(&guess, 2.0).unwrap();
+    assert_eq!(orbit.nodes.len(), 4);
+    assert!((orbit.period - one.period).abs() < 1e-12);
+    assert!((orbit.initial.q[0] - one.initial.q[0]).abs() < 1e-12);
+    assert!((orbit.closure - one.closure).abs() < 1e-12);
     // An energy level and the fixed period: one equation too many.
     let mut over = Shooting::new(rk4(), 100)
         .unwrap()

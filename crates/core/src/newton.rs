@@ -108,8 +108,20 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// same sign step after step (measured: the variational midpoint's angular momentum on Kepler drifted
 /// 1.6e-12 in 10⁵ steps, against 3.3e-14 without it).
 ///
+/// **Line search** ([`line_search`](Self::line_search), off by default). Far from a root the full
+/// correction can overshoot into another basin, or out of the region where the model is sensible.
+/// With the line search on, every correction uses the Jacobian at the current iterate and is
+/// shortened, x ← x − αΔ with α = 1, ½, ¼, …, until the merit φ = ½‖F‖₂² decreases by Armijo's
+/// condition φ(x − αΔ) ≤ (1 − 2·10⁻⁴ α) φ(x) (the Newton direction is a descent direction of φ, with
+/// slope −2φ; Dennis & Schnabel, *Numerical Methods for Unconstrained Optimization and Nonlinear
+/// Equations*, §6.3). A rough guess then goes to a root downhill in ‖F‖ or stops: when α falls below
+/// 2⁻³⁰ without a decrease (a local minimum of ‖F‖ that is not a root) the solve fails with
+/// [`Error::NewtonDiverged`] at that iterate. Once ‖F‖∞ ≤ √`residual_tolerance` the full corrections
+/// are taken (Newton's local quadratic convergence, and a merit at its rounding floor that need not
+/// decrease).
+///
 /// The solve fails with [`Error::NewtonDiverged`] (iterations, last finite residual) only when the cap
-/// `max_iterations` is reached, and with [`Error::NonFiniteResult`] (`what` = "Newton residual", t =
+/// `max_iterations` is reached (or a line search finds no decrease), and with [`Error::NonFiniteResult`] (`what` = "Newton residual", t =
 /// NaN) when the residual is NaN or infinite at the guess, or stays so after a correction halved 40
 /// times toward the last iterate (a model evaluated outside its domain, e.g. √q at q < 0: the error
 /// contract's non-finite result, not a divergence). [`Dense`] reports a NaN or infinite Jacobian
@@ -121,6 +133,7 @@ pub struct Newton {
     max_iterations: usize,
     reuse_jacobian: bool,
     contraction: f64,
+    line_search: bool,
 }
 
 impl Default for Newton {
@@ -131,6 +144,7 @@ impl Default for Newton {
             max_iterations: 50,
             reuse_jacobian: true,
             contraction: 0.25,
+            line_search: false,
         }
     }
 }
@@ -176,6 +190,12 @@ impl Newton {
         self.reuse_jacobian = reuse;
         self
     }
+    /// Enables or disables (default) the backtracking line search on ½‖F‖₂² (see the type's
+    /// documentation); with it every correction uses a fresh Jacobian.
+    pub fn line_search(mut self, on: bool) -> Self {
+        self.line_search = on;
+        self
+    }
     /// The settings with the residual tolerance raised to at least `floor` (what the caller knows
     /// rounding allows for its residual, e.g. a few ε times its scale); a `floor` that is not finite
     /// and positive changes nothing.
@@ -215,6 +235,10 @@ impl Newton {
     pub fn get_contraction(&self) -> f64 {
         self.contraction
     }
+    /// Whether corrections are shortened by the line search.
+    pub fn get_line_search(&self) -> bool {
+        self.line_search
+    }
 
     /// Solves `sys` starting from `x` (overwritten by the solution). On failure `x` holds the last
     /// iterate and the error carries the iteration count and the last residual norm.
@@ -247,8 +271,10 @@ impl Newton {
             // Exactly on the root: every correction would be exactly zero.
             return Ok(info);
         }
-        let mut factored = factored && self.reuse_jacobian;
+        let reuse = self.reuse_jacobian && !self.line_search;
+        let mut factored = factored && reuse;
         let mut keep = factored;
+        let mut merit = half_squared(&r);
         // ‖Δ‖∞ of the last correction.
         let mut last_step: Option<f64> = None;
         loop {
@@ -256,7 +282,7 @@ impl Newton {
                 return Err(self.diverged(info.iterations, rnorm));
             }
             // The factor used for this correction was computed at the iterate it is applied to.
-            let exact = !factored || !self.reuse_jacobian || !keep;
+            let exact = !factored || !reuse || !keep;
             if exact {
                 sys.factor_jacobian(x)?;
                 info.jacobians += 1;
@@ -268,23 +294,12 @@ impl Newton {
                 *xi -= di;
             }
             info.iterations += 1;
-            sys.residual(x, &mut r)?;
-            let mut new_norm = max_norm(&r);
-            // A step that leaves the model's domain (non-finite residual, e.g. a speed above c in a
-            // relativistic Lagrangian) is halved back toward the last iterate.
-            let mut halvings = 0;
-            while !new_norm.is_finite() && halvings < 40 {
-                halvings += 1;
-                for (xi, di) in x.iter_mut().zip(dx.iter_mut()) {
-                    *di *= 0.5;
-                    *xi += *di;
-                }
-                sys.residual(x, &mut r)?;
-                new_norm = max_norm(&r);
-            }
-            if !new_norm.is_finite() {
-                return Err(non_finite_residual());
-            }
+            let search = self.line_search && rnorm > self.residual_tolerance.sqrt();
+            let new_norm = match shorten(sys, x, &mut dx, &mut r, search.then_some(merit))? {
+                Some(norm) => norm,
+                None => return Err(self.diverged(info.iterations, rnorm)),
+            };
+            merit = half_squared(&r);
             // Keep the factor only while it contracts the residual well.
             keep = new_norm <= self.contraction * rnorm;
             rnorm = new_norm;
@@ -316,6 +331,60 @@ impl Newton {
             t: f64::NAN,
         }
     }
+}
+
+/// After the correction x ← x − Δ (`dx` = Δ): the residual there into `r` and its max-norm. A step that
+/// leaves the model's domain (non-finite residual, e.g. a speed above c in a relativistic Lagrangian)
+/// is halved back toward the last iterate, up to 40 times; with the line search (`merit` = φ at the
+/// last iterate: near the root, ‖F‖∞ ≤ √tolerance, the caller passes none, as the full step is
+/// Newton's local quadratic one and the merit may sit at its rounding floor) so is one that does not
+/// meet Armijo's condition with α = 2^−halvings. `None` when the line search finds no decrease (a
+/// local minimum of ‖F‖, not a root): `x` is then back at the last iterate. On return `dx` is the
+/// correction taken.
+fn shorten<S: NewtonSystem + ?Sized>(
+    sys: &mut S,
+    x: &mut [f64],
+    dx: &mut [f64],
+    r: &mut [f64],
+    merit: Option<f64>,
+) -> Result<Option<f64>> {
+    sys.residual(x, r)?;
+    let mut norm = max_norm(r);
+    let decreased = |r: &[f64], halvings: i32| {
+        merit.is_none_or(|m| half_squared(r) <= (1.0 - 2.0 * ARMIJO * 0.5f64.powi(halvings)) * m)
+    };
+    let mut halvings = 0;
+    while (!norm.is_finite() && halvings < 40)
+        || (norm.is_finite() && !decreased(r, halvings) && halvings < LINE_SEARCH_HALVINGS)
+    {
+        halvings += 1;
+        for (xi, di) in x.iter_mut().zip(dx.iter_mut()) {
+            *di *= 0.5;
+            *xi += *di;
+        }
+        sys.residual(x, r)?;
+        norm = max_norm(r);
+    }
+    if !norm.is_finite() {
+        return Err(non_finite_residual());
+    }
+    if !decreased(r, halvings) {
+        for (xi, di) in x.iter_mut().zip(dx.iter()) {
+            *xi += di;
+        }
+        return Ok(None);
+    }
+    Ok(Some(norm))
+}
+
+/// Armijo's sufficient-decrease constant of the line search.
+const ARMIJO: f64 = 1e-4;
+/// The line search's halvings before it gives up (α = 2⁻³⁰).
+const LINE_SEARCH_HALVINGS: i32 = 30;
+
+/// ½‖r‖₂², the merit of the line search.
+fn half_squared(r: &[f64]) -> f64 {
+    0.5 * r.iter().map(|x| x * x).sum::<f64>()
 }
 
 /// The error of a residual that is NaN or infinite (at the guess, or after a correction halved 40
@@ -422,5 +491,69 @@ mod tests {
         let i1 = newton.solve_reusing(&mut sys, &mut a, false).unwrap();
         let i2 = newton.solve(&mut sys, &mut b).unwrap();
         assert_eq!((a, i1), (b, i2));
+    }
+
+    /// F(x) = arctan x, root 0. Plain Newton x ← x − (1 + x²) arctan x diverges from |x₀| > 1.3917
+    /// (the root of 2|x| = (1 + x²) arctan|x|: each step overshoots to a larger |x| of the other sign);
+    /// with the line search the first correction is halved until |arctan| decreases, and it converges.
+    struct Arctan;
+    impl DenseProblem for Arctan {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+            r[0] = x[0].atan();
+            Ok(())
+        }
+        fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+            j[(0, 0)] = 1.0 / (1.0 + x[0] * x[0]);
+            Ok(())
+        }
+    }
+
+    /// F(x, y) = (x² + 1 − y, y): ‖F‖₂² = (x² + 1 − y)² + y² has its minimum 1/2 at (0, 1/2), not a
+    /// root (the two equations require y = 0 and x² = −1).
+    struct NoRoot;
+    impl DenseProblem for NoRoot {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<()> {
+            r[0] = x[0] * x[0] + 1.0 - x[1];
+            r[1] = x[1];
+            Ok(())
+        }
+        fn jacobian(&mut self, x: &[f64], j: &mut DMatrix<f64>) -> Result<()> {
+            j[(0, 0)] = 2.0 * x[0];
+            j[(0, 1)] = -1.0;
+            j[(1, 0)] = 0.0;
+            j[(1, 1)] = 1.0;
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn line_search_rescues_an_overshooting_guess_and_stops_without_a_root() {
+        let plain = Newton::default().max_iterations(30).unwrap();
+        let guarded = plain.line_search(true);
+        // From x₀ = 3 plain Newton runs away (|x| grows every step) until the slope 1/(1 + x²)
+        // underflows: a singular Jacobian.
+        assert!(matches!(
+            solve_dense(&plain, Arctan, &[3.0]),
+            Err(Error::SingularMatrix { .. } | Error::NewtonDiverged { .. })
+        ));
+        let (x, info) = solve_dense(&guarded, Arctan, &[3.0]).unwrap();
+        assert!(x[0].abs() < 1e-12, "{x} after {info:?}");
+        // No root: the line search ends at a point where the Newton direction gives no decrease,
+        // a typed failure well before the cap, not a hang or NaN.
+        match solve_dense(&guarded, NoRoot, &[1.0, 0.0]) {
+            Err(Error::NewtonDiverged {
+                iterations, residual, ..
+            }) => {
+                assert!(iterations < 30 && residual.is_finite(), "{iterations} {residual}");
+            }
+            Err(Error::SingularMatrix { .. }) => {}
+            other => panic!("expected a typed failure, got {other:?}"),
+        }
     }
 }
