@@ -177,6 +177,17 @@ pub enum Error {
         /// |Ψδ| (or |δ| given).
         growth: f64,
     },
+    /// A continuation could not follow its family: the corrector failed with the arclength step below
+    /// its floor.
+    #[error("the family was lost at level {level}: no orbit with the arclength step {step:e} above its floor (last failure: {reason})")]
+    BranchLost {
+        /// The level of the last orbit found.
+        level: f64,
+        /// The step that failed.
+        step: f64,
+        /// The corrector's last error.
+        reason: String,
+    },
     /// A stability map where no grid point has an orbit.
     #[error(
         "none of the {members} grid points has an orbit (the grid misses the energy surface, or is empty)"

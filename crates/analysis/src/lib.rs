@@ -35,6 +35,7 @@
 //! ```
 
 pub mod chaos;
+pub mod continuation;
 pub mod equilibria;
 pub mod error;
 pub mod linearize;
@@ -48,6 +49,7 @@ pub mod sensitivity;
 #[cfg(feature = "ensemble")]
 pub use chaos::{stability_map, StabilityMap};
 pub use chaos::{Indicators, Megno};
+pub use continuation::Continuation;
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
 pub use linearize::{linearize, linearize_step, HeldInputs, HeldStart, Linearization, StepLinearization};

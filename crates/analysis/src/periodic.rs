@@ -426,6 +426,25 @@ impl<S: TangentStepper> Shooting<S> {
         self
     }
 
+    /// The Newton settings.
+    pub(crate) fn newton_settings(&self) -> Newton {
+        self.newton
+    }
+
+    /// A family is continued in the level of the first fixed-level integral, with the period free:
+    /// `InvalidParameter` otherwise.
+    pub(crate) fn check_family(&self) -> Result<()> {
+        if self.fixed_period || !self.integrals.iter().any(|(_, c)| c.is_some()) {
+            return Err(noether_core::Error::InvalidParameter {
+                name: "continuation",
+                value: f64::NAN,
+                reason: "the family is followed in the level of a first integral declared with `level`, with the period free",
+            }
+            .into());
+        }
+        Ok(())
+    }
+
     /// The stepper (to inspect or reconfigure it).
     pub fn stepper_mut(&mut self) -> &mut S {
         &mut self.stepper
@@ -503,8 +522,6 @@ impl<S: TangentStepper> Shooting<S> {
         for node in nodes {
             node.validate(n)?;
         }
-        let k = self.integrals.len();
-        let (speed, reference, (flow, reference_phase)) = self.phase_plane(guess)?;
         let mut x0: Vec<f64> = nodes
             .iter()
             .flat_map(|y| y.q.iter().chain(y.v.iter()).copied().collect::<Vec<_>>())
@@ -512,30 +529,58 @@ impl<S: TangentStepper> Shooting<S> {
         if !self.fixed_period {
             x0.push(period);
         }
-        x0.extend(std::iter::repeat_n(0.0, k));
+        x0.extend(std::iter::repeat_n(0.0, self.integrals.len()));
+        let newton = self.newton;
+        let (problem, speed) = self.equations(guess, period)?;
+        let (x, info) = solve_dense(&newton, problem, &x0).map_err(|e| shooting_error(Error::from(e)))?;
+        self.orbit_at(x.as_slice(), guess.t, period, speed, info)
+    }
+
+    /// The shooting equations with the phase conditions at `guess` (and the period held at `period`
+    /// when it is fixed), and the largest rate |F| at the guess.
+    pub(crate) fn equations(
+        &mut self,
+        guess: &State<S::Partner>,
+        period: f64,
+    ) -> Result<(Problem<'_, S>, f64)> {
+        let (speed, reference, phase) = self.phase_plane(guess)?;
         let segment_steps = self.segment_steps();
         let problem = Problem {
+            n: self.stepper.dof(),
             stepper: &mut self.stepper,
             steps: self.steps,
-            segment_steps: &segment_steps,
-            n,
+            segment_steps,
             t0: guess.t,
             fixed_period: self.fixed_period.then_some(period),
             integrals: &self.integrals,
             symmetries: &self.symmetries,
-            reference: &reference,
-            phase: (&flow, &reference_phase),
+            reference,
+            phase,
+            level: None,
         };
-        let (x, info) =
-            solve_dense(&self.newton, problem, &x0).map_err(|e| shooting_error(Error::from(e)))?;
-        let dim = 2 * n * m;
-        let period = if self.fixed_period { period } else { x[dim] };
+        Ok((problem, speed))
+    }
+
+    /// The periodic orbit of the unknowns `x` (nodes, T unless fixed at `period`, λ) that Newton found:
+    /// its nodes at their times from `t0`, the arcs' monodromy and defects, the Floquet verdict.
+    /// [`Error::Equilibrium`] when its largest rate is below 1e-8 of `speed`, the guess's.
+    pub(crate) fn orbit_at(
+        &mut self,
+        x: &[f64],
+        t0: f64,
+        period: f64,
+        speed: f64,
+        info: NewtonInfo,
+    ) -> Result<PeriodicOrbit<S::Partner>> {
+        let (n, m, k) = (self.stepper.dof(), self.segments, self.integrals.len());
+        let period = if self.fixed_period { period } else { x[2 * n * m] };
         let h = period / self.steps as f64;
+        let segment_steps = self.segment_steps();
         let mut nodes = Vec::with_capacity(m);
         let mut before = 0;
         for (j, &steps) in segment_steps.iter().enumerate() {
-            let y = &x.as_slice()[2 * n * j..2 * n * (j + 1)];
-            nodes.push(State::from_parts(guess.t + before as f64 * h, &y[..n], &y[n..]));
+            let y = &x[2 * n * j..2 * n * (j + 1)];
+            nodes.push(State::from_parts(t0 + before as f64 * h, &y[..n], &y[n..]));
             before += steps;
         }
         self.check_not_at_rest(&nodes[0], speed)?;
@@ -551,7 +596,7 @@ impl<S: TangentStepper> Shooting<S> {
             period,
             steps: self.steps,
             monodromy,
-            unfolding: x.as_slice()[x.len() - k..].to_vec(),
+            unfolding: x[x.len() - k..].to_vec(),
             closure,
             floquet,
             newton: info,
@@ -718,23 +763,31 @@ fn run<S: TangentStepper>(
 }
 
 /// The shooting equations as a dense Newton problem; unknowns (y₀, …, y_{m−1}, [T], λ).
-struct Problem<'a, S> {
+pub(crate) struct Problem<'a, S> {
     stepper: &'a mut S,
     /// Steps per period N (h = T/N).
     steps: usize,
     /// Steps of each segment (m of them, summing to N).
-    segment_steps: &'a [usize],
+    segment_steps: Vec<usize>,
     n: usize,
     t0: f64,
     fixed_period: Option<f64>,
     integrals: &'a [(Box<dyn FirstIntegral>, Option<f64>)],
     symmetries: &'a [Vec<f64>],
-    reference: &'a [f64],
+    reference: Vec<f64>,
     /// The time-phase row: normal and reference point.
-    phase: (&'a [f64], &'a [f64]),
+    phase: (Vec<f64>, Vec<f64>),
+    /// When set, the level of the first fixed-level integral instead of the declared one (the family
+    /// parameter of a continuation).
+    pub(crate) level: Option<f64>,
 }
 
 impl<S: TangentStepper> Problem<'_, S> {
+    /// The row of the first fixed level (after the arcs' rows and the phase row).
+    pub(crate) fn level_row(&self) -> usize {
+        2 * self.n * self.segment_steps.len() + 1
+    }
+
     /// The period and the unfolding parameters from the unknowns.
     fn split<'x>(&self, x: &'x [f64]) -> Result<(f64, &'x [f64])> {
         let nodes = 2 * self.n * self.segment_steps.len();
@@ -829,15 +882,21 @@ impl<S: TangentStepper> Problem<'_, S> {
                 *ri += l * gi;
             }
             if let Some(c) = level {
+                // The first level is the family parameter when a continuation sets it.
+                let c = if row == d * m + 1 {
+                    self.level.unwrap_or(*c)
+                } else {
+                    *c
+                };
                 r[row] = value - c;
                 row += 1;
             }
             grads.push((g, level.is_some()));
         }
         // Phase rows.
-        r[d * m] = dot_diff(self.phase.0, y0v, self.phase.1);
+        r[d * m] = dot_diff(&self.phase.0, y0v, &self.phase.1);
         for g in self.symmetries {
-            r[row] = dot_diff(g, y0v, self.reference);
+            r[row] = dot_diff(g, y0v, &self.reference);
             row += 1;
         }
         let Some(j) = jac else { return Ok(()) };

@@ -5,6 +5,7 @@
 use noether_analysis::periodic::{Energy, FirstIntegral, Shooting, Stability};
 use noether_analysis::Error;
 use noether_core::prelude::*;
+use noether_testkit::closed_form::elliptic_k_complementary;
 use noether_testkit::three_body::{
     figure_eight, figure_eight_shooting, l1, l1_guess, l1_linear, Cr3bp, ThreeBody, EIGHT_T, EIGHT_V3,
     EIGHT_X1,
@@ -26,15 +27,6 @@ impl Hamiltonian for Pendulum {
     }
 }
 
-/// K(k) = π / (2 AGM(1, k′)), k′ = sqrt(1 − k²) (Abramowitz & Stegun 17.6).
-fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0, (1.0 - k * k).sqrt());
-    while (a - b).abs() > 1e-16 * a {
-        (a, b) = (0.5 * (a + b), (a * b).sqrt());
-    }
-    PI / (2.0 * a)
-}
-
 /// Libration of amplitude θ₀ at the energy E = −g cos θ₀, from a guess 5 % short of the turning
 /// point and the small-amplitude period corrected to O(θ₀²). Closed form (the quarter period as an
 /// integral over the swing, substituted sin(θ/2) = k sin φ): T = 4 sqrt(l/g) K(sin(θ₀/2)).
@@ -44,7 +36,7 @@ fn closed_form_pendulum_libration_period() {
     // Tolerances: RK4's O(h⁴) period error with h = T/2000, measured 1.55e-12, 1.68e-12, 1.02e-11
     // (with h/2: 5.8e-14, 1.0e-13, 6.7e-13, the factor 16-27 of fourth order).
     for (theta0, tol) in [(0.5_f64, 2e-12), (1.5, 2.5e-12), (2.5, 1.5e-11)] {
-        let exact = 4.0 / g.sqrt() * elliptic_k((0.5 * theta0).sin());
+        let exact = 4.0 / g.sqrt() * elliptic_k_complementary((0.5 * theta0).cos());
         let rk4 = Rk4::new(HamiltonEquations::new(Pendulum { g }));
         let mut shooting = Shooting::new(rk4, 2000)
             .unwrap()
@@ -436,4 +428,79 @@ fn errors_are_typed() {
         other => panic!("{other:?}"),
     }
     assert!(Shooting::new(rk4(), 0).is_err());
+}
+
+/// The pendulum's libration family by pseudo-arclength continuation in the energy (g = l = 1, RK4 with
+/// 4000 steps a period in 4 arcs), from amplitude 0.5 for 40 members, to near the separatrix (E → g,
+/// T → ∞): every member's period against the closed form T(θ₀) = 4√(l/g) K(sin(θ₀/2)),
+/// θ₀ = arccos(−E/g) (the quarter period as an integral over the swing; Landau & Lifshitz §11
+/// problem 1; K by Gauss's AGM from k′ = cos(θ₀/2), exact near k = 1). Measured: the family reaches
+/// E = 0.993 (θ₀ = 3.023, T = 16.9) with the step growing to its cap, periods within 1.4e-11 relative
+/// (RK4's O(h⁴) at h ≤ 0.0042 and Newton's residual tolerance 1e-12 magnified by ∂T/∂E ~ 1/(1 − E)
+/// near the separatrix; checked to 1e-10), |H(y₀) − E| ≤ 1.3e-13 (Newton's tolerance 1e-12 on the
+/// level row; checked to it), T increasing along the family. And the typed end of a continuation that
+/// cannot go on (a corrector allowed one Newton iteration does not converge from a predictor 0.1 or 0.05
+/// away: the step halves below its floor 0.05), and a continuation without a level to follow.
+#[test]
+fn pendulum_family_by_continuation() {
+    let g = 1.0;
+    let level = |theta: f64| -g * theta.cos();
+    let shooting = || {
+        Shooting::new(Rk4::new(HamiltonEquations::new(Pendulum { g })), 4000)
+            .unwrap()
+            .segments(4)
+            .unwrap()
+            .level(Energy(Pendulum { g }), level(0.5))
+    };
+    let mut pendulum = shooting();
+    let start = pendulum
+        .solve(&State::with_momenta(0.0, [0.5], [0.0]), 6.4)
+        .unwrap();
+    let continuation = noether_analysis::Continuation::new(0.1, 1e-4, 1.0).unwrap();
+    let family = continuation
+        .follow(&mut pendulum, &start, level(0.5), 40, true)
+        .unwrap();
+    let (mut worst, mut worst_level) = (0.0_f64, 0.0_f64);
+    let mut last_t = start.period;
+    for (e, orbit) in &family {
+        let theta0 = (-e / g).acos();
+        let exact = 4.0 * elliptic_k_complementary((0.5 * theta0).cos()) / g.sqrt();
+        let rel = (orbit.period - exact).abs() / exact;
+        let h0 = Energy(Pendulum { g })
+            .value(orbit.initial.q.as_slice(), orbit.initial.v.as_slice())
+            .unwrap();
+        println!(
+            "E = {e:.6}: θ₀ = {theta0:.5}, T = {:.10} (closed form {exact:.10}, relative {rel:.1e}), \
+             H(y₀) − E = {:.1e}, Newton {}",
+            orbit.period,
+            h0 - e,
+            orbit.newton.iterations
+        );
+        worst = worst.max(rel);
+        worst_level = worst_level.max((h0 - e).abs());
+        assert!(orbit.period > last_t);
+        last_t = orbit.period;
+    }
+    println!("worst relative period error {worst:e}, worst level {worst_level:e}");
+    assert!(family.last().is_some_and(|(e, _)| *e > 0.99));
+    assert!(worst < 1e-10);
+    assert!(worst_level < 1e-12);
+
+    let mut stubborn = shooting().newton(noether_core::Newton::default().max_iterations(1).unwrap());
+    let start = shooting()
+        .solve(&State::with_momenta(0.0, [0.5], [0.0]), 6.4)
+        .unwrap();
+    let coarse = noether_analysis::Continuation::new(0.1, 0.05, 1.0).unwrap();
+    assert!(matches!(
+        coarse.follow(&mut stubborn, &start, level(0.5), 3, true),
+        Err(Error::BranchLost { .. })
+    ));
+    let mut free = Shooting::new(Rk4::new(HamiltonEquations::new(Pendulum { g })), 400)
+        .unwrap()
+        .unfold(Energy(Pendulum { g }))
+        .fixed_period();
+    assert!(continuation
+        .follow(&mut free, &start, level(0.5), 3, true)
+        .is_err());
+    assert!(noether_analysis::Continuation::new(0.1, 1.0, 0.5).is_err());
 }
