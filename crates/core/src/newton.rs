@@ -121,10 +121,11 @@ impl<P: DenseProblem> NewtonSystem for Dense<P> {
 /// decrease).
 ///
 /// The solve fails with [`Error::NewtonDiverged`] (iterations, last finite residual) only when the cap
-/// `max_iterations` is reached (or a line search finds no decrease), and with [`Error::NonFiniteResult`] (`what` = "Newton residual", t =
-/// NaN) when the residual is NaN or infinite at the guess, or stays so after a correction halved 40
-/// times toward the last iterate (a model evaluated outside its domain, e.g. √q at q < 0: the error
-/// contract's non-finite result, not a divergence). [`Dense`] reports a NaN or infinite Jacobian
+/// `max_iterations` is reached (or a line search finds no decrease), and with
+/// [`Error::NonFiniteResult`] (`what` = "Newton residual", t = NaN) when the residual is NaN or
+/// infinite at the guess, or stays so after a correction halved 40 times toward the last iterate (a
+/// model evaluated outside its domain, e.g. √q at q < 0: the error contract's non-finite result, not
+/// a divergence). [`Dense`] reports a NaN or infinite Jacobian
 /// entry the same way (`what` = "Newton Jacobian").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Newton {
