@@ -7,8 +7,9 @@
 //!
 //! And what a system does along its orbits, from the exact tangents of the numerical flow: Lyapunov
 //! spectra ([`lyapunov`]), the chaos indicators MEGNO and FLI and their stability maps over a grid of
-//! initial conditions ([`chaos`]; the maps with the feature `ensemble`), periodic orbits by shooting and
-//! their Floquet multipliers ([`periodic`]), sensitivities to parameters ([`sensitivity`]), and
+//! initial conditions ([`chaos`]; the maps with the feature `ensemble`), periodic orbits by single and
+//! multiple shooting and their Floquet multipliers ([`periodic`]), their families by pseudo-arclength
+//! continuation ([`continuation`]), sensitivities to parameters ([`sensitivity`]), and
 //! linearisation with LQR for control ([`linearize`](mod@linearize), [`lqr`](mod@lqr)).
 //!
 //! ```

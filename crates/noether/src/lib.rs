@@ -12,7 +12,7 @@
 //! | [`constraints`] | noether-constraints | holonomic and nonholonomic constraints, multipliers, RATTLE |
 //! | [`discrete`] | noether-discrete | discrete Lagrangians and variational integrators, discrete Noether momenta, optimal control by discrete mechanics |
 //! | [`particles`] | noether-particles | particle systems from one- and two-body interactions |
-//! | [`analysis`] | noether-analysis | equilibria and normal modes, Lyapunov spectra, MEGNO and FLI chaos indicators (stability maps with `ensemble`), sensitivities, periodic orbits |
+//! | [`analysis`] | noether-analysis | equilibria and normal modes, Lyapunov spectra, MEGNO and FLI chaos indicators (stability maps with `ensemble`), sensitivities, periodic orbits (single and multiple shooting) and their families (continuation) |
 //! | [`compile`] | noether-compile | compiled models: the model recorded once, its equations derived and simplified on the graph, run without dual numbers (dual numbers as the guarded fallback): by an interpreter, or as native code compiled by Cranelift with the feature `jit` |
 //! | [`canonical`] | noether-canonical | Poisson brackets, canonical transformations, Hamilton-Jacobi, action-angle variables, Routh's reduction, Poincaré sections |
 //! | [`rigid`] | noether-rigid | rigid bodies on the rotation group: unit quaternions, torques of V(R) by AD, the Lie-group variational integrator |
