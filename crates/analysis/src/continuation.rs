@@ -22,6 +22,7 @@
 use crate::periodic::{PeriodicOrbit, Problem, Shooting};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector};
+use noether_core::linalg::DenseFactor;
 use noether_core::newton::{solve_dense, DenseProblem};
 use noether_core::TangentStepper;
 
@@ -122,12 +123,10 @@ impl Continuation {
         let mut bordered = Bordered::new(problem, previous.clone(), DVector::zeros(z.len()), 0.0);
         let mut j = DMatrix::zeros(z.len(), z.len());
         bordered.jacobian(z.as_slice(), &mut j)?;
-        let mut rhs = DVector::zeros(z.len());
-        rhs[z.len() - 1] = 1.0;
-        let t = j
-            .lu()
-            .solve(&rhs)
-            .ok_or(Error::DegenerateOrbit { pivot_ratio: 0.0 })?;
+        let mut t = DVector::zeros(z.len());
+        t[z.len() - 1] = 1.0;
+        let lu = DenseFactor::lu(j).map_err(|e| e.in_matrix("bordered continuation Jacobian"))?;
+        lu.solve_in_place(t.as_mut_slice());
         let t = t.normalize();
         Ok(if t.dot(previous) < 0.0 { -t } else { t })
     }
