@@ -141,14 +141,7 @@ impl<S: TangentStepper> Megno<S> {
     /// here) and restarts the sums at the current time.
     pub fn initial_vector(mut self, v: &[f64]) -> Result<Self> {
         let dim = self.delta.len();
-        if v.len() != dim {
-            return Err(noether_core::Error::Dimension {
-                what: "initial deviation",
-                expected: dim,
-                got: v.len(),
-            }
-            .into());
-        }
+        noether_core::error::check_len("initial deviation", v, dim)?;
         noether_core::error::check_finite("initial deviation", v)?;
         let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         if !(norm > 0.0 && norm.is_finite()) {

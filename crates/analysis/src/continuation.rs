@@ -84,8 +84,7 @@ impl Continuation {
         let mut ds = self.step;
         let mut family = Vec::with_capacity(members);
         while family.len() < members {
-            let predicted = &z + &tangent * ds;
-            match self.correct(shooting, &prev, &z, &tangent, ds, &predicted) {
+            match self.correct(shooting, &prev, &z, &tangent, ds) {
                 Ok((next, orbit)) => {
                     let easy = orbit.newton.iterations <= 4;
                     tangent = self.tangent(shooting, &orbit, &next, &tangent)?;
@@ -131,8 +130,7 @@ impl Continuation {
         Ok(if t.dot(previous) < 0.0 { -t } else { t })
     }
 
-    /// The corrector from `predicted`: the new unknowns and the orbit.
-    #[allow(clippy::too_many_arguments)]
+    /// The corrector from the predictor z + Δs τ: the new unknowns and the orbit.
     fn correct<S: TangentStepper>(
         &self,
         shooting: &mut Shooting<S>,
@@ -140,8 +138,8 @@ impl Continuation {
         z: &DVector<f64>,
         tangent: &DVector<f64>,
         ds: f64,
-        predicted: &DVector<f64>,
     ) -> Result<(DVector<f64>, PeriodicOrbit<S::Partner>)> {
+        let predicted = z + tangent * ds;
         let newton = shooting.newton_settings();
         let (problem, speed) = shooting.equations(&prev.initial, prev.period)?;
         let bordered = Bordered::new(problem, tangent.clone(), z.clone(), ds);

@@ -487,12 +487,9 @@ impl<S: TangentStepper> Shooting<S> {
         self.check_setup(guess, period)?;
         let h = period / self.steps as f64;
         let mut nodes = vec![guess.clone()];
-        let mut state = guess.clone();
         for &steps in &self.segment_steps()[..self.segments - 1] {
-            for _ in 0..steps {
-                self.stepper.step(&mut state, h)?;
-            }
-            nodes.push(state.clone());
+            let (next, _) = run(&mut self.stepper, steps, &nodes[nodes.len() - 1], h, false)?;
+            nodes.push(next);
         }
         self.solve_nodes(&nodes, period)
     }
@@ -508,15 +505,7 @@ impl<S: TangentStepper> Shooting<S> {
         period: f64,
     ) -> Result<PeriodicOrbit<S::Partner>> {
         let n = self.stepper.dof();
-        let m = self.segments;
-        if nodes.len() != m {
-            return Err(noether_core::Error::Dimension {
-                what: "multiple-shooting nodes (one per segment)",
-                expected: m,
-                got: nodes.len(),
-            }
-            .into());
-        }
+        noether_core::error::check_len("multiple-shooting nodes (one per segment)", nodes, self.segments)?;
         let guess = &nodes[0];
         self.check_setup(guess, period)?;
         for node in nodes {

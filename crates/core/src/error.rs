@@ -352,7 +352,7 @@ pub fn check_shape(what: &'static str, m: &nalgebra::DMatrix<f64>, rows: usize, 
 
 /// Checks that `x` has length `n`.
 #[inline]
-pub fn check_len(what: &'static str, x: &[f64], n: usize) -> Result<()> {
+pub fn check_len<T>(what: &'static str, x: &[T], n: usize) -> Result<()> {
     if x.len() != n {
         return Err(Error::Dimension {
             what,
