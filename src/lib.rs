@@ -202,6 +202,8 @@ examples! {
     periodic_orbits: "periodic orbits by shooting: pendulum period vs 4K, Lyapunov orbits about L1 unstable with λ ≈ 2700",
     figure_eight: "the figure-eight of three bodies by shooting from a rough guess vs the published orbit; linearly stable",
     lyapunov_spectrum: "Lyapunov spectra (Benettin, exact tangents): oscillator and torus → 0 like ln t/t, chaotic Hénon-Heiles and double pendulum λ₁ > 0, pairing",
+    halo_orbits: "halo orbits of the Earth-Moon L1 point: the Lyapunov family continued to its branch point (vertical trace 2, C = 3.1743), both halo families switched onto, mirror images, the flow's orbits",
+    lyapunov_family: "the Earth-Moon L1 Lyapunov family by multiple shooting and pseudo-arclength continuation to 58 000 km from L1: period → 2π/ω as T₀ + κA², one unstable family, the flow's orbits",
     megno_map: "MEGNO stability map of Hénon-Heiles at E = 1/8 (an ensemble over the section): ⟨Y⟩ → 2 on tori, the chaotic cells those one sea orbit visits, time-reversal symmetric",
     sensitivity: "sensitivities of a run: the pendulum's θ(T) in g and θ₀ by tangents, vs differences of runs and the small-amplitude closed form",
     symplecticity_check: "self-checks of integrators: ‖ΨᵀΩΨ − Ω‖ (RK4 h⁶/72 on the oscillator, O(h⁵)), observed orders, reversibility",

@@ -470,6 +470,16 @@ fn closed_form_lyapunov_spectrum() {
     assert_example_passes("lyapunov_spectrum");
 }
 
+#[test]
+fn continuation_lyapunov_family() {
+    assert_example_passes("lyapunov_family");
+}
+
+#[test]
+fn bifurcation_halo_orbits() {
+    assert_example_passes("halo_orbits");
+}
+
 /// The gallery example maps 32 × 32 to t = 1000, its sea orbit to t = 10⁵ (`cargo run --release
 /// --example megno_map`); the test maps 24 × 24, the sea orbit to 5·10⁴ (as many crossings per cell),
 /// the same checks.

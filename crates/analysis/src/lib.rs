@@ -50,7 +50,7 @@ pub mod sensitivity;
 #[cfg(feature = "ensemble")]
 pub use chaos::{stability_map, StabilityMap};
 pub use chaos::{Indicators, Megno};
-pub use continuation::Continuation;
+pub use continuation::{Bifurcation, Branch, Continuation, SpecialPoint};
 pub use equilibria::{classify, Equilibrium, EquilibriumFinder, Kind};
 pub use error::{Error, Result};
 pub use linearize::{linearize, linearize_step, HeldInputs, HeldStart, Linearization, StepLinearization};

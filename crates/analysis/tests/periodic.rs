@@ -7,7 +7,7 @@ use noether_analysis::Error;
 use noether_core::prelude::*;
 use noether_testkit::closed_form::elliptic_k_complementary;
 use noether_testkit::three_body::{
-    figure_eight, figure_eight_shooting, l1, l1_guess, l1_linear, Cr3bp, ThreeBody, EIGHT_T, EIGHT_V3,
+    self, figure_eight, figure_eight_shooting, l1, l1_guess, l1_linear, Cr3bp, ThreeBody, EIGHT_T, EIGHT_V3,
     EIGHT_X1,
 };
 use std::f64::consts::PI;
@@ -141,17 +141,12 @@ fn published_figure_eight() {
     );
 }
 
-/// max |H − e| along the orbit of the restricted problem, stepped by RK4 with the orbit's own steps.
+/// max |H − e| along the orbit of the restricted problem, each arc stepped by RK4 with the orbit's
+/// own steps.
 fn energy_drift(mu: f64, orbit: &noether_analysis::PeriodicOrbit<Momenta>, e: f64) -> f64 {
-    let energy = Energy(Cr3bp { mu });
     let mut rk = Rk4::new(HamiltonEquations::new(Cr3bp { mu }));
-    let mut st = orbit.initial.clone();
-    let mut drift = 0.0_f64;
-    for _ in 0..orbit.steps {
-        rk.step(&mut st, orbit.period / orbit.steps as f64).unwrap();
-        drift = drift.max((energy.value(st.q.as_slice(), st.v.as_slice()).unwrap() - e).abs());
-    }
-    drift
+    let run = (orbit.period, orbit.steps);
+    three_body::energy_drift(&Cr3bp { mu }, &mut rk, &orbit.nodes, run, e).unwrap()
 }
 
 /// Planar Lyapunov orbits about L1 of the Earth-Moon system (μ = 0.01215), amplitudes 0.001 to 0.005
@@ -457,9 +452,12 @@ fn pendulum_family_by_continuation() {
         .solve(&State::with_momenta(0.0, [0.5], [0.0]), 6.4)
         .unwrap();
     let continuation = noether_analysis::Continuation::new(0.1, 1e-4, 1.0).unwrap();
-    let family = continuation
+    let branch = continuation
         .follow(&mut pendulum, &start, level(0.5), 40, true)
         .unwrap();
+    // One degree of freedom: no multipliers beyond the trivial pair, and E rises monotonically.
+    assert!(branch.special.is_empty());
+    let family = branch.members;
     let (mut worst, mut worst_level) = (0.0_f64, 0.0_f64);
     let mut last_t = start.period;
     for (e, orbit) in &family {
@@ -495,6 +493,21 @@ fn pendulum_family_by_continuation() {
         coarse.follow(&mut stubborn, &start, level(0.5), 3, true),
         Err(Error::BranchLost { .. })
     ));
+    // A family lost after some members keeps them: a corrector allowed three Newton iterations
+    // finds the first members, and stops where the growing step needs more than three and the
+    // halved one falls below the floor.
+    let mut hasty = shooting().newton(noether_core::Newton::default().max_iterations(3).unwrap());
+    let short = noether_analysis::Continuation::new(0.1, 0.1, 1.0)
+        .unwrap()
+        .follow(&mut hasty, &start, level(0.5), 40, true)
+        .unwrap();
+    println!(
+        "three Newton iterations: {} members, lost: {:?}",
+        short.members.len(),
+        short.lost
+    );
+    assert!(!short.members.is_empty() && short.members.len() < 40);
+    assert!(matches!(short.lost, Some(Error::BranchLost { .. })));
     let mut free = Shooting::new(Rk4::new(HamiltonEquations::new(Pendulum { g })), 400)
         .unwrap()
         .unfold(Energy(Pendulum { g }))
@@ -531,7 +544,10 @@ fn lyapunov_family_by_arclength() {
         .level(Energy(Cr3bp { mu }), e);
     let start = shooting.solve(&guess, t_guess).unwrap();
     let continuation = noether_analysis::Continuation::new(0.01, 1e-5, 0.1).unwrap();
-    let family = continuation.follow(&mut shooting, &start, e, 45, true).unwrap();
+    let branch = continuation.follow(&mut shooting, &start, e, 45, true).unwrap();
+    // In the plane the non-trivial pair stays real and positive, C falls throughout: no bifurcation.
+    assert!(branch.special.is_empty());
+    let family = branch.members;
     let (mut defect, mut level, mut drift, mut pair) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);
     let (mut last_c, mut last_t) = (-2.0 * e, start.period);
     for (h, orbit) in &family {

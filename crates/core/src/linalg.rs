@@ -451,6 +451,28 @@ pub fn rank(a: &DMatrix<f64>) -> (usize, f64) {
     (rank.min(a.ncols()), if hi > 0.0 { lo / hi } else { 0.0 })
 }
 
+/// The right singular vectors of the `k` smallest singular values of an m × n matrix A (k ≤ n, else
+/// fewer), as the columns of an n × k matrix, with those singular values in increasing order. A wide A
+/// (m < n) is padded with zero rows, so its n − m directions that no row sees come first with σ = 0.
+/// When those σ are negligible against the largest ([`is_singular`]), the columns are an orthonormal
+/// basis of A's numerical null space: the tangent plane at a branch point of a family, where two
+/// branches cross. `None` when A has entries that are not finite or the SVD does not converge.
+pub fn smallest_right_singular(a: &DMatrix<f64>, k: usize) -> Option<(DMatrix<f64>, Vec<f64>)> {
+    let (m, n) = a.shape();
+    if a.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let mut square = DMatrix::zeros(m.max(n), n);
+    square.view_mut((0, 0), (m, n)).copy_from(a);
+    let svd = nalgebra::SVD::try_new(square, false, true, f64::EPSILON, 1000)?;
+    let vt = svd.v_t?;
+    let mut order: Vec<usize> = (0..svd.singular_values.len()).collect();
+    order.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
+    order.truncate(k.min(n));
+    let vectors = DMatrix::from_fn(n, order.len(), |r, c| vt[(order[c], r)]);
+    Some((vectors, order.iter().map(|&i| svd.singular_values[i]).collect()))
+}
+
 /// The Cholesky factor of a mass matrix that must be positive definite (the Legendre transform, normal
 /// modes), or why there is none, as [`factor_positive_mass`].
 pub fn positive_definite_mass(m: DMatrix<f64>, t: f64) -> crate::Result<nalgebra::Cholesky<f64, Dyn>> {
@@ -734,6 +756,24 @@ impl BandedLu {
 mod tests {
     use super::*;
     use nalgebra::DVector;
+
+    #[test]
+    fn smallest_right_singular_spans_the_null_space() {
+        // A wide matrix: the direction no row sees (e₃) has σ = 0, the next σ is 1.
+        let a = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 0.0, 0.0, 2.0, 0.0]);
+        let (v, s) = smallest_right_singular(&a, 2).unwrap();
+        assert!(s[0].abs() < 1e-15 && (s[1] - 1.0).abs() < 1e-15, "{s:?}");
+        assert!((v.column(0).abs() - DVector::from_vec(vec![0.0, 0.0, 1.0])).amax() < 1e-15);
+        assert!((v.column(1).abs() - DVector::from_vec(vec![1.0, 0.0, 0.0])).amax() < 1e-15);
+        // A square matrix of rank one: its null vector (1, −1)/√2 to rounding.
+        let b = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 1.0, 1.0]);
+        let (v, s) = smallest_right_singular(&b, 1).unwrap();
+        assert!(s[0] < 1e-15 && (v[(0, 0)] + v[(1, 0)]).abs() < 1e-15);
+        assert!((v[(0, 0)].abs() - 0.5f64.sqrt()).abs() < 1e-15);
+        // Entries that are not finite have no decomposition.
+        let c = DMatrix::from_row_slice(1, 2, &[f64::NAN, 1.0]);
+        assert!(smallest_right_singular(&c, 1).is_none());
+    }
 
     /// A small deterministic generator in [−½, ½) (no rand in core's unit tests).
     fn lcg(seed: u64) -> impl FnMut() -> f64 {

@@ -30,11 +30,29 @@ use crate::{Error, Result};
 /// assert!((r - 2f64.sqrt()).abs() <= 4.0 * f64::EPSILON);
 /// # Ok::<(), noether_core::Error>(())
 /// ```
-pub fn bracketed_root(
+pub fn bracketed_root(g: impl FnMut(f64) -> f64, a: (f64, f64), b: (f64, f64)) -> Result<f64> {
+    bracketed_root_within(g, a, b, 0.0)
+}
+
+/// [`bracketed_root`] that stops once the bracket is at most `width` wide (or at rounding, whichever
+/// comes first): for a g that is costly and only as accurate as a solver's tolerance (a test function
+/// along a family of orbits), where closing the bracket to the ulp would spend evaluations on noise.
+/// A `width` that is not finite or negative counts as 0.
+///
+/// ```
+/// use noether_core::roots::bracketed_root_within;
+/// let g = |t: f64| t * t - 2.0;
+/// let r = bracketed_root_within(g, (1.0, g(1.0)), (2.0, g(2.0)), 1e-6)?;
+/// assert!((r - 2f64.sqrt()).abs() <= 1e-6);
+/// # Ok::<(), noether_core::Error>(())
+/// ```
+pub fn bracketed_root_within(
     mut g: impl FnMut(f64) -> f64,
     (a, ga): (f64, f64),
     (b, gb): (f64, f64),
+    width: f64,
 ) -> Result<f64> {
+    let width = if width.is_finite() { width.max(0.0) } else { 0.0 };
     for (t, gt) in [(a, ga), (b, gb)] {
         finite_at(t, gt)?;
     }
@@ -55,7 +73,7 @@ pub fn bracketed_root(
     // Ends: every point tried lies strictly inside the bracket, so its size falls at each iteration,
     // and the safeguard below halves it at least every two iterations: at most ~130 iterations.
     loop {
-        let tol = 4.0 * f64::EPSILON * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+        let tol = (4.0 * f64::EPSILON * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE)).max(width);
         if (hi - lo).abs() <= tol || floats_between(lo, hi) <= 1 {
             break;
         }
@@ -177,6 +195,31 @@ mod tests {
         let g = |t: f64| (t - t0) - 0.3;
         let r = bracketed_root(g, (t0, g(t0)), (t0 + 1.0, g(t0 + 1.0))).unwrap();
         assert!((r - (t0 + 0.3)).abs() <= 0.125, "{r}");
+    }
+
+    #[test]
+    fn a_width_stops_early() {
+        // cos t on [0, 3]: to a width of 1e-6 the answer is within 1e-6 of π/2 (the root stays in the
+        // bracket, the answer is one of its ends) in fewer evaluations than to rounding.
+        let solve = |width: f64| {
+            let mut calls = 0;
+            let r = bracketed_root_within(
+                |t| {
+                    calls += 1;
+                    t.cos()
+                },
+                (0.0, 1.0),
+                (3.0, 3f64.cos()),
+                width,
+            )
+            .unwrap();
+            (r, calls)
+        };
+        let ((coarse, few), (fine, many)) = (solve(1e-6), solve(0.0));
+        let root = std::f64::consts::FRAC_PI_2;
+        assert!((coarse - root).abs() <= 1e-6, "{coarse}");
+        assert!((fine - root).abs() <= 4.0 * f64::EPSILON * root, "{fine}");
+        assert!(few < many, "{few} evaluations to 1e-6, {many} to rounding");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! `periodic_orbits` examples.
 
 use noether_core::ad::Field;
-use noether_core::{Hamiltonian, Lagrangian, Momenta, Scalar, State};
+use noether_core::{Hamiltonian, Lagrangian, Momenta, Scalar, State, Stepper};
 
 /// Three equal masses (G = m = 1) in the plane, q = (x₁, y₁, x₂, y₂, x₃, y₃), p likewise:
 /// H = |p|²/2 − Σ_{i<j} 1/r_ij.
@@ -65,14 +65,37 @@ impl Hamiltonian for Cr3bp {
         2
     }
     fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
-        let (x, y) = (q[0], q[1]);
-        let r1 = ((x + self.mu) * (x + self.mu) + y * y).sqrt();
-        let r2 = ((x - (1.0 - self.mu)) * (x - (1.0 - self.mu)) + y * y).sqrt();
-        (p[0] * p[0] + p[1] * p[1]) * 0.5 + y * p[0]
-            - x * p[1]
-            - r1.recip() * (1.0 - self.mu)
-            - r2.recip() * self.mu
+        restricted_hamiltonian(self.mu, q, p)
     }
+}
+
+/// The spatial circular restricted three-body problem, the same frame with z out of the primaries'
+/// plane: H = ½|p|² + y p_x − x p_y − (1 − μ)/r₁ − μ/r₂, r₁² = (x + μ)² + y² + z²,
+/// r₂² = (x − 1 + μ)² + y² + z². Its planar orbits (z = p_z = 0) are [`Cr3bp`]'s; the vertical
+/// variations about them decouple and decide where the halo families branch off.
+#[derive(Debug, Clone, Copy)]
+pub struct SpatialCr3bp {
+    /// Mass ratio μ.
+    pub mu: f64,
+}
+
+impl Hamiltonian for SpatialCr3bp {
+    fn dof(&self) -> usize {
+        3
+    }
+    fn hamiltonian<D: Scalar>(&self, _t: D, q: &[D], p: &[D]) -> D {
+        restricted_hamiltonian(self.mu, q, p)
+    }
+}
+
+/// H of the restricted problem for q = (x, y) or (x, y, z): ½|p|² + y p_x − x p_y − (1 − μ)/r₁ − μ/r₂.
+fn restricted_hamiltonian<D: Scalar>(mu: f64, q: &[D], p: &[D]) -> D {
+    let (x, y) = (q[0], q[1]);
+    let off_axis = q[1..].iter().fold(D::zero(), |s, &c| s + c * c);
+    let r1 = ((x + mu) * (x + mu) + off_axis).sqrt();
+    let r2 = ((x - (1.0 - mu)) * (x - (1.0 - mu)) + off_axis).sqrt();
+    let kinetic = p.iter().fold(D::zero(), |s, &c| s + c * c) * 0.5;
+    kinetic + y * p[0] - x * p[1] - r1.recip() * (1.0 - mu) - r2.recip() * mu
 }
 
 /// L1 (by bisection of ∂Ω/∂x on the axis between the primaries) and c₂ = (1 − μ)/r₁³ + μ/r₂³ there.
@@ -202,4 +225,43 @@ pub fn l1_guess(
             (State::with_momenta(0.0, q, p), t1 + s * (t1 - t_0))
         }
     }
+}
+
+/// [`l1_guess`]'s linear guess of the planar Lyapunov orbit of `amplitude` about L1 as a state of the
+/// spatial problem ([`SpatialCr3bp`], z = p_z = 0), with its period 2π/ω.
+pub fn l1_spatial_guess(mu: f64, amplitude: f64) -> (State<Momenta>, f64) {
+    let (xl, c2) = l1(mu);
+    let (omega, k) = l1_linear(c2);
+    let t0 = 2.0 * std::f64::consts::PI / omega;
+    let (planar, period) = l1_guess((xl, omega, k, t0), amplitude, &None, &None);
+    let (q, p) = (&planar.q, &planar.v);
+    (
+        State::with_momenta(0.0, [q[0], q[1], 0.0], [p[0], p[1], 0.0]),
+        period,
+    )
+}
+
+/// max |H − e| over every step of a periodic orbit given by its `nodes` (one per arc of multiple
+/// shooting, `steps` steps of T/`steps` in all, split as the shooting splits them: the first
+/// `steps` mod m arcs one step longer), each arc stepped from its node by `stepper`: how well the
+/// method holds the energy (the Jacobi constant −2H) along the orbit.
+pub fn energy_drift<H: Hamiltonian, S: Stepper<Partner = Momenta>>(
+    model: &H,
+    stepper: &mut S,
+    nodes: &[State<Momenta>],
+    (period, steps): (f64, usize),
+    e: f64,
+) -> noether_core::Result<f64> {
+    let h = period / steps as f64;
+    let mut drift = 0.0_f64;
+    let m = nodes.len();
+    for (j, node) in nodes.iter().enumerate() {
+        let mut st = node.clone();
+        for _ in 0..steps / m + usize::from(j < steps % m) {
+            stepper.step(&mut st, h)?;
+            let value = model.hamiltonian(st.t, st.q.as_slice(), st.v.as_slice());
+            drift = drift.max((value - e).abs());
+        }
+    }
+    Ok(drift)
 }

@@ -7,6 +7,8 @@ mod chaos;
 mod constrained;
 #[path = "../control.rs"]
 mod control;
+#[path = "../families.rs"]
+mod families;
 #[path = "../lyapunov.rs"]
 mod lyapunov;
 #[path = "../periodic.rs"]
