@@ -271,6 +271,11 @@ fn closed_form_kepler() {
 }
 
 #[test]
+fn closed_form_mercury_perihelion() {
+    assert_example_passes("mercury_perihelion");
+}
+
+#[test]
 fn conserves_energy_double_pendulum() {
     assert_example_passes("double_pendulum");
 }
