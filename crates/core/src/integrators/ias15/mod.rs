@@ -15,14 +15,14 @@
 //! q(θ) = q₀ + hθ v₀ + h²θ² (a₀/2 + b₀θ/6 + b₁θ²/12 + … + b₆θ⁷/72).
 //! ```
 //!
-//! The b_k are fixed by collocation: a(θ) must equal f(t + θh, q(θ), v(θ)) at the eight Gauss-Radau nodes
-//! h₀ = 0, h₁, …, h₇ of [0, 1] (the left end and the seven zeros of the Radau polynomial), whose
+//! The b_k are fixed by collocation: a(θ) must equal f(t + θh, q(θ), v(θ)) at the eight Gauss-Radau
+//! nodes h₀ = 0, h₁, …, h₇ of [0, 1] (the left end and the seven zeros of the Radau polynomial), whose
 //! quadrature is exact for polynomials of degree 14, so the step has order 15. They are found by a
 //! predictor-corrector (fixed-point) iteration: predict q (and v, when f depends on it) at each node
-//! from the current b, evaluate f there, update the divided differences g_k of the Newton form and from them the b_k (Everhart's
-//! r, c, d tables), and repeat until the correction of b₆ relative to the acceleration,
-//! max|Δb₆|/max|a|, falls below 1e-16 or stops decreasing after the third round (rounding reached;
-//! a stall above 1e-8 is a diverging iteration). Twelve rounds without either count as not
+//! from the current b, evaluate f there, update the divided differences g_k of the Newton form and
+//! from them the b_k (Everhart's r, c, d tables), and repeat until the correction of b₆ relative to
+//! the acceleration, max|Δb₆|/max|a|, falls below 1e-16 or stops decreasing after the third round
+//! (rounding reached; a stall above 1e-8 is a diverging iteration). Twelve rounds without either count as not
 //! converged. A step costs one evaluation at its start plus 7 per round; with the predictor below,
 //! three rounds are the rule on Kepler orbits (REBOUND takes the same steps and evaluations).
 //!
