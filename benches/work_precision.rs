@@ -27,7 +27,6 @@
 
 use nalgebra::SVector;
 use noether::core::integrators::Dprkn8;
-use noether::particles::{AllPairs, Parallel, Particle, System, Vec3};
 use noether::prelude::*;
 use std::hint::black_box;
 use std::time::Instant;
@@ -35,6 +34,7 @@ use std::time::Instant;
 use noether_testkit::henon_heiles::{composition_by_hand, HenonHeiles};
 use noether_testkit::kepler::{start as kepler_start, Kepler};
 use noether_testkit::peer::{ode_solvers_end, KeplerRhs};
+use noether_testkit::solar::{outer_solar_system as solar_system, BODIES, G as G_SOLAR};
 
 const ORBITS: f64 = 100.0;
 
@@ -243,52 +243,8 @@ fn henon_heiles_table() {
 
 // ---- The outer solar system ----
 
-/// G in AU³/(solar mass·day²) and the time span in days (Hairer-Lubich-Wanner, GNI I.2.4).
-const G_SOLAR: f64 = 2.95912208286e-4;
+/// The time span in days (Hairer-Lubich-Wanner, GNI I.2.4); the model is testkit's `solar`.
 const SOLAR_T: f64 = 200_000.0;
-/// Masses relative to the Sun (the Sun's includes the inner planets), positions (AU) and velocities
-/// (AU/day) on 5 September 1994 (GNI Table I.2.1): Sun, Jupiter, Saturn, Uranus, Neptune, Pluto.
-const SOLAR: [(f64, [f64; 3], [f64; 3]); 6] = [
-    (1.00000597682, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
-    (
-        0.000954786104043,
-        [-3.5023653, -3.8169847, -1.5507963],
-        [0.00565429, -0.00412490, -0.00190589],
-    ),
-    (
-        0.000285583733151,
-        [9.0755314, -3.0458353, -1.6483708],
-        [0.00168318, 0.00483525, 0.00192462],
-    ),
-    (
-        0.0000437273164546,
-        [8.3101420, -16.2901086, -7.2521278],
-        [0.00354178, 0.00137102, 0.00055029],
-    ),
-    (
-        0.0000517759138449,
-        [11.4707666, -25.7294829, -10.8169456],
-        [0.00288930, 0.00114527, 0.00039677],
-    ),
-    (
-        1.0 / 1.3e8,
-        [-15.5387357, -25.2225594, -3.1902382],
-        [0.00276725, -0.00170702, -0.00136504],
-    ),
-];
-
-type Gravitating = System<((), AllPairs<noether::particles::Gravity>)>;
-
-fn solar_system() -> (Gravitating, State) {
-    let particles = SOLAR.iter().map(|(m, _, _)| Particle::new(*m)).collect();
-    let sys = System::new(particles)
-        .and_then(|s| s.with(AllPairs::new(noether::particles::Gravity { g: G_SOLAR })))
-        .expect("solar system");
-    let q: Vec<Vec3> = SOLAR.iter().map(|b| b.1).collect();
-    let v: Vec<Vec3> = SOLAR.iter().map(|b| b.2).collect();
-    let s0 = sys.state(0.0, &q, &v).expect("state");
-    (sys.parallel(Parallel::Serial), s0)
-}
 
 /// The end positions of a run of `stepper` to 200 000 days.
 fn solar_run<S: Stepper<Partner = Velocities>>(stepper: S, s0: State) -> Vec<f64> {
@@ -337,13 +293,13 @@ impl ode_solvers::System<f64, SVector<f64, 36>> for SolarRhs {
 
 fn solar_ode_solvers(tol: f64, reference: &[f64]) -> f64 {
     let mut y0 = SVector::<f64, 36>::zeros();
-    for (i, (_, q, v)) in SOLAR.iter().enumerate() {
+    for (i, (_, q, v)) in BODIES.iter().enumerate() {
         for c in 0..3 {
             y0[3 * i + c] = q[c];
             y0[18 + 3 * i + c] = v[c];
         }
     }
-    let gm = SOLAR.map(|b| G_SOLAR * b.0);
+    let gm = BODIES.map(|b| G_SOLAR * b.0);
     let (y, _) = ode_solvers_end(SolarRhs { gm }, y0, SOLAR_T, tol);
     solar_error(&y.as_slice()[..18], reference)
 }

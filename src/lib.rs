@@ -180,6 +180,8 @@ examples! {
     lj_cluster: "Lennard-Jones cluster of 100 atoms (particles): bounded energy error over 1e5 steps",
     rutherford: "Coulomb scattering: deflection angle vs impact parameter, Rutherford cross section",
     bertrand: "Bertrand's theorem: 1/r and r² orbits close, r^-1.1 precesses at the near-circular rate",
+    high_order_orbits: "DPRKN 6/8/12 and IAS15 on Kepler at e = 0.99 (100 orbits, vs Kepler's equation) and the outer solar system (vs a reference run)",
+    mercury_perihelion: "Mercury's perihelion advance (1PN, IAS15 with velocity-dependent forces): 6πGM/(c²a(1 − e²)) per orbit, 43″ per century",
     cyclotron: "relativistic charge in a uniform B: cyclotron frequency eB/(γm), radius, p_φ, energy",
     coupled_chains: "coupled mass-spring chains (midpoint variational): the paper's collision and its energy ratio",
     coupled_chains_momentum: "coupled chains: momentum to rounding, the mirror symmetry of the two chains (Figs. 5-7)",

@@ -271,6 +271,16 @@ fn closed_form_kepler() {
 }
 
 #[test]
+fn closed_form_high_order_orbits() {
+    assert_example_passes("high_order_orbits");
+}
+
+#[test]
+fn closed_form_mercury_perihelion() {
+    assert_example_passes("mercury_perihelion");
+}
+
+#[test]
 fn conserves_energy_double_pendulum() {
     assert_example_passes("double_pendulum");
 }

@@ -21,6 +21,7 @@
 //! | `gibbs_appell` | the four-particle top, the rolling disk and sphere, their closed forms (feature `constraints`) | constraints' tests, `gibbs_appell`, `rolling_sphere` |
 //! | `coin` | the coin rolling on a table in dependent coordinates, its steady turns and their stability (feature `constraints`) | analysis' control tests |
 //! | `multibody` | the double pendulum from two hinges, a planar arm of three rods with its mass matrix and tip in closed form (feature `multibody`) | multibody's tests, `joints_double_pendulum`, `planar_arm` |
+//! | `solar` | the outer solar system of Hairer, Lubich & Wanner (feature `particles`) | the gallery's `work_precision` benchmark and `high_order_orbits` |
 //! | `boundary` | the boundary-value problems (feature `discrete`) | discrete's tests, `boundary_value` |
 //! | `canonical`, `hamilton_jacobi` | canonical maps, generating and phase functions, complete integrals (feature `canonical`) | canonical's tests, `canonical_transformation`, `poisson_brackets`, `action_angle`, `hamilton_jacobi` |
 
@@ -44,6 +45,8 @@ pub mod multibody;
 #[cfg(feature = "peer")]
 pub mod peer;
 pub mod pendulum;
+#[cfg(feature = "particles")]
+pub mod solar;
 pub mod systems;
 pub mod three_body;
 pub mod top;

@@ -34,7 +34,7 @@ pub use dop853::{Dop853, Dp853};
 pub use dopri5::{Dopri5, Dp5};
 pub use explicit::{Euler, EulerCromer, FirstOrder, FirstOrderRule, Rk4};
 pub use gauss::Gauss;
-pub use ias15::{Ias15, Ias15Control};
+pub use ias15::{Ias15, Ias15Control, Ias15System, VelocityDependent};
 pub use nystrom::{Dprkn12, Dprkn6, Dprkn8, Nystrom, NystromPair, Rkn12, Rkn6, Rkn8};
 pub use stormer_verlet::StormerVerlet;
 pub use symplectic::SymplecticEuler;

@@ -550,8 +550,19 @@ pub(in crate::integrators) fn start_accelerations<S: crate::system::SplitDynamic
     q: &[f64],
     out: &mut [f64],
 ) -> Result<()> {
+    start_accelerations_by(evaluations, t, out, |out| system.kick_rate(q, out))
+}
+
+/// [`start_accelerations`] for accelerations that `eval` writes into `out` (IAS15's f(t, q, v) of
+/// a system whose forces depend on the velocities): the same test and the same error.
+pub(in crate::integrators) fn start_accelerations_by(
+    evaluations: &mut usize,
+    t: f64,
+    out: &mut [f64],
+    eval: impl FnOnce(&mut [f64]) -> Result<()>,
+) -> Result<()> {
     *evaluations += 1;
-    let component = match system.kick_rate(q, out) {
+    let component = match eval(out) {
         Ok(()) => match out.iter().position(|x| !x.is_finite()) {
             None => return Ok(()),
             first => first,

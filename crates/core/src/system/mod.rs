@@ -10,7 +10,7 @@
 //! | trait | provides | needed by |
 //! |---|---|---|
 //! | [`Dynamics`] | the rates (q̇, v̇) = F(t, q, v), the energy, admissible states | every continuous integrator: [`explicit`](crate::integrators::explicit), [`adaptive`](crate::integrators::adaptive) ([`dopri5`](crate::integrators::dopri5), [`dop853`](crate::integrators::dop853)) |
-//! | [`SplitDynamics`] | the split q̇ = D(v), v̇ = K(q) | [`symplectic`](crate::integrators::symplectic), [`nystrom`](crate::integrators::nystrom) and [`ias15`](crate::integrators::ias15) (the last two with D(v) = v) |
+//! | [`SplitDynamics`] | the split q̇ = D(v), v̇ = K(q) | [`symplectic`](crate::integrators::symplectic), [`nystrom`](crate::integrators::nystrom) and [`ias15`](crate::integrators::ias15) (the last two with D(v) = v; IAS15 also steps any [`Dynamics`] on (q, q̇) wrapped in [`VelocityDependent`](crate::integrators::VelocityDependent)) |
 //! | [`LinearizedDynamics`] | the Jacobian J = ∂F/∂y | [`gauss`](crate::integrators::gauss), and the step Jacobians of [`TangentStepper`](crate::TangentStepper) (see [`tangent`](crate::tangent)) |
 //!
 //! Which system type has which, each in its own file with all its impls:

@@ -460,6 +460,12 @@ fn regress_step_below_time_resolution_bare_steppers() {
         check(&mut *s);
     });
     check(&mut Ias15::new(Natural::unit(PendulumV)).unwrap());
+    check(
+        &mut Ias15::new(noether_core::integrators::VelocityDependent(Natural::unit(
+            PendulumV,
+        )))
+        .unwrap(),
+    );
 }
 
 /// The shared test itself (`noether_core::error::check_time_resolution`, used by every stepper and
@@ -695,6 +701,7 @@ fn bad_input_overflowing_parameter_nystrom_and_ias15_name_the_component() {
         Box::new(Dprkn8::new(model()).unwrap()),
         Box::new(Dprkn12::new(model()).unwrap()),
         Box::new(Ias15::new(model()).unwrap()),
+        Box::new(Ias15::new(noether_core::integrators::VelocityDependent(model())).unwrap()),
     ] {
         let mut state = start.clone();
         assert_eq!(s.step(&mut state, 0.1).unwrap_err(), expected, "{}", s.name());

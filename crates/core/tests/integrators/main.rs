@@ -8,6 +8,7 @@ mod conserves;
 mod events;
 mod fixed;
 mod ias15;
+mod ias15_forces;
 mod implicit;
 mod nystrom;
 mod order;

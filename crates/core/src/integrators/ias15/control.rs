@@ -1,12 +1,11 @@
 //! The step-size control of IAS15 (see the [module](super) docs): the proposal after a converged
 //! step, by either criterion of [`Ias15Control`], and the initial step size.
 
-use super::{Ias15, Ias15Control, SAFETY};
-use crate::integrators::step_control::{initial_step_size, stage_accelerations, start_accelerations};
-use crate::integrators::SplitDynamics;
+use super::{Ias15, Ias15Control, Ias15System, SAFETY};
+use crate::integrators::step_control::{finite_stage, initial_step_size, start_accelerations_by};
 use crate::{Result, State};
 
-impl<S: SplitDynamics> Ias15<S> {
+impl<S: Ias15System> Ias15<S> {
     /// The step size the control proposes after a converged step of size h.
     pub(super) fn proposal(&self, h: f64) -> f64 {
         match self.settings.control.criterion {
@@ -91,33 +90,35 @@ impl<S: SplitDynamics> Ias15<S> {
     }
 
     /// An initial step size at `state` by Hairer's rule ([`initial_step_size`], as the embedded pairs
-    /// choose it) with order 15 and atol = rtol = ε, on y = (q, v), F = (v, f(q)): F₁ − F₀ at the
-    /// explicit Euler step is (h₀ f(q₀), f(q₀ + h₀v₀) − f(q₀)). f(q₀) is kept for the first step.
+    /// choose it) with order 15 and atol = rtol = ε, on y = (q, v), F = (v, f(t, q, v)): F₁ − F₀ at the
+    /// explicit Euler step is (h₀ f₀, f(t + h₀, q₀ + h₀v₀, v₀ + h₀f₀) − f₀). f₀ is kept for the first
+    /// step.
     pub(super) fn hinit(&mut self, state: &State<S::Partner>) -> Result<f64> {
         state.validate(self.n)?;
         let n = self.n;
-        let (q, v) = (state.q.as_slice(), state.v.as_slice());
+        let (t, q, v) = (state.t, state.q.as_slice(), state.v.as_slice());
         self.have_cached = false;
+        self.cached_t = t;
         self.cached_q.copy_from_slice(q);
-        start_accelerations(
-            &self.system,
-            &mut self.evaluations,
-            state.t,
-            q,
-            &mut self.cached_a,
-        )?;
+        self.cached_v.copy_from_slice(v);
+        let (system, scratch) = (&self.system, &mut self.scratch);
+        start_accelerations_by(&mut self.evaluations, t, &mut self.cached_a, |out| {
+            system.accelerations(t, q, v, scratch, out)
+        })?;
         self.have_cached = true;
         let a = &self.cached_a;
         let y0: Vec<f64> = q.iter().chain(v).copied().collect();
         let f0: Vec<f64> = v.iter().chain(a).copied().collect();
         let eps = self.settings.control.epsilon;
-        let (system, evaluations) = (&self.system, &mut self.evaluations);
-        let (xs, at) = (&mut self.xs, &mut self.at);
+        let evaluations = &mut self.evaluations;
+        let (xs, vs, at) = (&mut self.xs, &mut self.vs, &mut self.at);
         initial_step_size(15, (eps, eps), &y0, &f0, |h0, d| {
             for k in 0..n {
                 xs[k] = q[k] + h0 * v[k];
+                vs[k] = v[k] + h0 * a[k];
             }
-            if !stage_accelerations(system, evaluations, xs, at)? {
+            *evaluations += 1;
+            if !finite_stage(system.accelerations(t + h0, xs, vs, scratch, at), at)? {
                 return Ok(false);
             }
             for k in 0..n {

@@ -1,5 +1,5 @@
 //! IAS15: Everhart's 15th-order Gauss-Radau predictor-corrector with the adaptive step-size control of
-//! Rein & Spiegel, for second-order systems q̈ = f(q).
+//! Rein & Spiegel, for second-order systems q̈ = f(t, q, q̇).
 //!
 //! # The method
 //! Over a step [t, t + h] the acceleration is written as a polynomial of degree 7 in θ = (τ − t)/h,
@@ -15,14 +15,14 @@
 //! q(θ) = q₀ + hθ v₀ + h²θ² (a₀/2 + b₀θ/6 + b₁θ²/12 + … + b₆θ⁷/72).
 //! ```
 //!
-//! The b_k are fixed by collocation: a(θ) must equal f(q(θ)) at the eight Gauss-Radau nodes
-//! h₀ = 0, h₁, …, h₇ of [0, 1] (the left end and the seven zeros of the Radau polynomial), whose
+//! The b_k are fixed by collocation: a(θ) must equal f(t + θh, q(θ), v(θ)) at the eight Gauss-Radau
+//! nodes h₀ = 0, h₁, …, h₇ of [0, 1] (the left end and the seven zeros of the Radau polynomial), whose
 //! quadrature is exact for polynomials of degree 14, so the step has order 15. They are found by a
-//! predictor-corrector (fixed-point) iteration: predict q at each node from the current b, evaluate f
-//! there, update the divided differences g_k of the Newton form and from them the b_k (Everhart's
-//! r, c, d tables), and repeat until the correction of b₆ relative to the acceleration,
-//! max|Δb₆|/max|a|, falls below 1e-16 or stops decreasing after the third round (rounding reached;
-//! a stall above 1e-8 is a diverging iteration). Twelve rounds without either count as not
+//! predictor-corrector (fixed-point) iteration: predict q (and v, when f depends on it) at each node
+//! from the current b, evaluate f there, update the divided differences g_k of the Newton form and
+//! from them the b_k (Everhart's r, c, d tables), and repeat until the correction of b₆ relative to
+//! the acceleration, max|Δb₆|/max|a|, falls below 1e-16 or stops decreasing after the third round
+//! (rounding reached; a stall above 1e-8 is a diverging iteration). Twelve rounds without either count as not
 //! converged. A step costs one evaluation at its start plus 7 per round; with the predictor below,
 //! three rounds are the rule on Kepler orbits (REBOUND takes the same steps and evaluations).
 //!
@@ -61,11 +61,19 @@
 //! the driver asks for it, it costs no evaluation.
 //!
 //! # Systems
-//! q̈ = f(q) only: a [`SplitDynamics`] whose drift is the identity
-//! ([`drift_is_identity`](SplitDynamics::drift_is_identity)), f = [`kick_rate`](SplitDynamics::kick_rate):
-//! [`Natural`](crate::Natural) and noether-particles' `System` (use [`block_size`](Ias15::block_size)
-//! 3 there, one block per particle, as REBOUND does). [`Ias15::new`] refuses any other split system
-//! with [`Error::Unsupported`].
+//! IAS15 steps an [`Ias15System`]: q̇ = v, v̇ = f(t, q, v).
+//! - f(q) alone: a [`SplitDynamics`] whose drift is the identity
+//!   ([`drift_is_identity`](SplitDynamics::drift_is_identity)), f = [`kick_rate`](SplitDynamics::kick_rate):
+//!   [`Natural`](crate::Natural) and noether-particles' `System` (use [`block_size`](Ias15::block_size)
+//!   3 there, one block per particle, as REBOUND does). [`Ias15::new`] refuses any other split system
+//!   with [`Error::Unsupported`]. Only q is predicted at the nodes.
+//! - f(t, q, q̇): any system with velocities wrapped in [`VelocityDependent`], whose
+//!   [`rates`](crate::Dynamics::rates) give f. As REBOUND does when forces depend on velocities, the
+//!   predictor-corrector then also predicts the velocities at each node from the current b,
+//!   `v(h_n) = v₀ + h h_n (a₀ + b₀h_n/2 + b₁h_n²/3 + … + b₆h_n⁷/8)` (compensated like q), and evaluates
+//!   f(t + h h_n, q(h_n), v(h_n)); the same fixed-point iteration converges (its contraction factor
+//!   is O(h ‖∂f/∂v‖) besides the O(h² ‖∂f/∂q‖) of the position part). Everything else (the
+//!   control, the predictor of b, the dense output, the error contract) is the same.
 //!
 //! # References
 //! - E. Everhart, An efficient integrator that uses Gauss-Radau spacings, in *Dynamics of Comets:
@@ -78,11 +86,15 @@
 
 mod coefficients;
 mod control;
+mod system;
+
+pub use system::{Ias15System, VelocityDependent};
 
 use super::step_control::{
-    check_start, controlled_stepper, settings_methods, stage_accelerations, start_accelerations,
-    until_accepted, Accepted, Settings, Verdict,
+    check_start, controlled_stepper, finite_stage, settings_methods, start_accelerations_by, until_accepted,
+    Accepted, Settings, Verdict,
 };
+#[cfg(doc)]
 use super::SplitDynamics;
 use crate::dense::{horner_eval, DenseEval};
 use crate::{DenseOutput, Error, Result, State, StepInfo, Stepper};
@@ -108,6 +120,9 @@ const PREDICT_MAX_RATIO: f64 = 20.0;
 pub enum Ias15Control {
     /// Pham, Rein & Spiegel (2024): h_new = h √(min over blocks of 2y₂/(y₃ + √(y₄y₂))) (5040 ε)^{1/7},
     /// from the acceleration, jerk and snap at the end of the step. REBOUND's default since 2024.
+    /// A block whose acceleration passes through zero (one coordinate: an oscillator, a pendulum)
+    /// gets a timescale proportional to the step there, and the step underflows: use
+    /// [`Global`](Ias15Control::Global) for such systems.
     #[default]
     Prs23,
     /// Rein & Spiegel (2015): h_new = h (ε max|a| / max|b₆|)^{1/7} over all coordinates of the blocks
@@ -175,7 +190,7 @@ fn add_cs(p: &mut f64, cs: &mut f64, x: f64) {
 /// assert!((sol.last().q[0] - start.q[0]).abs() < 1e-11 && sol.last().q[1].abs() < 1e-11);
 /// # Ok::<(), noether_core::Error>(())
 /// ```
-pub struct Ias15<S: SplitDynamics> {
+pub struct Ias15<S: Ias15System> {
     system: S,
     settings: Settings<Accuracy>,
     n: usize,
@@ -183,9 +198,12 @@ pub struct Ias15<S: SplitDynamics> {
     x0: Vec<f64>,
     v0: Vec<f64>,
     a0: Vec<f64>,
-    /// Positions at a node and the accelerations there.
+    /// Positions and velocities at a node (the velocities only when f depends on them), the
+    /// accelerations there, and room for the q̇ the rates write besides.
     xs: Vec<f64>,
+    vs: Vec<f64>,
     at: Vec<f64>,
+    scratch: Vec<f64>,
     /// End of the step and its compensations, before they are committed.
     x1: Vec<f64>,
     v1: Vec<f64>,
@@ -207,25 +225,23 @@ pub struct Ias15<S: SplitDynamics> {
     last_q: Vec<f64>,
     last_v: Vec<f64>,
     have_last: bool,
-    /// f(q) at `cached_q` (from the initial-step choice), reused by a step starting there.
+    /// f at (`cached_t`, `cached_q`, `cached_v`) (from the initial-step choice), reused by a step
+    /// starting there (t and v compared only when f depends on them).
+    cached_t: f64,
     cached_q: Vec<f64>,
+    cached_v: Vec<f64>,
     cached_a: Vec<f64>,
     have_cached: bool,
     dense: Option<DenseOutput<S::Partner>>,
     evaluations: usize,
 }
 
-impl<S: SplitDynamics> Ias15<S> {
+impl<S: Ias15System> Ias15<S> {
     /// IAS15 for `system` with ε = 1e-9, the [`Prs23`](Ias15Control::Prs23) control over one block
     /// (all coordinates), dense output allowed. A split system whose drift is not the identity (a
     /// separable Hamiltonian on (q, p)) is refused with [`Error::Unsupported`].
     pub fn new(system: S) -> Result<Self> {
-        if !system.drift_is_identity() {
-            return Err(Error::Unsupported(
-                "IAS15 integrates q̈ = f(q): it needs a split system whose drift is the identity \
-                 (Natural, particle systems), not a separable Hamiltonian on (q, p)",
-            ));
-        }
+        system.second_order()?;
         let n = system.dof();
         let z = vec![0.0; n];
         let z7 = vec![[0.0; 7]; n];
@@ -241,7 +257,9 @@ impl<S: SplitDynamics> Ias15<S> {
             v0: z.clone(),
             a0: z.clone(),
             xs: z.clone(),
+            vs: z.clone(),
             at: z.clone(),
+            scratch: z.clone(),
             x1: z.clone(),
             v1: z.clone(),
             csx1: z.clone(),
@@ -258,7 +276,9 @@ impl<S: SplitDynamics> Ias15<S> {
             last_q: z.clone(),
             last_v: z.clone(),
             have_last: false,
+            cached_t: f64::NAN,
             cached_q: z.clone(),
+            cached_v: z.clone(),
             cached_a: z,
             have_cached: false,
             dense: None,
@@ -414,8 +434,8 @@ impl<S: SplitDynamics> Ias15<S> {
         }
     }
 
-    /// The predictor-corrector for a step of size h from (x0, v0, a0), starting from the current b.
-    fn iterate(&mut self, h: f64) -> Result<Attempt> {
+    /// The predictor-corrector for a step of size h from (t, x0, v0, a0), starting from the current b.
+    fn iterate(&mut self, t: f64, h: f64) -> Result<Attempt> {
         self.g_from_b();
         self.csb.iter_mut().for_each(|c| *c = [0.0; 7]);
         let (mut pc_err, mut pc_last) = (f64::INFINITY, 2.0);
@@ -467,7 +487,10 @@ impl<S: SplitDynamics> Ias15<S> {
                         + v0;
                     *xs = (poly * s - csx) + x0;
                 }
-                if !stage_accelerations(&self.system, &mut self.evaluations, &self.xs, &mut self.at)? {
+                if S::VELOCITY_DEPENDENT {
+                    self.predict_velocities(node, s);
+                }
+                if !self.stage(t + s)? {
                     return Ok(Attempt::NonFinite(iterations));
                 }
                 let correction = match node {
@@ -487,12 +510,53 @@ impl<S: SplitDynamics> Ias15<S> {
     }
 }
 
+impl<S: Ias15System> Ias15<S> {
+    /// The velocities at node n (θ = h_n, s = h h_n) from the current b into `vs`, compensated like
+    /// the positions: v = v₀ + s (a₀ + b₀θ/2 + b₁θ²/3 + … + b₆θ⁷/8), by Horner's scheme
+    /// ((((b₆·7θ/8 + b₅)·6θ/7 + b₄)·5θ/6 + …)·θ/2 + a₀)·s + v₀ (REBOUND's, for velocity-dependent
+    /// forces).
+    #[inline(always)]
+    fn predict_velocities(&mut self, node: usize, s: f64) {
+        let th = H[node];
+        let f = [
+            7.0 * th / 8.0,
+            6.0 * th / 7.0,
+            5.0 * th / 6.0,
+            4.0 * th / 5.0,
+            3.0 * th / 4.0,
+            2.0 * th / 3.0,
+            th / 2.0,
+        ];
+        let (b, a0, v0, csv) = (&self.b[..], &self.a0[..], &self.v0[..], &self.csv[..]);
+        for (((vs, b), (a0, v0)), csv) in self.vs.iter_mut().zip(b).zip(a0.iter().zip(v0)).zip(csv) {
+            let poly = ((((((b[6] * f[0] + b[5]) * f[1] + b[4]) * f[2] + b[3]) * f[3] + b[2]) * f[4] + b[1])
+                * f[5]
+                + b[0])
+                * f[6]
+                + a0;
+            *vs = (poly * s - csv) + v0;
+        }
+    }
+
+    /// f at a node at time t from the positions `xs` (and the velocities `vs` when f depends on
+    /// them) into `at`, counted in `evaluations`: Ok(false) when it is not finite ([`finite_stage`]:
+    /// the trial is retried smaller); other errors of the model pass through.
+    #[inline(always)]
+    fn stage(&mut self, t: f64) -> Result<bool> {
+        self.evaluations += 1;
+        let r = self
+            .system
+            .accelerations(t, &self.xs, &self.vs, &mut self.scratch, &mut self.at);
+        finite_stage(r, &self.at)
+    }
+}
+
 /// Polynomial degree of the dense output in θ (q: h θ v₀ + h² θ² (a₀/2 + … + b₆ θ⁷/72)).
 const DENSE_LEN: usize = 9;
 /// Order of the dense output (its local error inside a step is O(h^{order+1})); measured in the tests.
 const DENSE_ORDER: u32 = 8;
 
-impl<S: SplitDynamics> Ias15<S> {
+impl<S: Ias15System> Ias15<S> {
     /// The start of a step from `state`: q₀, v₀ and a₀ = f(q₀) (the one the initial-step choice
     /// evaluated when the step starts there). The predictor's data and the compensations of q and v
     /// carry over only when the step continues the last accepted one; they are reset otherwise.
@@ -506,10 +570,16 @@ impl<S: SplitDynamics> Ias15<S> {
         }
         self.x0.copy_from_slice(q);
         self.v0.copy_from_slice(v);
-        if self.have_cached && self.cached_q == q {
+        let cached = self.have_cached
+            && self.cached_q == q
+            && (!S::VELOCITY_DEPENDENT || (self.cached_t == state.t && self.cached_v == v));
+        if cached {
             self.a0.copy_from_slice(&self.cached_a);
         } else {
-            start_accelerations(&self.system, &mut self.evaluations, state.t, q, &mut self.a0)?;
+            let (system, scratch) = (&self.system, &mut self.scratch);
+            start_accelerations_by(&mut self.evaluations, state.t, &mut self.a0, |out| {
+                system.accelerations(state.t, q, v, scratch, out)
+            })?;
         }
         self.have_cached = false;
         Ok(())
@@ -528,7 +598,7 @@ impl<S: SplitDynamics> Ias15<S> {
         let mut iterations = 0;
         until_accepted(self.settings.h_min, (t, h), |h, rejected| {
             let predicted = self.predict(h);
-            let attempt = self.iterate(h)?;
+            let attempt = self.iterate(t, h)?;
             iterations += match attempt {
                 Attempt::Converged(it) | Attempt::NonFinite(it) => it,
                 Attempt::NotConverged(_) => MAX_ITERATIONS,
@@ -666,7 +736,7 @@ impl<S: SplitDynamics> Ias15<S> {
     }
 }
 
-impl<S: SplitDynamics> Stepper for Ias15<S> {
+impl<S: Ias15System> Stepper for Ias15<S> {
     type Partner = S::Partner;
 
     /// One accepted step, trying `h` first. `StepInfo::h` is the step taken, `h_next` the control's
