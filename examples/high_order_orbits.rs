@@ -21,8 +21,9 @@
 use noether::core::integrators::{Dprkn6, Dprkn8};
 use noether::plot::Figure;
 use noether::prelude::*;
-use noether_gallery::closed_form::kepler_eccentric_anomaly;
+use noether_gallery::closed_form::kepler_orbit_at;
 use noether_gallery::{BoxError, Check, Options, Report};
+use noether_testkit::kepler::Kepler;
 use noether_testkit::solar::outer_solar_system;
 use std::f64::consts::PI;
 use std::process::ExitCode;
@@ -34,30 +35,6 @@ pub const ORBITS: f64 = 100.37;
 /// The span of the solar-system run in days.
 pub const SOLAR_DAYS: f64 = 200_000.0;
 
-/// V = −1/|q| (μ = 1) in the plane.
-#[derive(Debug, Clone, Copy)]
-pub struct Kepler;
-
-impl Potential for Kepler {
-    fn dof(&self) -> usize {
-        2
-    }
-    #[inline]
-    fn potential<D: Scalar>(&self, q: &[D]) -> D {
-        -(q[0] * q[0] + q[1] * q[1]).sqrt().recip()
-    }
-}
-
-/// (q, q̇) of the orbit with a = 1, μ = 1, eccentricity e at time t from pericentre (Kepler's
-/// equation).
-pub fn kepler_exact(e: f64, t: f64) -> ([f64; 2], [f64; 2]) {
-    let ea = kepler_eccentric_anomaly(t, e);
-    let (s, c) = ea.sin_cos();
-    let b = (1.0 - e * e).sqrt();
-    let edot = 1.0 / (1.0 - e * c);
-    ([c - e, b * s], [-s * edot, b * c * edot])
-}
-
 /// What a run of one method on the Kepler orbit gave: |ΔE/E|, |Δℓ/ℓ|, max |Δq| against the closed
 /// form at the end, and the steps.
 struct KeplerRun {
@@ -68,7 +45,7 @@ struct KeplerRun {
 }
 
 fn kepler_run<S: Stepper<Partner = Velocities>>(stepper: S) -> Result<KeplerRun, BoxError> {
-    let (q0, v0) = kepler_exact(ECC, 0.0);
+    let (q0, v0) = kepler_orbit_at(ECC, 0.0);
     let t_end = ORBITS * 2.0 * PI;
     let sol = Driver::new(stepper, State::new(0.0, q0, v0))?
         .save(Save::End)?
@@ -76,7 +53,7 @@ fn kepler_run<S: Stepper<Partner = Velocities>>(stepper: S) -> Result<KeplerRun,
         .run_until(t_end)?;
     let s = sol.last();
     let (q, v) = (s.q.as_slice(), s.v.as_slice());
-    let (qe, _) = kepler_exact(ECC, t_end);
+    let (qe, _) = kepler_orbit_at(ECC, t_end);
     let energy = 0.5 * (v[0] * v[0] + v[1] * v[1]) - 1.0 / q[0].hypot(q[1]);
     let ell = (1.0 - ECC * ECC).sqrt();
     let position = (0..2).map(|i| (q[i] - qe[i]).abs()).fold(0.0, f64::max);

@@ -105,6 +105,17 @@ pub fn jacobi_sn_cn_dn(u: f64, m: f64, m1: f64) -> (f64, f64, f64) {
     (sn, cn, (m1 + m * cn * cn).sqrt())
 }
 
+/// (q, q̇) on the Kepler orbit of μ = 1, a = 1 and eccentricity e (0 ≤ e < 1) at time t from
+/// pericentre, from Kepler's equation: E − e sin E = t, q = (cos E − e, √(1 − e²) sin E),
+/// q̇ = Ė (−sin E, √(1 − e²) cos E) with Ė = 1/(1 − e cos E).
+pub fn kepler_orbit_at(e: f64, t: f64) -> ([f64; 2], [f64; 2]) {
+    let ea = kepler_eccentric_anomaly(t, e);
+    let (s, c) = ea.sin_cos();
+    let b = (1.0 - e * e).sqrt();
+    let edot = 1.0 / (1.0 - e * c);
+    ([c - e, b * s], [-s * edot, b * c * edot])
+}
+
 /// The eccentric anomaly E solving Kepler's equation E − e sin E = M for an ellipse, 0 ≤ e < 1.
 ///
 /// M is reduced to (−π, π] and E is returned on the same branch (E − M is 2π-periodic in M).

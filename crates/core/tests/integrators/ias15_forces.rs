@@ -139,18 +139,7 @@ fn closed_form_ias15_velocity_blow_up_and_error_contract() {
         .h_min(1e-8)
         .unwrap();
     let mut state = State::new(0.0, [0.0], [1.0]);
-    let mut h = 0.01;
-    let failure = loop {
-        let before = state.clone();
-        match s.step(&mut state, h) {
-            Ok(info) => h = info.h_next,
-            Err(e) => {
-                assert_eq!(state, before);
-                break e;
-            }
-        }
-        assert!(state.t < 1.0, "no failure before the blow-up");
-    };
+    let failure = step_until_failure(&mut s, &mut state, 0.01, 1.0, "the blow-up");
     assert!(matches!(failure, Error::StepSizeUnderflow { .. }), "{failure:?}");
     assert!(state.t > 0.999, "{}", state.t);
     // In fixed-step mode a step across the blow-up is a typed error, the state untouched.

@@ -166,6 +166,29 @@ pub fn run<S: Stepper>(stepper: &mut S, mut state: State<S::Partner>, h: f64, n:
     state
 }
 
+/// Steps `stepper` adaptively from `state` (first step `h`, then each step's proposal) until a step
+/// fails, and returns that error, checking that the failing step left the state exactly as it was and
+/// that no failure came before `t_end` was passed ("no failure before `what`" otherwise).
+pub fn step_until_failure<S: Stepper>(
+    stepper: &mut S,
+    state: &mut State<S::Partner>,
+    mut h: f64,
+    t_end: f64,
+    what: &str,
+) -> Error {
+    loop {
+        let before = state.clone();
+        match stepper.step(state, h) {
+            Ok(info) => h = info.h_next,
+            Err(e) => {
+                assert_eq!(*state, before);
+                return e;
+            }
+        }
+        assert!(state.t < t_end, "no failure before {what}");
+    }
+}
+
 #[test]
 fn closed_form_pendulum_reference_is_consistent() {
     // Small amplitude: θ ≈ θ₀ cos t to O(θ₀³); the exact form must also conserve H = ½θ̇² − cos θ
