@@ -91,7 +91,8 @@ pub struct SpecialPoint<K: Partner> {
     pub orbit: PeriodicOrbit<K>,
     /// How many members of the [`Branch`] precede it.
     pub after: usize,
-    /// Its unknowns z = (nodes, T, λ, c) and the family's tangent there.
+    /// Its unknowns z = (nodes, T, λ, c) and the family's tangent there (at a branch point, where
+    /// the tangent is not unique, the family's secant across it).
     z: DVector<f64>,
     tangent: DVector<f64>,
 }
