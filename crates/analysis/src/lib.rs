@@ -9,7 +9,8 @@
 //! spectra ([`lyapunov`]), the chaos indicators MEGNO and FLI and their stability maps over a grid of
 //! initial conditions ([`chaos`]; the maps with the feature `ensemble`), periodic orbits by single and
 //! multiple shooting and their Floquet multipliers ([`periodic`]), their families by pseudo-arclength
-//! continuation ([`continuation`]), sensitivities to parameters ([`sensitivity`]), and
+//! continuation through folds, branch points and period doublings, with branch switching
+//! ([`continuation`]), sensitivities to parameters ([`sensitivity`]), and
 //! linearisation with LQR for control ([`linearize`](mod@linearize), [`lqr`](mod@lqr)).
 //!
 //! ```
