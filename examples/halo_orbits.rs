@@ -40,11 +40,14 @@
 use noether::analysis::periodic::{Energy, FirstIntegral, PeriodicOrbit, Shooting, Stability};
 use noether::analysis::{Bifurcation, Branch, Continuation};
 use noether::core::integrators::Gauss;
-use noether::nalgebra::{Complex, DMatrix};
+use noether::nalgebra::Complex;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::three_body::{energy_drift, l1, l1_spatial_guess, SpatialCr3bp};
+use noether_testkit::canonical::relative_symplectic_defect;
+use noether_testkit::three_body::{
+    energy_drift, flow_closure, l1, l1_spatial_guess, mirror_defect, sample_orbit, SpatialCr3bp,
+};
 use std::process::ExitCode;
 
 const NAME: &str = "halo_orbits";
@@ -64,28 +67,14 @@ fn shooting(e: f64) -> Result<HaloShooting, BoxError> {
         .level(Energy(model), e))
 }
 
-/// ‖MᵀJM − J‖_max / ‖M‖∞².
-fn symplectic_defect(m: &DMatrix<f64>) -> f64 {
-    let norm = m.abs().row_sum().max();
-    noether::canonical::transform::symplectic_defect(m) / (norm * norm)
-}
-
 /// The orbit's points (x − x_L1, z) for the picture, every 10th step of the shooting's method.
 fn projection(
     stepper: &mut Gauss<HamiltonEquations<SpatialCr3bp>>,
     orbit: &PeriodicOrbit<Momenta>,
     xl: f64,
 ) -> Result<Vec<(f64, f64)>, BoxError> {
-    let mut st = orbit.initial.clone();
-    let h = orbit.period / orbit.steps as f64;
-    let mut pts = vec![(st.q[0] - xl, st.q[2])];
-    for i in 0..orbit.steps {
-        stepper.step(&mut st, h)?;
-        if i % 10 == 9 {
-            pts.push((st.q[0] - xl, st.q[2]));
-        }
-    }
-    Ok(pts)
+    let points = sample_orbit(stepper, &orbit.initial, (orbit.period, orbit.steps), 10)?;
+    Ok(points.iter().map(|st| (st.q[0] - xl, st.q[2])).collect())
 }
 
 /// The smallest distance from the Moon over the steps of one period of `orbit` (in the unit distance).
@@ -93,15 +82,14 @@ fn perilune(
     stepper: &mut Gauss<HamiltonEquations<SpatialCr3bp>>,
     orbit: &PeriodicOrbit<Momenta>,
 ) -> Result<f64, BoxError> {
-    let mut st = orbit.initial.clone();
-    let h = orbit.period / orbit.steps as f64;
-    let mut nearest = f64::INFINITY;
-    for _ in 0..orbit.steps {
-        stepper.step(&mut st, h)?;
-        let (x, y, z) = (st.q[0] - 1.0 + MU, st.q[1], st.q[2]);
-        nearest = nearest.min((x * x + y * y + z * z).sqrt());
-    }
-    Ok(nearest)
+    let points = sample_orbit(stepper, &orbit.initial, (orbit.period, orbit.steps), 1)?;
+    Ok(points
+        .iter()
+        .map(|st| {
+            let (x, y, z) = (st.q[0] - 1.0 + MU, st.q[1], st.q[2]);
+            (x * x + y * y + z * z).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min))
 }
 
 /// What the halo families measure: over the long half, the largest energy drift, trivial-pair mean
@@ -144,18 +132,14 @@ fn measure(
         let mu = &orbit.floquet.multipliers;
         let mean = ((mu[0] + mu[1]) * 0.5 - Complex::new(1.0, 0.0)).norm();
         m.trivial = worse(m.trivial, mean, i);
-        m.symplectic = m.symplectic.max(symplectic_defect(&orbit.monodromy));
+        m.symplectic = m.symplectic.max(relative_symplectic_defect(&orbit.monodromy));
         m.ratios.push((c_star + 2.0 * h) / orbit.initial.q[2].powi(2));
     }
-    let sign = |i: usize| if i == 2 { -1.0 } else { 1.0 };
     for ((h, orbit), (h_mirror, mirror)) in long.members.iter().zip(&short.members) {
-        for i in 0..3 {
-            m.mirror = m
-                .mirror
-                .max((mirror.initial.q[i] - sign(i) * orbit.initial.q[i]).abs())
-                .max((mirror.initial.v[i] - sign(i) * orbit.initial.v[i]).abs());
-        }
-        m.mirror = m.mirror.max((h - h_mirror).abs());
+        m.mirror = m
+            .mirror
+            .max(mirror_defect(&orbit.initial, &mirror.initial))
+            .max((h - h_mirror).abs());
     }
     Ok(m)
 }
@@ -241,22 +225,6 @@ fn stable_band(long: &Branch<Momenta>) -> Result<Band, BoxError> {
     })
 }
 
-/// The largest halo run once round by DOP853 at tolerance 1e-13: max |y(T) − y₀|.
-fn flow_closure(orbit: &PeriodicOrbit<Momenta>) -> Result<f64, BoxError> {
-    let dop = Dop853::new(HamiltonEquations::new(SpatialCr3bp { mu: MU })).tolerances(1e-13, 1e-13)?;
-    let round = Driver::new(dop, orbit.initial.clone())?
-        .save(Save::End)?
-        .run_until(orbit.initial.t + orbit.period)?;
-    let end = round.last();
-    Ok((0..3)
-        .map(|i| {
-            (end.q[i] - orbit.initial.q[i])
-                .abs()
-                .max((end.v[i] - orbit.initial.v[i]).abs())
-        })
-        .fold(0.0, f64::max))
-}
-
 /// Runs the example: the Lyapunov family for 8 members from amplitude 0.001, then one half of the halo
 /// family for `members` and the other for 6.
 pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
@@ -282,7 +250,7 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
     let halos = measure(&mut shooting, &long, &short, c_star)?;
     let band = stable_band(&long)?;
     let (c_end, last) = long.members.last().ok_or("no halo found")?;
-    let closure = flow_closure(last)?;
+    let closure = flow_closure(SpatialCr3bp { mu: MU }, &last.initial, last.period, 1e-13)?;
     let nearest = perilune(shooting.stepper_mut(), last)?;
     let km = |x: f64| x.abs() * 384_400.0;
 

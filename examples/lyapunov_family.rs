@@ -32,7 +32,8 @@ use noether::core::integrators::Gauss;
 use noether::plot::Figure;
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
-use noether_testkit::three_body::{energy_drift, l1, l1_guess, l1_linear, Cr3bp};
+use noether_testkit::canonical::relative_symplectic_defect;
+use noether_testkit::three_body::{energy_drift, flow_closure, l1, l1_guess, l1_linear, sample_orbit, Cr3bp};
 use std::f64::consts::PI;
 use std::process::ExitCode;
 
@@ -91,9 +92,7 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
         if i < NEAR {
             drift_near = drift_near.max(d);
         }
-        let m = &orbit.monodromy;
-        let norm = m.abs().row_sum().max();
-        symplectic = symplectic.max(noether::canonical::transform::symplectic_defect(m) / (norm * norm));
+        symplectic = symplectic.max(relative_symplectic_defect(&orbit.monodromy));
         let nontrivial = orbit.floquet.nontrivial();
         let (big, small) = (nontrivial[0], nontrivial[1]);
         pair = pair.max((big * small - 1.0).norm());
@@ -103,19 +102,7 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
         last = (c, orbit.period);
     }
     let (_, end) = branch.members.last().ok_or("no member found")?;
-    let closure = |orbit: &PeriodicOrbit<Momenta>| -> Result<f64, BoxError> {
-        let dop = Dop853::new(HamiltonEquations::new(model)).tolerances(1e-13, 1e-13)?;
-        let round = Driver::new(dop, orbit.initial.clone())?
-            .save(Save::End)?
-            .run_until(orbit.initial.t + orbit.period)?;
-        Ok((0..2)
-            .map(|i| {
-                (round.last().q[i] - orbit.initial.q[i])
-                    .abs()
-                    .max((round.last().v[i] - orbit.initial.v[i]).abs())
-            })
-            .fold(0.0, f64::max))
-    };
+    let closure = |orbit: &PeriodicOrbit<Momenta>| flow_closure(model, &orbit.initial, orbit.period, 1e-13);
     let near = &branch.members[NEAR.min(branch.members.len()) - 1].1;
     let (closure_near, closure_end) = (closure(near)?, closure(end)?);
     let reach = end.initial.q[0] - xl;
@@ -219,16 +206,9 @@ pub fn run_members(members: usize, opts: &Options) -> Result<Report, BoxError> {
             .x_label("x − x_L1")
             .y_label("y");
         for (h, orbit) in branch.members.iter().step_by(5) {
-            let stepper = family_shooting.stepper_mut();
-            let mut st = orbit.initial.clone();
-            let dt = orbit.period / orbit.steps as f64;
-            let mut pts = vec![(st.q[0] - xl, st.q[1])];
-            for i in 0..orbit.steps {
-                stepper.step(&mut st, dt)?;
-                if i % 6 == 5 {
-                    pts.push((st.q[0] - xl, st.q[1]));
-                }
-            }
+            let run = (orbit.period, orbit.steps);
+            let points = sample_orbit(family_shooting.stepper_mut(), &orbit.initial, run, 6)?;
+            let pts = points.iter().map(|st| (st.q[0] - xl, st.q[1])).collect();
             fig = fig.series(format!("C = {:.4}, T = {:.3}", -2.0 * h, orbit.period), pts);
         }
         report.save(opts, &fig, "lyapunov_family.svg")?;

@@ -2,13 +2,16 @@
 //! orbit against its published energies, and the halo orbits of the Earth-Moon restricted problem
 //! switched onto from the planar Lyapunov family about L1.
 
-use nalgebra::{Complex, DMatrix};
+use nalgebra::Complex;
 use noether_analysis::periodic::{Energy, FirstIntegral, Shooting};
 use noether_analysis::{Bifurcation, Continuation, Error};
 use noether_core::integrators::Gauss;
 use noether_core::prelude::*;
+use noether_testkit::canonical::relative_symplectic_defect;
 use noether_testkit::henon_heiles::HenonHeiles;
-use noether_testkit::three_body::{energy_drift, l1_spatial_guess, SpatialCr3bp};
+use noether_testkit::three_body::{
+    energy_drift, flow_closure, l1_spatial_guess, mirror_defect, SpatialCr3bp,
+};
 
 /// Earth-Moon mass ratio of the tests (the 0.01215 of Doedel et al. 2007).
 const MU: f64 = 0.01215;
@@ -22,12 +25,6 @@ fn halo_shooting(e: f64) -> Shooting<Gauss<HamiltonEquations<SpatialCr3bp>>> {
         .segments(6)
         .unwrap()
         .level(Energy(model), e)
-}
-
-/// ‖MᵀJM − J‖_max / ‖M‖∞²: how far the monodromy is from symplectic, relative to its size.
-fn symplectic_defect(m: &DMatrix<f64>) -> f64 {
-    let norm = m.abs().row_sum().max();
-    noether_canonical::transform::symplectic_defect(m) / (norm * norm)
 }
 
 /// Hénon-Heiles, H = ½(p_x² + p_y² + x² + y²) + x²y − y³/3: the straight-line orbit along the y axis
@@ -144,35 +141,16 @@ fn halo_family_from_the_lyapunov_family() {
         drift = drift.max(energy_drift(&model, shooting.stepper_mut(), &orbit.nodes, run, *h).unwrap());
         let fl = &orbit.floquet;
         mean = mean.max(((fl.multipliers[0] + fl.multipliers[1]) * 0.5 - Complex::new(1.0, 0.0)).norm());
-        symplectic = symplectic.max(symplectic_defect(&orbit.monodromy));
-        let mirrored = |i: usize, v: f64| if i == 2 { -v } else { v };
-        for i in 0..3 {
-            mirror = mirror
-                .max((south.initial.q[i] - mirrored(i, orbit.initial.q[i])).abs())
-                .max((south.initial.v[i] - mirrored(i, orbit.initial.v[i])).abs());
-        }
-        mirror = mirror.max((h - h_south).abs());
+        symplectic = symplectic.max(relative_symplectic_defect(&orbit.monodromy));
+        mirror = mirror
+            .max(mirror_defect(&orbit.initial, &south.initial))
+            .max((h - h_south).abs());
         ratios.push((-2.0 * bp.level - c) / (z0 * z0));
         assert!(c < last.0 && z0.abs() > last.1, "C {c} after {}, z₀ {z0}", last.0);
         last = (c, z0.abs());
     }
     let end = &north.members.last().unwrap().1;
-    let dop = Dop853::new(HamiltonEquations::new(model))
-        .tolerances(1e-13, 1e-13)
-        .unwrap();
-    let round = Driver::new(dop, end.initial.clone())
-        .unwrap()
-        .save(Save::End)
-        .unwrap()
-        .run_until(end.initial.t + end.period)
-        .unwrap();
-    let closure = (0..3)
-        .map(|i| {
-            (round.last().q[i] - end.initial.q[i])
-                .abs()
-                .max((round.last().v[i] - end.initial.v[i]).abs())
-        })
-        .fold(0.0, f64::max);
+    let closure = flow_closure(model, &end.initial, end.period, 1e-13).unwrap();
     println!(
         "halo to C = {:.6}, z₀ = {:.4}: (C* − C)/z₀² {:.4?}, H drift {drift:.1e}, trivial mean {mean:.1e}, \
          symplectic {symplectic:.1e}, mirror {mirror:.1e}, closure by DOP853 {closure:.1e}",

@@ -276,3 +276,12 @@ pub fn kepler_orbits(mu: f64, l: f64) -> [Orbit; 2] {
         },
     ]
 }
+
+/// ‖MᵀΩM − Ω‖_max / ‖M‖∞² of a square 2n × 2n matrix (noether-canonical's
+/// [`symplectic_defect`](noether_canonical::transform::symplectic_defect) relative to M's size): how
+/// far a monodromy matrix with multipliers in the thousands is from symplectic, at the scale of its
+/// own rounding.
+pub fn relative_symplectic_defect(m: &nalgebra::DMatrix<f64>) -> f64 {
+    let norm = m.abs().row_sum().max();
+    noether_canonical::transform::symplectic_defect(m) / (norm * norm)
+}

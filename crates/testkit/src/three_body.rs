@@ -265,3 +265,60 @@ pub fn energy_drift<H: Hamiltonian, S: Stepper<Partner = Momenta>>(
     }
     Ok(drift)
 }
+
+/// The states of one period of the orbit from `start` ((period T, steps N): N steps of T/N by
+/// `stepper`), `start` first and then every `every`-th step: its points for a picture, its closest
+/// approach to a primary.
+pub fn sample_orbit<S: Stepper<Partner = Momenta>>(
+    stepper: &mut S,
+    start: &State<Momenta>,
+    (period, steps): (f64, usize),
+    every: usize,
+) -> noether_core::Result<Vec<State<Momenta>>> {
+    let h = period / steps as f64;
+    let mut st = start.clone();
+    let mut points = vec![st.clone()];
+    for i in 1..=steps {
+        stepper.step(&mut st, h)?;
+        if i % every.max(1) == 0 {
+            points.push(st.clone());
+        }
+    }
+    Ok(points)
+}
+
+/// max |y(T) − y₀| over the coordinates and momenta of `start` run once round the period `period` by
+/// DOP853 at tolerance `tol` on `model`'s Hamilton equations: how far an orbit found on a method's
+/// discrete map is from closing under the flow.
+pub fn flow_closure<H: Hamiltonian>(
+    model: H,
+    start: &State<Momenta>,
+    period: f64,
+    tol: f64,
+) -> noether_core::Result<f64> {
+    use noether_core::prelude::{Dop853, Driver, HamiltonEquations, Save};
+    let dop = Dop853::new(HamiltonEquations::new(model)).tolerances(tol, tol)?;
+    let round = Driver::new(dop, start.clone())?
+        .save(Save::End)?
+        .run_until(start.t + period)?;
+    let end = round.last();
+    Ok(end
+        .q
+        .iter()
+        .zip(&start.q)
+        .chain(end.v.iter().zip(&start.v))
+        .fold(0.0, |m, (a, b)| m.max((a - b).abs())))
+}
+
+/// The largest difference between the state `b` and the mirror image of `a` in the primaries' plane
+/// of [`SpatialCr3bp`], (z, p_z) ↦ (−z, −p_z): zero when `b` starts the mirror image of `a`'s orbit.
+pub fn mirror_defect(a: &State<Momenta>, b: &State<Momenta>) -> f64 {
+    let sign = |i: usize| if i == 2 { -1.0 } else { 1.0 };
+    (0..a.q.len())
+        .map(|i| {
+            (b.q[i] - sign(i) * a.q[i])
+                .abs()
+                .max((b.v[i] - sign(i) * a.v[i]).abs())
+        })
+        .fold(0.0, f64::max)
+}
