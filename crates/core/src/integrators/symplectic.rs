@@ -152,8 +152,10 @@ impl<S: SplitDynamics> Stepper for SymplecticEuler<S> {
 /// drift D_c: q ← q + c D(v),  Ψ ← [[I, c ∂D/∂v(v)], [0, I]] Ψ   at the current v,
 /// ```
 ///
-/// the blocks ∂K/∂q and ∂D/∂v taken from J = [[0, ∂D/∂v], [∂K/∂q, 0]] of [`LinearizedDynamics`]
-/// (for H = T(p) + V(q): ∂D/∂p = ∇²T, ∂K/∂q = −∇²V; on a natural system ∂D/∂v = I needs no call).
+/// the blocks ∂K/∂q and ∂D/∂v of J = [[0, ∂D/∂v], [∂K/∂q, 0]], each asked of [`LinearizedDynamics`]
+/// alone ([`jacobian_vq`](LinearizedDynamics::jacobian_vq), [`jacobian_qv`](LinearizedDynamics::jacobian_qv);
+/// for H = T(p) + V(q): ∂D/∂p = ∇²T, ∂K/∂q = −∇²V, one Hessian each; on a natural system ∂D/∂v = I
+/// needs no call).
 pub(super) struct SplitTangent<'a, S> {
     system: &'a S,
     t: f64,
@@ -161,7 +163,8 @@ pub(super) struct SplitTangent<'a, S> {
     v: Vec<f64>,
     f: Vec<f64>,
     dq: Vec<f64>,
-    jac: DMatrix<f64>,
+    /// ∂v̇/∂q in a kick, ∂q̇/∂v in a drift: the one block of J each needs.
+    block: DMatrix<f64>,
     psi: DMatrix<f64>,
 }
 
@@ -175,16 +178,16 @@ impl<'a, S: SplitDynamics + LinearizedDynamics> SplitTangent<'a, S> {
             v: state.v.as_slice().to_vec(),
             f: vec![0.0; n],
             dq: vec![0.0; n],
-            jac: DMatrix::zeros(2 * n, 2 * n),
+            block: DMatrix::zeros(n, n),
             psi: DMatrix::identity(2 * n, 2 * n),
         }
     }
     pub(super) fn kick(&mut self, c: f64) -> Result<()> {
         let n = self.q.len();
         self.system.kick_rate(&self.q, &mut self.f)?;
-        self.system.jacobian(self.t, &self.q, &self.v, &mut self.jac)?;
-        let dv = self.jac.view((n, 0), (n, n)) * self.psi.rows(0, n) * c;
-        self.psi.rows_mut(n, n).add_assign(&dv);
+        self.system
+            .jacobian_vq(self.t, &self.q, &self.v, &mut self.block)?;
+        add_block_product(&mut self.psi, &self.block, (n, 0), c);
         self.v.iter_mut().zip(&self.f).for_each(|(v, f)| *v += c * f);
         Ok(())
     }
@@ -196,9 +199,9 @@ impl<'a, S: SplitDynamics + LinearizedDynamics> SplitTangent<'a, S> {
             self.q.iter_mut().zip(&self.v).for_each(|(q, v)| *q += c * v);
         } else {
             self.system.drift_rate(&self.v, &mut self.dq)?;
-            self.system.jacobian(self.t, &self.q, &self.v, &mut self.jac)?;
-            let dq = self.jac.view((0, n), (n, n)) * self.psi.rows(n, n) * c;
-            self.psi.rows_mut(0, n).add_assign(&dq);
+            self.system
+                .jacobian_qv(self.t, &self.q, &self.v, &mut self.block)?;
+            add_block_product(&mut self.psi, &self.block, (0, n), c);
             self.q.iter_mut().zip(&self.dq).for_each(|(q, d)| *q += c * d);
         }
         Ok(())
@@ -208,6 +211,28 @@ impl<'a, S: SplitDynamics + LinearizedDynamics> SplitTangent<'a, S> {
         check_result("step Jacobian Ψ", self.t, self.psi.as_slice())?;
         out.copy_from(&self.psi);
         Ok(())
+    }
+}
+
+/// Ψ's rows `to..to + n` += (B Ψ's rows `from..from + n`) c, B = `block` (n × n). Up to 5 rows
+/// in place, each entry's sum over k in ascending order, then × c, then added: the bits of nalgebra's
+/// `&block * psi.rows(from, n) * c` added after, without its two temporaries; above 5 nalgebra's
+/// product itself (blocked, where the temporaries cost nothing beside it).
+fn add_block_product(psi: &mut DMatrix<f64>, block: &DMatrix<f64>, (to, from): (usize, usize), c: f64) {
+    let n = block.nrows();
+    if n > 5 {
+        let d = block * psi.rows(from, n) * c;
+        psi.rows_mut(to, n).add_assign(&d);
+        return;
+    }
+    for j in 0..psi.ncols() {
+        for i in 0..n {
+            let mut s = block[(i, 0)] * psi[(from, j)];
+            for k in 1..n {
+                s += block[(i, k)] * psi[(from + k, j)];
+            }
+            psi[(to + i, j)] += s * c;
+        }
     }
 }
 

@@ -125,6 +125,40 @@ pub trait SplitDynamics: Dynamics {
 pub trait LinearizedDynamics: Dynamics {
     /// J = ∂(q̇, v̇)/∂(q, v) at (t, q, v), written into the 2n × 2n matrix `out`.
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()>;
+
+    /// J's lower-left block ∂v̇/∂q (n × n) at (t, q, v), into `out`: for a split system the
+    /// Jacobian of the kick, −M⁻¹∇²V(q) — all that a kick's tangent needs. The default takes it
+    /// from [`jacobian`](Self::jacobian); a system that computes the block alone for less (one
+    /// Hessian instead of J's two) overrides it with the same values.
+    fn jacobian_vq(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        jacobian_block(self, (t, q, v), (q.len(), 0), out)
+    }
+
+    /// J's upper-right block ∂q̇/∂v (n × n) at (t, q, v), into `out`: for a split system the
+    /// Jacobian of the drift (∇²T(p) for H = T(p) + V(q)). The default takes it from
+    /// [`jacobian`](Self::jacobian), as [`jacobian_vq`](Self::jacobian_vq)'s does.
+    fn jacobian_qv(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        jacobian_block(self, (t, q, v), (0, q.len()), out)
+    }
+}
+
+/// What a block of J is called in a shape error.
+pub(crate) const BLOCK: &str = "block of the Jacobian J (rows and columns)";
+
+/// The n × n block of J at `corner` (the defaults of [`LinearizedDynamics::jacobian_vq`] and
+/// [`jacobian_qv`](LinearizedDynamics::jacobian_qv)).
+fn jacobian_block<S: LinearizedDynamics + ?Sized>(
+    system: &S,
+    (t, q, v): (f64, &[f64], &[f64]),
+    corner: (usize, usize),
+    out: &mut DMatrix<f64>,
+) -> Result<()> {
+    let n = q.len();
+    crate::error::check_shape(BLOCK, out, n, n)?;
+    let mut j = DMatrix::zeros(2 * n, 2 * n);
+    system.jacobian(t, q, v, &mut j)?;
+    out.copy_from(&j.view(corner, (n, n)));
+    Ok(())
 }
 
 /// The general path of the fixed-size rates: [`Dynamics::rates`] on slices into arrays, `Ok` only

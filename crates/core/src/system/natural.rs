@@ -2,12 +2,12 @@
 //! q̈ = −M⁻¹∇V(q).
 
 use crate::ad;
-use crate::error::{check_finite, check_len};
+use crate::error::{check_finite, check_len, check_shape};
 use crate::natural::{Natural, Potential, PotentialField};
 use crate::Result;
 use nalgebra::DMatrix;
 
-use super::{Dynamics, LinearizedDynamics, SplitDynamics};
+use super::{Dynamics, LinearizedDynamics, SplitDynamics, BLOCK};
 
 /// State (q, q̇): q̇ = q̇, q̈ = −M⁻¹∇V(q).
 impl<P: Potential> Dynamics for Natural<P> {
@@ -75,8 +75,20 @@ impl<P: Potential> SplitDynamics for Natural<P> {
 
 /// On (q, q̇): J = [[0, I], [−M⁻¹∇²V(q), 0]].
 impl<P: Potential> LinearizedDynamics for Natural<P> {
-    fn jacobian(&self, _t: f64, q: &[f64], _v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+    fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         let n = self.dof();
+        let mut block = DMatrix::zeros(n, n);
+        self.jacobian_vq(t, q, v, &mut block)?;
+        out.fill(0.0);
+        out.view_mut((0, n), (n, n)).fill_with_identity();
+        out.view_mut((n, 0), (n, n)).copy_from(&block);
+        Ok(())
+    }
+    /// ∂v̇/∂q = −M⁻¹∇²V(q).
+    fn jacobian_vq(&self, _t: f64, q: &[f64], _v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        let n = self.dof();
+        check_len("q", q, n)?;
+        check_shape(BLOCK, out, n, n)?;
         let mut hess = DMatrix::zeros(n, n);
         ad::hessian(
             &PotentialField(self.potential_model()),
@@ -87,10 +99,13 @@ impl<P: Potential> LinearizedDynamics for Natural<P> {
             ad::Block::X,
             &mut hess,
         );
-        let minv_hess = -self.inverse_mass_matrix() * hess;
-        out.fill(0.0);
-        out.view_mut((0, n), (n, n)).fill_with_identity();
-        out.view_mut((n, 0), (n, n)).copy_from(&minv_hess);
+        out.copy_from(&(-self.inverse_mass_matrix() * hess));
+        Ok(())
+    }
+    /// ∂q̇/∂v = I.
+    fn jacobian_qv(&self, _t: f64, _q: &[f64], _v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        check_shape(BLOCK, out, self.dof(), self.dof())?;
+        out.fill_with_identity();
         Ok(())
     }
 }

@@ -54,4 +54,10 @@ impl<S: LinearizedDynamics> LinearizedDynamics for &S {
     fn jacobian(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         (**self).jacobian(t, q, v, out)
     }
+    fn jacobian_vq(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        (**self).jacobian_vq(t, q, v, out)
+    }
+    fn jacobian_qv(&self, t: f64, q: &[f64], v: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        (**self).jacobian_qv(t, q, v, out)
+    }
 }

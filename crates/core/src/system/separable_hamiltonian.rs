@@ -2,11 +2,11 @@
 //! ṗ = −∇V(q), all gradients and Hessians by dual numbers.
 
 use crate::ad::{self, Block, Field};
-use crate::error::{check_finite, check_len, check_result, finite_result};
+use crate::error::{check_finite, check_len, check_result, check_shape, finite_result};
 use crate::{Result, Scalar, Separable, SeparableHamiltonian};
 use nalgebra::DMatrix;
 
-use super::{rates_by_slices, Dynamics, LinearizedDynamics, SplitDynamics};
+use super::{rates_by_slices, Dynamics, LinearizedDynamics, SplitDynamics, BLOCK};
 
 struct KineticField<'a, S: ?Sized>(&'a S);
 impl<S: Separable + ?Sized> Field for KineticField<'_, S> {
@@ -147,32 +147,31 @@ impl<S: Separable> SplitDynamics for SeparableHamiltonian<S> {
     }
 }
 
-/// J = [[0, ∇²T(p)], [−∇²V(q), 0]].
+/// J = [[0, ∇²T(p)], [−∇²V(q), 0]]; each block alone is one Hessian.
 impl<S: Separable> LinearizedDynamics for SeparableHamiltonian<S> {
-    fn jacobian(&self, _t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+    fn jacobian(&self, t: f64, q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
         let n = self.0.dof();
         let mut block = DMatrix::zeros(n, n);
         out.fill(0.0);
-        ad::hessian(
-            &KineticOfX(&self.0),
-            0.0,
-            p,
-            &[],
-            ad::Block::X,
-            ad::Block::X,
-            &mut block,
-        );
+        self.jacobian_qv(t, q, p, &mut block)?;
         out.view_mut((0, n), (n, n)).copy_from(&block);
-        ad::hessian(
-            &PotentialOf(&self.0),
-            0.0,
-            q,
-            &[],
-            ad::Block::X,
-            ad::Block::X,
-            &mut block,
-        );
-        out.view_mut((n, 0), (n, n)).copy_from(&(-&block));
+        self.jacobian_vq(t, q, p, &mut block)?;
+        out.view_mut((n, 0), (n, n)).copy_from(&block);
+        Ok(())
+    }
+    /// ∂ṗ/∂q = −∇²V(q).
+    fn jacobian_vq(&self, _t: f64, q: &[f64], _p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        check_len("q", q, self.0.dof())?;
+        check_shape(BLOCK, out, q.len(), q.len())?;
+        ad::hessian(&PotentialOf(&self.0), 0.0, q, &[], Block::X, Block::X, out);
+        out.neg_mut();
+        Ok(())
+    }
+    /// ∂q̇/∂p = ∇²T(p).
+    fn jacobian_qv(&self, _t: f64, _q: &[f64], p: &[f64], out: &mut DMatrix<f64>) -> Result<()> {
+        check_len("p", p, self.0.dof())?;
+        check_shape(BLOCK, out, p.len(), p.len())?;
+        ad::hessian(&KineticOfX(&self.0), 0.0, p, &[], Block::X, Block::X, out);
         Ok(())
     }
 }
