@@ -17,7 +17,7 @@ use crate::derive::{directional, gradient};
 use crate::graph::{sign, Graph, Id};
 use crate::program::{Backend, Outputs, Program};
 use crate::trace::{Guard, Recorded};
-use crate::{ldlt, Compile, Result};
+use crate::{ldlt, Result};
 use nalgebra::DMatrix;
 use noether_core::error::check_phase_point;
 use noether_core::linalg::{factor_positive_mass, positive_pivots_regular};
@@ -140,6 +140,15 @@ pub(crate) fn default_point(n: usize) -> (Vec<f64>, Vec<f64>) {
     (q, v)
 }
 
+/// The position rates q̇ = v of a system on (q, q̇) with `n` degrees of freedom, into `dq` (both
+/// checked to have n entries).
+pub(crate) fn velocity_rates(n: usize, v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
+    noether_core::error::check_len("q̇", v, n)?;
+    noether_core::error::check_len("q̇ (output)", dq, n)?;
+    dq.copy_from_slice(v);
+    Ok(())
+}
+
 /// `true` when every guard holds: the outputs from `offset` on have the signs recorded.
 #[inline]
 pub(crate) fn guards_hold(o: &Outputs<'_>, offset: usize, signs: &[f64]) -> bool {
@@ -181,33 +190,13 @@ fn dense_solve(o: &Outputs<'_>, n: usize, t: f64, a: &mut [f64]) -> bool {
     a.iter().all(|x| x.is_finite())
 }
 
+compiled_constructors! {
+    CompiledEulerLagrange<L: Lagrangian>(EulerLagrange<L>), "L", accelerations;
+    default "t = 0, q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i", (q, v) => (0.0, &q, &v);
+    at "(t, q, q̇)" (t: f64, q: &[f64], v: &[f64]) => (t, q, v)
+}
+
 impl<L: Lagrangian> CompiledEulerLagrange<L> {
-    /// Compiles `system`, recording L at a point chosen only for the branches L takes there (t = 0,
-    /// q_i = 0.1 + 0.01 i, q̇_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
-    pub fn new(system: EulerLagrange<L>) -> Result<Self> {
-        let (q, v) = default_point(system.dof());
-        Self::at(system, 0.0, &q, &v)
-    }
-
-    /// Compiles `system`, recording L at (t, q, q̇): where L branches (compares values), the compiled
-    /// code follows the branches taken there and falls back to dual numbers elsewhere.
-    pub fn at(system: EulerLagrange<L>, t: f64, q: &[f64], v: &[f64]) -> Result<Self> {
-        Self::build(system, (t, q, v), Backend::Native)
-    }
-
-    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
-    /// feature `jit` (no time spent in Cranelift; the same results bit for bit).
-    pub fn interpreted(system: EulerLagrange<L>) -> Result<Self> {
-        let (q, v) = default_point(system.dof());
-        Self::build(system, (0.0, &q, &v), Backend::Interpreter)
-    }
-
-    /// What runs the programs ([`Backend::Native`] with the feature `jit`, unless built by
-    /// [`interpreted`](Self::interpreted) or Cranelift failed).
-    pub fn backend(&self) -> Backend {
-        self.accelerations.backend()
-    }
-
     /// Records at (t, q, q̇), derives, and builds the programs for `backend`.
     fn build(system: EulerLagrange<L>, (t, q, v): (f64, &[f64], &[f64]), backend: Backend) -> Result<Self> {
         let n = system.dof();
@@ -397,13 +386,6 @@ impl<L: Lagrangian> CompiledEulerLagrange<L> {
     }
 }
 
-impl<L: Lagrangian> Compile for EulerLagrange<L> {
-    type Compiled = CompiledEulerLagrange<L>;
-    fn compile(self) -> Result<CompiledEulerLagrange<L>> {
-        CompiledEulerLagrange::new(self)
-    }
-}
-
 impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
     type Partner = Velocities;
     fn dof(&self) -> usize {
@@ -426,10 +408,7 @@ impl<L: Lagrangian> Dynamics for CompiledEulerLagrange<L> {
         CompiledEulerLagrange::energy(self, t, q, v)
     }
     fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
-        noether_core::error::check_len("q̇", v, self.dual.dof())?;
-        noether_core::error::check_len("q̇ (output)", dq, self.dual.dof())?;
-        dq.copy_from_slice(v);
-        Ok(())
+        velocity_rates(self.dual.dof(), v, dq)
     }
 }
 

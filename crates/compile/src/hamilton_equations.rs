@@ -8,11 +8,11 @@
 //! a [`Hamiltonian`], or built on the graph from a Lagrangian quadratic in q̇ ([`crate::legendre`]).
 
 use crate::derive::gradient;
-use crate::euler_lagrange::{default_point, guards_hold, mass_usable};
+use crate::euler_lagrange::{guards_hold, mass_usable};
 use crate::graph::{Graph, Id};
 use crate::program::{Backend, Outputs, Program};
 use crate::trace::{Guard, Recorded};
-use crate::{Compile, Result};
+use crate::Result;
 use nalgebra::DMatrix;
 use noether_core::error::{check_len, check_phase_point};
 use noether_core::system::LinearizedDynamics;
@@ -39,32 +39,13 @@ pub struct CompiledHamiltonEquations<H> {
     jacobian: OnceLock<Program>,
 }
 
+compiled_constructors! {
+    CompiledHamiltonEquations<H: Hamiltonian>(HamiltonEquations<H>), "H", rates;
+    default "t = 0, q_i = 0.1 + 0.01 i, p_i = 0.2 + 0.01 i", (q, p) => (0.0, &q, &p);
+    at "(t, q, p)" (t: f64, q: &[f64], p: &[f64]) => (t, q, p)
+}
+
 impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
-    /// Compiles `system`, recording H at a point chosen only for the branches H takes there (t = 0,
-    /// q_i = 0.1 + 0.01 i, p_i = 0.2 + 0.01 i); see [`at`](Self::at) to choose it.
-    pub fn new(system: HamiltonEquations<H>) -> Result<Self> {
-        let (q, p) = default_point(system.dof());
-        Self::at(system, 0.0, &q, &p)
-    }
-
-    /// Compiles `system`, recording H at (t, q, p).
-    pub fn at(system: HamiltonEquations<H>, t: f64, q: &[f64], p: &[f64]) -> Result<Self> {
-        Self::build(system, (t, q, p), Backend::Native)
-    }
-
-    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
-    /// feature `jit`.
-    pub fn interpreted(system: HamiltonEquations<H>) -> Result<Self> {
-        let (q, p) = default_point(system.dof());
-        Self::build(system, (0.0, &q, &p), Backend::Interpreter)
-    }
-
-    /// What runs the programs ([`Backend::Native`] with the feature `jit`, unless built by
-    /// [`interpreted`](Self::interpreted) or Cranelift failed).
-    pub fn backend(&self) -> Backend {
-        self.rates.backend()
-    }
-
     /// Records at (t, q, p), derives, and builds the programs for `backend`.
     fn build(
         system: HamiltonEquations<H>,
@@ -159,13 +140,6 @@ impl<H: Hamiltonian> CompiledHamiltonEquations<H> {
             outputs.extend(&self.outputs[n2..]);
             Program::with_backend(&g, 1 + n2, &outputs, self.rates.backend())
         })
-    }
-}
-
-impl<H: Hamiltonian> Compile for HamiltonEquations<H> {
-    type Compiled = CompiledHamiltonEquations<H>;
-    fn compile(self) -> Result<CompiledHamiltonEquations<H>> {
-        CompiledHamiltonEquations::new(self)
     }
 }
 

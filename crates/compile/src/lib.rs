@@ -34,6 +34,8 @@
 //! dual-number path, which gives the right answer or the right error. A model that reads the value
 //! of a traced number is refused ([`Error::Refused`]).
 
+#[macro_use]
+mod constructors;
 mod default_method;
 pub mod derive;
 mod error;

@@ -10,11 +10,11 @@
 //! splitting method: [`SplitDynamics::kick_rate`] runs the program and nothing else.
 
 use crate::derive::gradient;
-use crate::euler_lagrange::{default_point, guards_hold, value_or};
+use crate::euler_lagrange::{guards_hold, value_or, velocity_rates};
 use crate::graph::{Graph, Id};
 use crate::program::Program;
 use crate::trace::{Guard, Recorded};
-use crate::{Compile, Result};
+use crate::Result;
 use nalgebra::DMatrix;
 use noether_core::error::check_len;
 use noether_core::system::{LinearizedDynamics, SplitDynamics};
@@ -54,27 +54,13 @@ fn apply_inverse_mass(g: &mut Graph, inverse: &DMatrix<f64>, y: &[Id]) -> Vec<Id
         .collect()
 }
 
+compiled_constructors! {
+    CompiledNatural<P: Potential>(Natural<P>), "V", accelerations;
+    default "q_i = 0.1 + 0.01 i", (q, _) => &q;
+    at "q" (q: &[f64]) => q
+}
+
 impl<P: Potential> CompiledNatural<P> {
-    /// Compiles `system`, recording V at a point chosen only for the branches V takes there
-    /// (q_i = 0.1 + 0.01 i); see [`at`](Self::at) to choose it.
-    pub fn new(system: Natural<P>) -> Result<Self> {
-        let (q, _) = default_point(system.dof());
-        Self::at(system, &q)
-    }
-
-    /// Compiles `system`, recording V at q: where V branches (compares values), the compiled code
-    /// follows the branches taken there and falls back to dual numbers elsewhere.
-    pub fn at(system: Natural<P>, q: &[f64]) -> Result<Self> {
-        Self::build(system, q, crate::Backend::Native)
-    }
-
-    /// Compiles `system` as [`new`](Self::new) does, its programs run by the interpreter even with the
-    /// feature `jit` (no time spent in Cranelift; the same results bit for bit).
-    pub fn interpreted(system: Natural<P>) -> Result<Self> {
-        let (q, _) = default_point(system.dof());
-        Self::build(system, &q, crate::Backend::Interpreter)
-    }
-
     /// Records V at q, derives, and builds the programs for `backend`.
     fn build(system: Natural<P>, q: &[f64], backend: crate::Backend) -> Result<Self> {
         let n = system.dof();
@@ -108,12 +94,6 @@ impl<P: Potential> CompiledNatural<P> {
     /// The dual-number system it was compiled from (and falls back to).
     pub fn dual(&self) -> &Natural<P> {
         &self.dual
-    }
-
-    /// What runs the programs ([`Backend::Native`](crate::Backend::Native) with the feature `jit`,
-    /// unless Cranelift failed).
-    pub fn backend(&self) -> crate::Backend {
-        self.accelerations.backend()
     }
 
     /// The number of operations of the accelerations' program.
@@ -225,13 +205,6 @@ impl<P: Potential> CompiledNatural<P> {
     }
 }
 
-impl<P: Potential> Compile for Natural<P> {
-    type Compiled = CompiledNatural<P>;
-    fn compile(self) -> Result<CompiledNatural<P>> {
-        CompiledNatural::new(self)
-    }
-}
-
 /// State (q, q̇): q̇ = q̇, q̈ = −M⁻¹∇V(q).
 impl<P: Potential> Dynamics for CompiledNatural<P> {
     type Partner = Velocities;
@@ -277,10 +250,7 @@ impl<P: Potential> Dynamics for CompiledNatural<P> {
         CompiledNatural::energy(self, q, v).map_err(|e| e.at_time(t))
     }
     fn position_rates(&self, _t: f64, _q: &[f64], v: &[f64], dq: &mut [f64]) -> noether_core::Result<()> {
-        check_len("q̇", v, self.dof())?;
-        check_len("q̇ (output)", dq, self.dof())?;
-        dq.copy_from_slice(v);
-        Ok(())
+        velocity_rates(self.dof(), v, dq)
     }
 }
 

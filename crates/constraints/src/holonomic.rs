@@ -167,6 +167,21 @@ pub(crate) fn partial_t_unchecked<C: Holonomic + ?Sized>(c: &C, t: f64, q: &[f64
     jets::along(&Field(c), t, q, &[], (1.0, &[], &[]), out)
 }
 
+/// `unchecked(c, t, q, v, ·)` into `out` as `what` (see [`into_checked`]), after the checks of
+/// [`velocity_residual`]: those of [`values`], and v of length n and finite.
+fn along_velocity<C: Holonomic + ?Sized>(
+    c: &C,
+    (t, q, v): (f64, &[f64], &[f64]),
+    out: &mut [f64],
+    what: &'static str,
+    unchecked: impl FnOnce(&C, f64, &[f64], &[f64], &mut [f64]),
+) -> Result<()> {
+    check_args(c, t, q, out.len())?;
+    check_len("q̇", v, c.dof())?;
+    check_finite("q̇", v)?;
+    into_checked(what, t, out, |r| unchecked(c, t, q, v, r))
+}
+
 /// The velocity residual Φ_q v + φ_t = dφ/dt along q̇ = v, into `out`; v of length n, finite, and
 /// the other checks as in [`values`].
 pub fn velocity_residual<C: Holonomic + ?Sized>(
@@ -176,12 +191,8 @@ pub fn velocity_residual<C: Holonomic + ?Sized>(
     v: &[f64],
     out: &mut [f64],
 ) -> Result<()> {
-    check_args(c, t, q, out.len())?;
-    check_len("q̇", v, c.dof())?;
-    check_finite("q̇", v)?;
-    into_checked("constraint velocity residual Φ_q q̇ + φ_t", t, out, |r| {
-        velocity_residual_unchecked(c, t, q, v, r)
-    })
+    let what = "constraint velocity residual Φ_q q̇ + φ_t";
+    along_velocity(c, (t, q, v), out, what, velocity_residual_unchecked)
 }
 
 /// Φ_q v + φ_t into `out`, lengths unchecked.
@@ -204,12 +215,13 @@ pub fn acceleration_bias<C: Holonomic + ?Sized>(
     v: &[f64],
     out: &mut [f64],
 ) -> Result<()> {
-    check_args(c, t, q, out.len())?;
-    check_len("q̇", v, c.dof())?;
-    check_finite("q̇", v)?;
-    into_checked("constraint acceleration bias", t, out, |r| {
-        acceleration_bias_unchecked(c, t, q, v, r)
-    })
+    along_velocity(
+        c,
+        (t, q, v),
+        out,
+        "constraint acceleration bias",
+        acceleration_bias_unchecked,
+    )
 }
 
 /// The acceleration term into `out`, lengths unchecked.

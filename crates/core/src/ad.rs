@@ -150,6 +150,13 @@ impl<D: Scalar, const S: usize> Buf<D, S> {
         }
     }
 
+    /// The blocks x and y lifted entry by entry, entry i of block b as `seed(b, values of b, i)`.
+    #[inline]
+    pub(crate) fn pair(x: &[f64], y: &[f64], seed: impl Fn(Block, &[f64], usize) -> D) -> (Self, Self) {
+        let xs = Self::new(x.len(), |i| seed(Block::X, x, i));
+        (xs, Self::new(y.len(), |i| seed(Block::Y, y, i)))
+    }
+
     /// `n` copies of `d`.
     #[inline]
     pub fn filled(n: usize, d: D) -> Self {
@@ -213,10 +220,7 @@ pub fn seed_chunk<const W: usize, const S: usize>(
             d
         }
     };
-    (
-        Buf::new(x.len(), |i| seed(Block::X, x, i)),
-        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
-    )
+    Buf::pair(x, y, seed)
 }
 
 /// Value of f at real arguments.
@@ -465,10 +469,7 @@ pub(crate) fn seed_second<const W: usize>(
             d
         }
     };
-    (
-        Buf::new(x.len(), |i| seed(Block::X, x, i)),
-        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
-    )
+    Buf::pair(x, y, seed)
 }
 
 /// (x, y) lifted to `HyperDualVec<W, W>` for the chunk (ca.., cb..) of the mixed Hessian: variable
@@ -495,10 +496,7 @@ fn seed_pair<const W: usize>(
         }
         d
     };
-    (
-        Buf::new(x.len(), |i| seed(Block::X, x, i)),
-        Buf::new(y.len(), |i| seed(Block::Y, y, i)),
-    )
+    Buf::pair(x, y, seed)
 }
 
 fn hessian_blocks<F: Field, const W: usize>(

@@ -14,7 +14,9 @@
 //! §2.2 and §3.2.
 
 use crate::lagrangian::{difference_quotient, midpoint, DiscreteLagrangian};
+use crate::optimal_control::DiscreteActuated;
 use nalgebra::DVector;
+use noether_core::control::Actuated;
 use noether_core::{EulerLagrange, Lagrangian, Momenta, Result, Scalar, State};
 
 /// A discrete Lagrangian built from a continuous Lagrangian: gives access to the continuous equations
@@ -57,138 +59,133 @@ pub trait FromLagrangian {
     }
 }
 
-/// The midpoint discrete Lagrangian `L_d = h L(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h)`.
-pub struct Midpoint<L> {
-    el: EulerLagrange<L>,
-}
-
-impl<L: Lagrangian> Midpoint<L> {
-    /// The midpoint rule applied to `lagrangian`.
-    pub fn new(lagrangian: L) -> Self {
-        Midpoint {
-            el: EulerLagrange::new(lagrangian),
+/// A quadrature rule of a continuous Lagrangian: the struct around its Euler-Lagrange equations,
+/// `new`, [`FromLagrangian`], and the parts of [`DiscreteLagrangian`] and
+/// [`DiscreteActuated`](crate::DiscreteActuated) every rule shares (the continuous rates, dof, the
+/// primary-constraint check, the model's forces and input forces by the rule's `forces` function),
+/// around the rule's own `discrete_lagrangian` and the formulas of its forces.
+macro_rules! quadrature_rule {
+    (
+        $(#[$doc:meta])*
+        $rule:ident, $name:literal, $forces:ident;
+        force $force_doc:literal;
+        input_force $input_force_doc:literal;
+        $discrete_lagrangian:item
+    ) => {
+        $(#[$doc])*
+        pub struct $rule<L> {
+            el: EulerLagrange<L>,
         }
-    }
+
+        impl<L: Lagrangian> $rule<L> {
+            #[doc = concat!("The ", $name, " rule applied to `lagrangian`.")]
+            pub fn new(lagrangian: L) -> Self {
+                $rule {
+                    el: EulerLagrange::new(lagrangian),
+                }
+            }
+        }
+
+        impl<L: Lagrangian> FromLagrangian for $rule<L> {
+            type L = L;
+            fn continuous(&self) -> &EulerLagrange<L> {
+                &self.el
+            }
+        }
+
+        impl<L: Lagrangian> DiscreteLagrangian for $rule<L> {
+            fn continuous_rates(
+                &self,
+                t: f64,
+                q: &[f64],
+                p: &[f64],
+                dq: &mut [f64],
+                dp: &mut [f64],
+            ) -> Option<Result<()>> {
+                Some(self.hamilton_rates(t, q, p, dq, dp))
+            }
+            fn dof(&self) -> usize {
+                self.el.dof()
+            }
+
+            $discrete_lagrangian
+
+            fn has_discrete_force(&self) -> bool {
+                self.el.lagrangian().has_generalized_force()
+            }
+
+            fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
+                crate::primary::check(&self.el, t, q, p, tol)
+            }
+
+            #[doc = $force_doc]
+            fn discrete_force<D: Scalar>(
+                &self,
+                t0: f64,
+                h: f64,
+                q0: &[D],
+                q1: &[D],
+                minus: &mut [D],
+                plus: &mut [D],
+            ) {
+                let l = self.el.lagrangian();
+                $forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+                    l.generalized_force(t, q, v, out)
+                });
+            }
+        }
+
+        impl<L: Actuated> DiscreteActuated for $rule<L> {
+            fn inputs(&self) -> usize {
+                self.el.lagrangian().inputs()
+            }
+
+            #[doc = $input_force_doc]
+            fn discrete_input_force<D: Scalar>(
+                &self,
+                t0: f64,
+                h: f64,
+                q0: &[D],
+                q1: &[D],
+                u: &[D],
+                minus: &mut [D],
+                plus: &mut [D],
+            ) {
+                let model = self.el.lagrangian();
+                $forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
+                    model.input_force(t, q, v, u, out)
+                });
+            }
+
+            fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
+                self.el.momenta(t, q, v, p)
+            }
+        }
+    };
 }
 
-impl<L: Lagrangian> FromLagrangian for Midpoint<L> {
-    type L = L;
-    fn continuous(&self) -> &EulerLagrange<L> {
-        &self.el
-    }
-}
-
-impl<L: Lagrangian> DiscreteLagrangian for Midpoint<L> {
-    fn continuous_rates(
-        &self,
-        t: f64,
-        q: &[f64],
-        p: &[f64],
-        dq: &mut [f64],
-        dp: &mut [f64],
-    ) -> Option<Result<()>> {
-        Some(self.hamilton_rates(t, q, p, dq, dp))
-    }
-    fn dof(&self) -> usize {
-        self.el.dof()
-    }
-
+quadrature_rule! {
+    /// The midpoint discrete Lagrangian `L_d = h L(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h)`.
+    Midpoint, "midpoint", midpoint_forces;
+    force "f⁻ = f⁺ = (h/2) Q(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h).";
+    input_force "f⁻ = f⁺ = (h/2) Q_u(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h, u).";
     fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
         let half = D::from(0.5);
         let (mid, v) = (midpoint(q0, q1), difference_quotient(q0, q1, h));
         self.el.lagrangian().lagrangian(h * half + t0, &mid, &v) * h
     }
-
-    fn has_discrete_force(&self) -> bool {
-        self.el.lagrangian().has_generalized_force()
-    }
-
-    fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
-        crate::primary::check(&self.el, t, q, p, tol)
-    }
-
-    /// f⁻ = f⁺ = (h/2) Q(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h).
-    fn discrete_force<D: Scalar>(
-        &self,
-        t0: f64,
-        h: f64,
-        q0: &[D],
-        q1: &[D],
-        minus: &mut [D],
-        plus: &mut [D],
-    ) {
-        let l = self.el.lagrangian();
-        midpoint_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
-            l.generalized_force(t, q, v, out)
-        });
-    }
 }
 
-/// The trapezoidal discrete Lagrangian `L_d = (h/2) [L(t₀, q₀, v) + L(t₀ + h, q₁, v)]`, v = (q₁ − q₀)/h.
-pub struct Trapezoidal<L> {
-    el: EulerLagrange<L>,
-}
-
-impl<L: Lagrangian> Trapezoidal<L> {
-    /// The trapezoidal rule applied to `lagrangian`.
-    pub fn new(lagrangian: L) -> Self {
-        Trapezoidal {
-            el: EulerLagrange::new(lagrangian),
-        }
-    }
-}
-
-impl<L: Lagrangian> FromLagrangian for Trapezoidal<L> {
-    type L = L;
-    fn continuous(&self) -> &EulerLagrange<L> {
-        &self.el
-    }
-}
-
-impl<L: Lagrangian> DiscreteLagrangian for Trapezoidal<L> {
-    fn continuous_rates(
-        &self,
-        t: f64,
-        q: &[f64],
-        p: &[f64],
-        dq: &mut [f64],
-        dp: &mut [f64],
-    ) -> Option<Result<()>> {
-        Some(self.hamilton_rates(t, q, p, dq, dp))
-    }
-    fn dof(&self) -> usize {
-        self.el.dof()
-    }
-
+quadrature_rule! {
+    /// The trapezoidal discrete Lagrangian `L_d = (h/2) [L(t₀, q₀, v) + L(t₀ + h, q₁, v)]`, v = (q₁ − q₀)/h.
+    Trapezoidal, "trapezoidal", trapezoidal_forces;
+    force "f⁻ = (h/2) Q(t₀, q₀, v), f⁺ = (h/2) Q(t₀ + h, q₁, v), v = (q₁ − q₀)/h.";
+    input_force "f⁻ = (h/2) Q_u(t₀, q₀, v, u), f⁺ = (h/2) Q_u(t₀ + h, q₁, v, u), v = (q₁ − q₀)/h.";
     fn discrete_lagrangian<D: Scalar>(&self, t0: f64, h: D, q0: &[D], q1: &[D]) -> D {
         let v = difference_quotient(q0, q1, h);
         let l = self.el.lagrangian();
         let t = D::from(t0);
         (l.lagrangian(t, q0, &v) + l.lagrangian(t + h, q1, &v)) * h * 0.5
-    }
-
-    fn has_discrete_force(&self) -> bool {
-        self.el.lagrangian().has_generalized_force()
-    }
-
-    fn check_momenta(&self, t: f64, q: &[f64], p: &[f64], tol: f64) -> Result<()> {
-        crate::primary::check(&self.el, t, q, p, tol)
-    }
-
-    /// f⁻ = (h/2) Q(t₀, q₀, v), f⁺ = (h/2) Q(t₀ + h, q₁, v), v = (q₁ − q₀)/h.
-    fn discrete_force<D: Scalar>(
-        &self,
-        t0: f64,
-        h: f64,
-        q0: &[D],
-        q1: &[D],
-        minus: &mut [D],
-        plus: &mut [D],
-    ) {
-        let l = self.el.lagrangian();
-        trapezoidal_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
-            l.generalized_force(t, q, v, out)
-        });
     }
 }
 

@@ -73,20 +73,19 @@ use noether_core::integrators::{SignedStepper, SignedTangentStepper};
 use noether_core::linalg::DenseFactor;
 use noether_core::{Momenta, Result, State, StepInfo, TangentStepper};
 
-/// Takes the map's signed step, then Ψ from `jacobian(map, q₀, p₀, q₁)`; when that fails, the state
-/// is put back and `psi` is not written.
-fn step_then_jacobian<F: SignedStepper<Partner = Momenta>>(
+/// Takes the map's signed step, then Ψ from its [`StepJacobian`]; when that fails, the state is put
+/// back and `psi` is not written.
+fn step_then_jacobian<F: StepJacobian>(
     map: &mut F,
     state: &mut State<Momenta>,
     h: f64,
     psi: &mut DMatrix<f64>,
-    jacobian: impl FnOnce(&F, &[f64], &[f64], &[f64]) -> Result<DMatrix<f64>>,
 ) -> Result<StepInfo> {
     check_signed_step(map.dof(), state, h)?;
     noether_core::tangent::check_tangent_shape(psi, map.dof())?;
     let (t, q0, p0) = (state.t, state.q.as_slice().to_vec(), state.v.as_slice().to_vec());
     let info = map.step_signed(state, h)?;
-    match jacobian(map, &q0, &p0, state.q.as_slice()).and_then(|m| {
+    match map.step_jacobian(t, h, &q0, state.q.as_slice()).and_then(|m| {
         noether_core::error::check_result("step Jacobian Ψ", t, m.as_slice())?;
         Ok(m)
     }) {
@@ -114,112 +113,111 @@ fn blocks(qq: &DMatrix<f64>, qp: &DMatrix<f64>, pq: &DMatrix<f64>, pp: &DMatrix<
     psi
 }
 
-impl<Ld: DiscreteLagrangian> SignedTangentStepper for VariationalIntegrator<Ld> {
-    fn step_signed_tangent(
-        &mut self,
-        state: &mut State<Momenta>,
-        h: f64,
-        psi: &mut DMatrix<f64>,
-    ) -> Result<StepInfo> {
-        let t = state.t;
-        step_then_jacobian(self, state, h, psi, |vi, q0, _p0, q1| {
-            let ld = vi.discrete_lagrangian();
-            let n = q0.len();
-            let zero = || DMatrix::zeros(n, n);
-            let (mut d12, mut d11, mut d22) = (zero(), zero(), zero());
-            ld.d12(t, h, q0, q1, &mut d12);
-            ld.d11(t, h, q0, q1, &mut d11);
-            ld.d22(t, h, q0, q1, &mut d22);
-            // The forces' derivatives (zero without forces): ∂f±/∂q₀ and ∂f±/∂q₁.
-            let (mut m0, mut p0, mut m1, mut p1) = (zero(), zero(), zero(), zero());
-            ld.force_derivatives(t, h, (q0, q1), StepEnd::Left, (&mut m0, &mut p0));
-            ld.force_derivatives(t, h, (q0, q1), StepEnd::Right, (&mut m1, &mut p1));
-            let a = &d12 + m1;
-            let lu = DenseFactor::lu(a).map_err(|e| e.in_matrix("D₁₂L_d + ∂f⁻/∂q₁ in the step Jacobian"))?;
-            let qq = -lu.solve_matrix(&(d11 + m0));
-            let qp = -lu.solve_matrix(&DMatrix::identity(n, n));
-            let d22 = d22 + p1;
-            let pq = d12.transpose() + p0 + &d22 * &qq;
-            let pp = &d22 * &qp;
-            Ok(blocks(&qq, &qp, &pq, &pp))
-        })
+/// The step Jacobian of a map: Ψ at the converged step of size `h` from (t, q₀, p₀) to q₁, by the
+/// formulas of the [module docs](self).
+trait StepJacobian: SignedStepper<Partner = Momenta> {
+    /// Ψ of the step of size `h` from time `t` and q₀ to q₁.
+    fn step_jacobian(&self, t: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<DMatrix<f64>>;
+}
+
+impl<Ld: DiscreteLagrangian> StepJacobian for VariationalIntegrator<Ld> {
+    fn step_jacobian(&self, t: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<DMatrix<f64>> {
+        let ld = self.discrete_lagrangian();
+        let n = q0.len();
+        let zero = || DMatrix::zeros(n, n);
+        let (mut d12, mut d11, mut d22) = (zero(), zero(), zero());
+        ld.d12(t, h, q0, q1, &mut d12);
+        ld.d11(t, h, q0, q1, &mut d11);
+        ld.d22(t, h, q0, q1, &mut d22);
+        // The forces' derivatives (zero without forces): ∂f±/∂q₀ and ∂f±/∂q₁.
+        let (mut m0, mut p0, mut m1, mut p1) = (zero(), zero(), zero(), zero());
+        ld.force_derivatives(t, h, (q0, q1), StepEnd::Left, (&mut m0, &mut p0));
+        ld.force_derivatives(t, h, (q0, q1), StepEnd::Right, (&mut m1, &mut p1));
+        let a = &d12 + m1;
+        let lu = DenseFactor::lu(a).map_err(|e| e.in_matrix("D₁₂L_d + ∂f⁻/∂q₁ in the step Jacobian"))?;
+        let qq = -lu.solve_matrix(&(d11 + m0));
+        let qp = -lu.solve_matrix(&DMatrix::identity(n, n));
+        let d22 = d22 + p1;
+        let pq = d12.transpose() + p0 + &d22 * &qq;
+        let pp = &d22 * &qp;
+        Ok(blocks(&qq, &qp, &pq, &pp))
     }
 }
 
-/// c as a diagonal matrix scaled by `s` (zero without damping).
-fn damping_matrix<P: LocalPotential>(sys: &Mechanical<P>, s: f64) -> DMatrix<f64> {
+/// M scaled by `s`, and c as a diagonal matrix scaled by `s_c` (zero without damping).
+fn mass_and_damping<P: LocalPotential>(
+    sys: &Mechanical<P>,
+    s: f64,
+    s_c: f64,
+) -> (DMatrix<f64>, DMatrix<f64>) {
     let n = sys.dof();
+    let mut m = DMatrix::zeros(n, n);
+    sys.add_mass(s, &mut m);
     let mut c = DMatrix::zeros(n, n);
     if let Some(d) = sys.get_damping() {
-        d.iter().enumerate().for_each(|(i, ci)| c[(i, i)] = s * ci);
+        d.iter().enumerate().for_each(|(i, ci)| c[(i, i)] = s_c * ci);
     }
-    c
+    (m, c)
 }
 
-impl<P: LocalPotential> SignedTangentStepper for MechanicalMidpoint<P> {
-    fn step_signed_tangent(
-        &mut self,
-        state: &mut State<Momenta>,
-        h: f64,
-        psi: &mut DMatrix<f64>,
-    ) -> Result<StepInfo> {
-        step_then_jacobian(self, state, h, psi, |mm, q0, _p0, q1| {
-            let sys = mm.system();
-            let n = q0.len();
-            let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
-            let mut m = DMatrix::zeros(n, n);
-            sys.add_mass(1.0 / h, &mut m);
-            let mut hq = DMatrix::zeros(n, n);
-            sys.add_hessian(&mid, 0.25 * h, &mut hq);
-            let c = damping_matrix(sys, 0.5);
-            let j = &m + &c + &hq;
-            let k = &m + &c - &hq;
-            let pm = &m - &c - &hq;
-            let qm = &m - &c + &hq;
-            let lu = DenseFactor::lu(j)
-                .map_err(|e| e.in_matrix("midpoint Newton Jacobian in the step Jacobian"))?;
-            let qq = lu.solve_matrix(&k);
-            let qp = lu.solve_matrix(&DMatrix::identity(n, n));
-            let pq = &pm * &qq - qm;
-            let pp = &pm * &qp;
-            Ok(blocks(&qq, &qp, &pq, &pp))
-        })
+impl<P: LocalPotential> StepJacobian for MechanicalMidpoint<P> {
+    fn step_jacobian(&self, _t: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<DMatrix<f64>> {
+        let sys = self.system();
+        let n = q0.len();
+        let mid: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| 0.5 * (a + b)).collect();
+        let (m, c) = mass_and_damping(sys, 1.0 / h, 0.5);
+        let mut hq = DMatrix::zeros(n, n);
+        sys.add_hessian(&mid, 0.25 * h, &mut hq);
+        let j = &m + &c + &hq;
+        let k = &m + &c - &hq;
+        let pm = &m - &c - &hq;
+        let qm = &m - &c + &hq;
+        let lu =
+            DenseFactor::lu(j).map_err(|e| e.in_matrix("midpoint Newton Jacobian in the step Jacobian"))?;
+        let qq = lu.solve_matrix(&k);
+        let qp = lu.solve_matrix(&DMatrix::identity(n, n));
+        let pq = &pm * &qq - qm;
+        let pp = &pm * &qp;
+        Ok(blocks(&qq, &qp, &pq, &pp))
     }
 }
 
-impl<P: LocalPotential> SignedTangentStepper for Verlet<P> {
-    fn step_signed_tangent(
-        &mut self,
-        state: &mut State<Momenta>,
-        h: f64,
-        psi: &mut DMatrix<f64>,
-    ) -> Result<StepInfo> {
-        step_then_jacobian(self, state, h, psi, |v, q0, _p0, q1| {
-            let sys = v.system();
-            let n = q0.len();
-            let mut m = DMatrix::zeros(n, n);
-            sys.add_mass(1.0, &mut m);
-            let c = damping_matrix(sys, 0.5 * h);
-            let (mut h0, mut h1) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-            sys.add_hessian(q0, 0.5 * h, &mut h0);
-            sys.add_hessian(q1, 0.5 * h, &mut h1);
-            let lu = DenseFactor::lu(&m + &c)
-                .map_err(|e| e.in_matrix("M + (h/2)C in the Verlet step Jacobian"))?;
-            let vq = -lu.solve_matrix(&h0);
-            let vp = lu.solve_matrix(&DMatrix::identity(n, n));
-            let qq = DMatrix::identity(n, n) + h * &vq;
-            let qp = h * &vp;
-            let r = &m - &c;
-            let pq = &r * &vq - &h1 * &qq;
-            let pp = &r * &vp - &h1 * &qp;
-            Ok(blocks(&qq, &qp, &pq, &pp))
-        })
+impl<P: LocalPotential> StepJacobian for Verlet<P> {
+    fn step_jacobian(&self, _t: f64, h: f64, q0: &[f64], q1: &[f64]) -> Result<DMatrix<f64>> {
+        let sys = self.system();
+        let n = q0.len();
+        let (m, c) = mass_and_damping(sys, 1.0, 0.5 * h);
+        let (mut h0, mut h1) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+        sys.add_hessian(q0, 0.5 * h, &mut h0);
+        sys.add_hessian(q1, 0.5 * h, &mut h1);
+        let lu =
+            DenseFactor::lu(&m + &c).map_err(|e| e.in_matrix("M + (h/2)C in the Verlet step Jacobian"))?;
+        let vq = -lu.solve_matrix(&h0);
+        let vp = lu.solve_matrix(&DMatrix::identity(n, n));
+        let qq = DMatrix::identity(n, n) + h * &vq;
+        let qp = h * &vp;
+        let r = &m - &c;
+        let pq = &r * &vq - &h1 * &qq;
+        let pp = &r * &vp - &h1 * &qp;
+        Ok(blocks(&qq, &qp, &pq, &pp))
     }
 }
 
-/// [`TangentStepper`] of each map: the forward step of its [`SignedTangentStepper`].
-macro_rules! forward_tangent {
+/// [`SignedTangentStepper`] of each map (its signed step, then its [`StepJacobian`] by
+/// [`step_then_jacobian`]) and [`TangentStepper`] (the forward step of the former).
+macro_rules! tangent_steppers {
     ($($ty:ident<$g:ident: $b:path>),*) => {$(
+        impl<$g: $b> SignedTangentStepper for $ty<$g> {
+            fn step_signed_tangent(
+                &mut self,
+                state: &mut State<Momenta>,
+                h: f64,
+                psi: &mut DMatrix<f64>,
+            ) -> Result<StepInfo> {
+                step_then_jacobian(self, state, h, psi)
+            }
+        }
+
         impl<$g: $b> TangentStepper for $ty<$g> {
             fn step_tangent(
                 &mut self,
@@ -232,4 +230,4 @@ macro_rules! forward_tangent {
         }
     )*};
 }
-forward_tangent!(VariationalIntegrator<Ld: DiscreteLagrangian>, MechanicalMidpoint<P: LocalPotential>, Verlet<P: LocalPotential>);
+tangent_steppers!(VariationalIntegrator<Ld: DiscreteLagrangian>, MechanicalMidpoint<P: LocalPotential>, Verlet<P: LocalPotential>);

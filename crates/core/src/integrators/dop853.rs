@@ -145,12 +145,7 @@ impl EmbeddedPair for Dp853 {
     const NAME: &'static str = "Dormand-Prince 8(5,3)";
     const ORDER: u32 = 8;
     const CONTROL_ORDER: f64 = 8.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.333,
-        fac_max: 6.0,
-        beta: 0.0,
-    };
+    const CONTROLLER: Controller = Controller::DOP853;
     const C: &'static [f64] = &[
         0.0,
         0.526001519587677318785587544488e-01,

@@ -43,12 +43,7 @@ impl EmbeddedPair for Dp5 {
     const NAME: &'static str = "Dormand-Prince 5(4)";
     const ORDER: u32 = 5;
     const CONTROL_ORDER: f64 = 5.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.2,
-        fac_max: 10.0,
-        beta: 0.04,
-    };
+    const CONTROLLER: Controller = Controller::DOPRI5;
     const C: &'static [f64] = &[0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0];
     const A: &'static [&'static [f64]] = &[
         &[],

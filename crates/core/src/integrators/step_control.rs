@@ -193,6 +193,26 @@ pub struct Controller {
 }
 
 impl Controller {
+    /// The defaults of Hairer's code DOPRI5 (safe = 0.9, fac1 = 0.2, fac2 = 10, β = 0.04; as distributed
+    /// with Hairer-Nørsett-Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.): the
+    /// Dormand-Prince 5(4) pair's and DPRKN 6(4)'s.
+    pub const DOPRI5: Controller = Controller {
+        safety: 0.9,
+        fac_min: 0.2,
+        fac_max: 10.0,
+        beta: 0.04,
+    };
+
+    /// The defaults of Hairer's code DOP853 (safe = 0.9, fac1 = 0.333, fac2 = 6, β = 0; as distributed
+    /// with Hairer-Nørsett-Wanner, *Solving Ordinary Differential Equations I*, 2nd ed.): DOP853's and
+    /// the high-order Nyström pairs' (DPRKN 8(6), DPRKN 12(10)).
+    pub const DOP853: Controller = Controller {
+        safety: 0.9,
+        fac_min: 0.333,
+        fac_max: 6.0,
+        beta: 0.0,
+    };
+
     /// The controller if its parameters are in range for a method whose step size scales like
     /// err^(−1/`order`): 0 < safety ≤ 1, 0 < fac_min ≤ 1 ≤ fac_max < ∞, and 0 ≤ β < 4/(3·order) so
     /// that the exponent α = 1/order − 0.75β of the error stays positive (with α ≤ 0 a larger error

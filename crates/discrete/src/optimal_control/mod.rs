@@ -89,10 +89,8 @@ mod sqp;
 pub use sqp::{Failure, NoOptimalPath};
 
 use crate::lagrangian::DiscreteLagrangian;
-use crate::quadrature::{midpoint_forces, trapezoidal_forces, FromLagrangian, Midpoint, Trapezoidal};
 use kkt::Kkt;
 use nalgebra::DVector;
-use noether_core::control::Actuated;
 use noether_core::error::{check_finite, check_len};
 use noether_core::{Error, Newton, NewtonInfo, Result, Scalar};
 use sqp::InputBounds;
@@ -122,59 +120,9 @@ pub trait DiscreteActuated: DiscreteLagrangian {
     fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()>;
 }
 
-impl<L: Actuated> DiscreteActuated for Midpoint<L> {
-    fn inputs(&self) -> usize {
-        self.continuous().lagrangian().inputs()
-    }
-
-    /// f⁻ = f⁺ = (h/2) Q_u(t₀ + h/2, (q₀ + q₁)/2, (q₁ − q₀)/h, u).
-    fn discrete_input_force<D: Scalar>(
-        &self,
-        t0: f64,
-        h: f64,
-        q0: &[D],
-        q1: &[D],
-        u: &[D],
-        minus: &mut [D],
-        plus: &mut [D],
-    ) {
-        let model = self.continuous().lagrangian();
-        midpoint_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
-            model.input_force(t, q, v, u, out)
-        });
-    }
-
-    fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
-        self.continuous().momenta(t, q, v, p)
-    }
-}
-
-impl<L: Actuated> DiscreteActuated for Trapezoidal<L> {
-    fn inputs(&self) -> usize {
-        self.continuous().lagrangian().inputs()
-    }
-
-    /// f⁻ = (h/2) Q_u(t₀, q₀, v, u), f⁺ = (h/2) Q_u(t₀ + h, q₁, v, u), v = (q₁ − q₀)/h.
-    fn discrete_input_force<D: Scalar>(
-        &self,
-        t0: f64,
-        h: f64,
-        q0: &[D],
-        q1: &[D],
-        u: &[D],
-        minus: &mut [D],
-        plus: &mut [D],
-    ) {
-        let model = self.continuous().lagrangian();
-        trapezoidal_forces(t0, h, (q0, q1), (minus, plus), |t, q, v, out| {
-            model.input_force(t, q, v, u, out)
-        });
-    }
-
-    fn momenta(&self, t: f64, q: &[f64], v: &[f64], p: &mut [f64]) -> Result<()> {
-        self.continuous().momenta(t, q, v, p)
-    }
-}
+// The quadratures of a continuous Lagrangian ([`Midpoint`](crate::Midpoint),
+// [`Trapezoidal`](crate::Trapezoidal)) implement `DiscreteActuated` with their rule's forces
+// (`quadrature_rule!` in quadrature.rs).
 
 /// A running cost C(t, q, q̇, u), written once over the scalar like L: the optimal-control solver
 /// takes its first and second derivatives by dual numbers.
@@ -257,8 +205,8 @@ pub struct OptimalControl<M, C> {
 }
 
 impl<M: DiscreteActuated, C: RunningCost> OptimalControl<M, C> {
-    /// The problem of the discrete actuated model `model` (e.g. [`Midpoint`] of an
-    /// [`Actuated`] Lagrangian) and the running cost `cost`.
+    /// The problem of the discrete actuated model `model` (e.g. [`Midpoint`](crate::Midpoint) of an
+    /// [`Actuated`](noether_core::control::Actuated) Lagrangian) and the running cost `cost`.
     pub fn new(model: M, cost: C) -> Self {
         OptimalControl {
             model,

@@ -95,12 +95,7 @@ impl NystromPair for Rkn6 {
     const NAME: &'static str = "DPRKN 6(4)";
     const ORDER: u32 = 6;
     const CONTROL_ORDER: f64 = 5.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.2,
-        fac_max: 10.0,
-        beta: 0.04,
-    };
+    const CONTROLLER: Controller = Controller::DOPRI5;
     const C: &'static [f64] = &[
         0.0,
         0.12929590313670442,
@@ -206,12 +201,7 @@ impl NystromPair for Rkn8 {
     const NAME: &'static str = "DPRKN 8(6)";
     const ORDER: u32 = 8;
     const CONTROL_ORDER: f64 = 7.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.333,
-        fac_max: 6.0,
-        beta: 0.0,
-    };
+    const CONTROLLER: Controller = Controller::DOP853;
     const C: &'static [f64] = &[0.0, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0, 1.0];
     const A: &'static [&'static [f64]] = &[
         &[],
@@ -320,12 +310,7 @@ impl NystromPair for Rkn12 {
     const NAME: &'static str = "DPRKN 12(10)";
     const ORDER: u32 = 12;
     const CONTROL_ORDER: f64 = 11.0;
-    const CONTROLLER: Controller = Controller {
-        safety: 0.9,
-        fac_min: 0.333,
-        fac_max: 6.0,
-        beta: 0.0,
-    };
+    const CONTROLLER: Controller = Controller::DOP853;
     const C: &'static [f64] = &[
         0.0,
         0.02,
