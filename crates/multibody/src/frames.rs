@@ -54,31 +54,51 @@ pub fn scaled<D: Scalar>(a: [f64; 3], s: D) -> V3<D> {
 
 /// R x for a constant vector x.
 pub fn apply_const<D: Scalar>(r: &M3<D>, x: [f64; 3]) -> V3<D> {
-    std::array::from_fn(|i| r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2])
+    let mut y = [D::zero(); 3];
+    for i in 0..3 {
+        y[i] = r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2];
+    }
+    y
 }
 
 /// R x.
 pub fn apply<D: Scalar>(r: &M3<D>, x: V3<D>) -> V3<D> {
-    std::array::from_fn(|i| r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2])
+    let mut y = [D::zero(); 3];
+    for i in 0..3 {
+        y[i] = r[i][0] * x[0] + r[i][1] * x[1] + r[i][2] * x[2];
+    }
+    y
 }
 
 /// Rᵀ x.
 pub fn apply_transpose<D: Scalar>(r: &M3<D>, x: V3<D>) -> V3<D> {
-    std::array::from_fn(|i| r[0][i] * x[0] + r[1][i] * x[1] + r[2][i] * x[2])
+    let mut y = [D::zero(); 3];
+    for i in 0..3 {
+        y[i] = r[0][i] * x[0] + r[1][i] * x[1] + r[2][i] * x[2];
+    }
+    y
 }
 
 /// R C for a constant matrix C.
 pub fn compose_const<D: Scalar>(r: &M3<D>, c: &[[f64; 3]; 3]) -> M3<D> {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| r[i][0] * c[0][j] + r[i][1] * c[1][j] + r[i][2] * c[2][j])
-    })
+    let mut m = [[D::zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[i][j] = r[i][0] * c[0][j] + r[i][1] * c[1][j] + r[i][2] * c[2][j];
+        }
+    }
+    m
 }
 
 /// R S.
 pub fn compose<D: Scalar>(r: &M3<D>, s: &M3<D>) -> M3<D> {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| r[i][0] * s[0][j] + r[i][1] * s[1][j] + r[i][2] * s[2][j])
-    })
+    let mut m = [[D::zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[i][j] = r[i][0] * s[0][j] + r[i][1] * s[1][j] + r[i][2] * s[2][j];
+        }
+    }
+    m
 }
 
 /// The rotation by the angle θ about the unit axis a (Rodrigues):
@@ -87,10 +107,12 @@ pub fn rotation<D: Scalar>(a: [f64; 3], theta: D) -> M3<D> {
     let (s, c) = (theta.sin(), theta.cos());
     let k = D::one() - c;
     let skew = [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]];
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
+    let mut r = [[D::zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
             let diagonal = if i == j { c } else { D::zero() };
-            diagonal + s * skew[i][j] + k * (a[i] * a[j])
-        })
-    })
+            r[i][j] = diagonal + s * skew[i][j] + k * (a[i] * a[j]);
+        }
+    }
+    r
 }

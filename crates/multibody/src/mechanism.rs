@@ -334,8 +334,7 @@ impl Lagrangian for Mechanism {
             let arm = frames::apply_const(&f.r, body.centre);
             let centre_velocity = frames::add(f.v, frames::cross(f.w, arm));
             let spin = frames::apply_transpose(&f.r, f.w);
-            let momentum: V3<D> =
-                std::array::from_fn(|i| (0..3).fold(D::zero(), |s, k| s + spin[k] * body.inertia[i][k]));
+            let momentum = angular_momentum(&body.inertia, spin);
             let height = frames::dot(frames::add(f.p, arm), gravity);
             l += (frames::dot(centre_velocity, centre_velocity) * body.mass + frames::dot(spin, momentum))
                 * 0.5
@@ -373,4 +372,14 @@ impl Actuated for Mechanism {
             out[c] += uk;
         }
     }
+}
+
+/// I ω in the body frame, (I ω)_i = Σ_k I_ik ω_k summed from zero in the order k = 0, 1, 2 (a function
+/// of D alone, not of the model: no closure instantiated per model and dual type).
+fn angular_momentum<D: Scalar>(inertia: &[[f64; 3]; 3], spin: V3<D>) -> V3<D> {
+    let mut l = [D::zero(); 3];
+    for (li, row) in l.iter_mut().zip(inertia) {
+        *li = D::zero() + spin[0] * row[0] + spin[1] * row[1] + spin[2] * row[2];
+    }
+    l
 }
