@@ -14,6 +14,7 @@
 
 use noether_core::{EulerLagrange, Lagrangian};
 use noether_testkit::systems::{Chain, DoublePendulum, HeavyTop};
+use noether_testkit::timing;
 use std::hint::black_box;
 
 /// Calls per round (and per callgrind run).
@@ -76,17 +77,6 @@ fn value_calls<L: Lagrangian, H, const N: usize>(c: &Case<L, H, N>) -> f64 {
     s
 }
 
-/// Min over 60 rounds of `IT` calls of the time per call (ns): interference only adds time.
-fn min_ns(f: impl Fn() -> f64) -> f64 {
-    (0..60)
-        .map(|_| {
-            let t0 = std::time::Instant::now();
-            black_box(f());
-            t0.elapsed().as_nanos() as f64 / IT as f64
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Prints (or, for callgrind, only runs) hand and AD side by side for one system.
 fn run<L: Lagrangian, H: Fn(&L, &[f64; N], &[f64; N]) -> [f64; N], const N: usize>(
     name: &str,
@@ -94,8 +84,11 @@ fn run<L: Lagrangian, H: Fn(&L, &[f64; N], &[f64; N]) -> [f64; N], const N: usiz
     timed: bool,
 ) {
     if timed {
-        let (h, a) = (min_ns(|| hand_calls(c)), min_ns(|| ad_calls(c)));
-        let l = min_ns(|| value_calls(c));
+        let (h, a) = (
+            timing::min_ns(60, IT, || hand_calls(c)),
+            timing::min_ns(60, IT, || ad_calls(c)),
+        );
+        let l = timing::min_ns(60, IT, || value_calls(c));
         println!(
             "{name}: hand {h:.1} ns, ad {a:.1} ns ({:.2}x); L alone in f64 {l:.1} ns ({:.2}x hand)",
             a / h,

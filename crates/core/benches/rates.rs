@@ -18,18 +18,9 @@ use std::hint::black_box;
 
 const IT: usize = 100_000;
 
-fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
-    (0..60)
-        .map(|_| {
-            let t0 = std::time::Instant::now();
-            black_box(f());
-            t0.elapsed().as_nanos() as f64 / IT as f64
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 use noether_testkit::henon_heiles::{composition_by_hand, HenonHeiles};
 use noether_testkit::kepler::Kepler;
+use noether_testkit::timing;
 
 /// The same V without the hint.
 struct KeplerPlain;
@@ -78,7 +69,7 @@ const V: [f64; 2] = [0.3, 0.9];
 
 fn time_hand(hand: Hand) -> f64 {
     let (mut dq, mut dv) = ([0.0; 2], [0.0; 2]);
-    min_ns(|| {
+    timing::min_ns(60, IT, || {
         let mut s = 0.0;
         for _ in 0..IT {
             hand(black_box(&Q), black_box(&V), &mut dq, &mut dv);
@@ -92,7 +83,7 @@ fn time_hand(hand: Hand) -> f64 {
 fn time_natural<P: Potential>(p: P) -> (f64, f64) {
     let nat = Natural::unit(p);
     let (mut dq, mut dv) = ([0.0; 2], [0.0; 2]);
-    let rates = min_ns(|| {
+    let rates = timing::min_ns(60, IT, || {
         let mut s = 0.0;
         for _ in 0..IT {
             Dynamics::rates(&nat, 0.0, black_box(&Q), black_box(&V), &mut dq, &mut dv).unwrap();
@@ -100,7 +91,7 @@ fn time_natural<P: Potential>(p: P) -> (f64, f64) {
         }
         s
     });
-    let kick = min_ns(|| {
+    let kick = timing::min_ns(60, IT, || {
         let mut s = 0.0;
         for _ in 0..IT {
             nat.kick_rate(black_box(&Q), &mut dv).unwrap();
@@ -136,7 +127,7 @@ fn main() {
     }
     let sep = SeparableHamiltonian(Kepler);
     let (mut dq, mut dp) = ([0.0; 2], [0.0; 2]);
-    let s = min_ns(|| {
+    let s = timing::min_ns(60, IT, || {
         let mut s = 0.0;
         for _ in 0..IT {
             Dynamics::rates(&sep, 0.0, black_box(&Q), black_box(&V), &mut dq, &mut dp).unwrap();

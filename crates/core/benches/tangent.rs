@@ -14,30 +14,16 @@
 use nalgebra::DMatrix;
 use noether_core::integrators::{Composition, Weights};
 use noether_core::prelude::*;
-use noether_testkit::henon_heiles::{on_section, HenonHeiles};
-use std::hint::black_box;
+use noether_testkit::henon_heiles::{merged_kicks, on_section, HenonHeiles};
+use noether_testkit::timing;
 
 const STEPS: usize = 2000;
 const H: f64 = 0.1;
 
-fn min_ns(mut f: impl FnMut() -> f64) -> f64 {
-    (0..30)
-        .map(|_| {
-            let t0 = std::time::Instant::now();
-            black_box(f());
-            t0.elapsed().as_nanos() as f64 / STEPS as f64
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Yoshida 4 with Ψ on Hénon-Heiles by hand: 4 × 4 Ψ row-major over (x, y, p_x, p_y).
 #[allow(clippy::needless_range_loop)] // each column reads two rows of Ψ and writes two others
 fn by_hand(gammas: &[f64], q: [f64; 2], p: [f64; 2]) -> f64 {
-    let mut kicks = vec![0.0; gammas.len() + 1];
-    for (i, g) in gammas.iter().enumerate() {
-        kicks[i] += 0.5 * g;
-        kicks[i + 1] += 0.5 * g;
-    }
+    let kicks = merged_kicks(gammas);
     let accel = |q: &[f64; 2]| [-q[0] - 2.0 * q[0] * q[1], -q[1] - q[0] * q[0] + q[1] * q[1]];
     let (mut q, mut p) = (q, p);
     let mut total = 0.0;
@@ -91,9 +77,9 @@ fn main() {
     // Interleaved rounds; the minimum of each over all of them.
     let (mut hand, mut sep, mut nat) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     for _ in 0..5 {
-        hand = hand.min(min_ns(|| by_hand(weights.as_slice(), q, p)));
-        sep = sep.min(min_ns(|| by_library(&mut separable, &s0)));
-        nat = nat.min(min_ns(|| by_library(&mut natural, &v0)));
+        hand = hand.min(timing::min_ns(30, STEPS, || by_hand(weights.as_slice(), q, p)));
+        sep = sep.min(timing::min_ns(30, STEPS, || by_library(&mut separable, &s0)));
+        nat = nat.min(timing::min_ns(30, STEPS, || by_library(&mut natural, &v0)));
     }
     println!("Yoshida 4 step with Ψ, Hénon-Heiles (ns per step, minimum of 150 rounds of {STEPS}):");
     println!("  by hand                      {hand:8.1}");

@@ -57,6 +57,17 @@ pub fn on_section(e: f64, y: f64, py: f64) -> Option<State<Momenta>> {
     (px2 > 0.0).then(|| State::with_momenta(0.0, [0.0, y], [px2.sqrt(), py]))
 }
 
+/// The kicks of a composition of kick-drift-kick steps with drift weights `gammas`, adjacent half kicks
+/// merged: a₀ = γ₁/2, a_i = (γ_i + γ_{i+1})/2, a_s = γ_s/2.
+pub fn merged_kicks(gammas: &[f64]) -> Vec<f64> {
+    let mut kicks = vec![0.0; gammas.len() + 1];
+    for (i, g) in gammas.iter().enumerate() {
+        kicks[i] += 0.5 * g;
+        kicks[i + 1] += 0.5 * g;
+    }
+    kicks
+}
+
 /// A symmetric composition of Störmer-Verlet steps with drift weights `gammas` (Kahan-Li 8's, say)
 /// on Hénon-Heiles, written by hand: q̈ = (−q₁ − 2q₁q₂, −q₂ − q₁² + q₂²) in closed form, adjacent
 /// half kicks merged and the last force reused, as `Composition` does. `steps` steps of size h from
@@ -68,11 +79,7 @@ pub fn composition_by_hand(
     q: [f64; 2],
     v: [f64; 2],
 ) -> ([f64; 2], [f64; 2]) {
-    let mut kicks = vec![0.0; gammas.len() + 1];
-    for (i, g) in gammas.iter().enumerate() {
-        kicks[i] += 0.5 * g;
-        kicks[i + 1] += 0.5 * g;
-    }
+    let kicks = merged_kicks(gammas);
     let accel = |q: &[f64; 2]| [-q[0] - 2.0 * q[0] * q[1], -q[1] - q[0] * q[0] + q[1] * q[1]];
     let (mut q, mut v) = (q, v);
     let mut a = accel(&q);

@@ -22,6 +22,7 @@
 //! | `coin` | the coin rolling on a table in dependent coordinates, its steady turns and their stability (feature `constraints`) | analysis' control tests |
 //! | `multibody` | the double pendulum from two hinges, a planar arm of three rods with its mass matrix and tip in closed form (feature `multibody`) | multibody's tests, `joints_double_pendulum`, `planar_arm` |
 //! | `solar` | the outer solar system of Hairer, Lubich & Wanner (feature `particles`) | the gallery's `work_precision` benchmark and `high_order_orbits` |
+//! | `timing` | `min_ns`: the least time per call over rounds | core's benchmarks `rates`, `accelerations_min`, `tangent` |
 //! | `boundary` | the boundary-value problems (feature `discrete`) | discrete's tests, `boundary_value` |
 //! | `canonical`, `hamilton_jacobi` | canonical maps, generating and phase functions, complete integrals (feature `canonical`) | canonical's tests, `canonical_transformation`, `poisson_brackets`, `action_angle`, `hamilton_jacobi` |
 
@@ -49,4 +50,5 @@ pub mod pendulum;
 pub mod solar;
 pub mod systems;
 pub mod three_body;
+pub mod timing;
 pub mod top;
