@@ -32,15 +32,13 @@ impl<'a> Stages<'a> {
     /// `array::from_fn`'s closures).
     #[inline]
     pub fn weighted(&self, w: &[f64], i: usize) -> f64 {
-        let stages = if i < self.k.len() {
-            (self.k.len() - i).div_ceil(self.m.max(1))
-        } else {
-            0
-        };
         let mut s = 0.0;
-        for (j, &wj) in w.iter().enumerate().take(stages) {
+        for (j, &wj) in w.iter().enumerate() {
+            let Some(&kj) = self.k.get(i + j * self.m) else {
+                break;
+            };
             if wj != 0.0 {
-                s += wj * self.k[i + j * self.m];
+                s += wj * kj;
             }
         }
         s
