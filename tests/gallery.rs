@@ -241,6 +241,11 @@ fn closed_form_slider_crank() {
 }
 
 #[test]
+fn closed_form_spherical_joint() {
+    assert_example_passes("spherical_joint");
+}
+
+#[test]
 fn closed_form_four_bar() {
     assert_example_passes("four_bar");
 }

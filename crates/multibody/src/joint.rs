@@ -4,7 +4,8 @@
 //! A joint connects a *joint frame* fixed in the parent (its [`Placement`] in the parent's body frame)
 //! to the child's body frame, which coincides with the joint frame when the joint's coordinates are
 //! zero. A revolute joint turns the child about an axis of the joint frame by its angle q, a prismatic
-//! one slides it along an axis by q, a fixed one welds it. Springs (V = ½ k (q − q₀)²) and dampers
+//! one slides it along an axis by q, a spherical one turns it by a rotation vector (exponential
+//! coordinates, [`frames::exponential`]), a free one slides and turns it, a fixed one welds it. Springs (V = ½ k (q − q₀)²) and dampers
 //! (Q = −c q̇) act on the joint's coordinate.
 
 use crate::frames::{self, M3, V3};
@@ -35,6 +36,16 @@ pub enum JointKind {
         /// The plane's normal.
         normal: [f64; 3],
     },
+    /// Any rotation about the joint frame's origin (a ball-and-socket joint), in exponential
+    /// coordinates: the rotation vector θ = (q₀, q₁, q₂) turns the child by |θ| about θ/|θ|,
+    /// R = exp(\[θ\]×). The chart is regular while |θ| < 2π, so it has no pole at the rest position
+    /// or anywhere a pendulum swings through; far out it is renewed by
+    /// [`Mechanism::rechart`](crate::Mechanism::rechart) (or its event,
+    /// [`Mechanism::chart_event`](crate::Mechanism::chart_event)).
+    Spherical,
+    /// Any motion (a body flying free): translation (q₀, q₁, q₂) along the joint frame's axes, then
+    /// the rotation vector (q₃, q₄, q₅) as for [`Spherical`](JointKind::Spherical).
+    Free,
     /// No motion: the child is welded to the joint frame.
     Fixed,
 }
@@ -79,6 +90,17 @@ impl Joint {
         Self::of(JointKind::Planar { normal })
     }
 
+    /// A spherical (ball-and-socket) joint: coordinates the rotation vector (see
+    /// [`JointKind::Spherical`]).
+    pub fn spherical() -> Self {
+        Self::of(JointKind::Spherical)
+    }
+
+    /// A free joint: coordinates the translation, then the rotation vector (see [`JointKind::Free`]).
+    pub fn free() -> Self {
+        Self::of(JointKind::Free)
+    }
+
     /// A fixed joint (no coordinates).
     pub fn fixed() -> Self {
         Self::of(JointKind::Fixed)
@@ -109,7 +131,8 @@ impl Joint {
         match self.kind {
             JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
             JointKind::Cylindrical { .. } => 2,
-            JointKind::Planar { .. } => 3,
+            JointKind::Planar { .. } | JointKind::Spherical => 3,
+            JointKind::Free => 6,
             JointKind::Fixed => 0,
         }
     }
@@ -126,7 +149,7 @@ impl Joint {
             | JointKind::Prismatic { axis }
             | JointKind::Cylindrical { axis }
             | JointKind::Planar { normal: axis } => Some(axis),
-            JointKind::Fixed => None,
+            JointKind::Spherical | JointKind::Free | JointKind::Fixed => None,
         }
     }
 
@@ -154,13 +177,15 @@ impl Joint {
                 let slide = frames::add(frames::scaled(e1, q[0]), frames::scaled(e2, q[1]));
                 (frames::rotation(normal, q[2]), slide)
             }
+            JointKind::Spherical => (frames::exponential([q[0], q[1], q[2]]), frames::zero()),
+            JointKind::Free => (frames::exponential([q[3], q[4], q[5]]), [q[0], q[1], q[2]]),
             JointKind::Fixed => (frames::identity(), frames::zero()),
         }
     }
 
     /// The child's angular velocity and the velocity of its origin relative to the joint frame, in
     /// the joint frame, at the rates q̇.
-    pub(crate) fn rates<D: Scalar>(&self, v: &[D]) -> (V3<D>, V3<D>) {
+    pub(crate) fn rates<D: Scalar>(&self, q: &[D], v: &[D]) -> (V3<D>, V3<D>) {
         match self.kind {
             JointKind::Revolute { axis } => (frames::scaled(axis, v[0]), frames::zero()),
             JointKind::Prismatic { axis } => (frames::zero(), frames::scaled(axis, v[0])),
@@ -170,9 +195,70 @@ impl Joint {
                 let slide = frames::add(frames::scaled(e1, v[0]), frames::scaled(e2, v[1]));
                 (frames::scaled(normal, v[2]), slide)
             }
+            JointKind::Spherical => (frames::exponential_rate(q3(q), q3(v)), frames::zero()),
+            JointKind::Free => (frames::exponential_rate(q3(&q[3..]), q3(&v[3..])), q3(v)),
             JointKind::Fixed => (frames::zero(), frames::zero()),
         }
     }
+
+    /// Where this joint's rotation vector starts among its coordinates (3 for a free joint, 0 for
+    /// a spherical one), if it has one.
+    pub(crate) fn rotation_vector(&self) -> Option<usize> {
+        match self.kind {
+            JointKind::Spherical => Some(0),
+            JointKind::Free => Some(3),
+            _ => None,
+        }
+    }
+}
+
+/// The first three entries of a slice as a 3-vector.
+fn q3<D: Copy>(x: &[D]) -> [D; 3] {
+    [x[0], x[1], x[2]]
+}
+
+/// The new coordinates of a rotation vector θ with x = |θ| > π in the other chart of the same
+/// rotation, θ' = θ (1 − 2π/x) (|θ'| = 2π − x < π, pointing the other way), and its rate
+/// θ̇' = (1 − 2π/x) θ̇ + 2π θ (θ·θ̇)/x³ (the derivative of the map: R and ω are unchanged). `None`
+/// while x ≤ π.
+pub fn renewed_rotation_vector(theta: [f64; 3], rate: [f64; 3]) -> Option<([f64; 3], [f64; 3])> {
+    let x = frames::dot(theta, theta).sqrt();
+    if x <= std::f64::consts::PI {
+        return None;
+    }
+    let tau = 2.0 * std::f64::consts::PI;
+    let shrink = 1.0 - tau / x;
+    let along = tau * frames::dot(theta, rate) / (x * x * x);
+    Some((
+        theta.map(|t| t * shrink),
+        [0, 1, 2].map(|i| shrink * rate[i] + along * theta[i]),
+    ))
+}
+
+/// The rate θ̇ of a rotation vector θ (|θ| < 2π) at which the rotation exp(\[θ\]×) turns with the
+/// angular velocity ω (in the fixed frame): the solution of J(θ) θ̇ = ω
+/// ([`frames::exponential_rate`]), by LU with partial pivoting. For setting up initial conditions.
+pub fn rotation_vector_rate(theta: [f64; 3], omega: [f64; 3]) -> crate::Result<[f64; 3]> {
+    noether_core::error::check_finite("rotation vector", &theta)?;
+    noether_core::error::check_finite("angular velocity", &omega)?;
+    let x = frames::dot(theta, theta).sqrt();
+    let outside = || noether_core::Error::InvalidParameter {
+        name: "rotation vector length",
+        value: x,
+        reason: "below 2π, where exponential coordinates are regular",
+    };
+    // J(θ) has the singular values 1 and |sin(x/2)/(x/2)| (twice): singular at x = 2π.
+    if 2.0 * std::f64::consts::PI - x <= 1e-8 {
+        return Err(outside().into());
+    }
+    let columns = [0, 1, 2].map(|j| {
+        let mut e = [0.0; 3];
+        e[j] = 1.0;
+        frames::exponential_rate(theta, e)
+    });
+    let jacobian = nalgebra::Matrix3::from_fn(|i, j| columns[j][i]);
+    let rate = jacobian.lu().solve(&nalgebra::Vector3::from(omega));
+    rate.map(|r| [r[0], r[1], r[2]]).ok_or_else(|| outside().into())
 }
 
 /// The in-plane axes (e₁, e₂) of a planar joint with unit normal n: e₁ the coordinate axis least

@@ -1,7 +1,9 @@
 //! # noether-multibody
 //!
 //! Multibody systems from bodies and joints: describe a mechanism — rigid bodies (mass, centre of
-//! mass, inertia) attached by revolute, prismatic, cylindrical, planar and fixed joints to the ground
+//! mass, inertia) attached by revolute, prismatic, cylindrical, planar, spherical, free and fixed
+//! joints (spherical and free ones in exponential coordinates, renewed by
+//! [`Mechanism::chart_event`] before they turn to the chart's edge) to the ground
 //! or to each other, with springs, dampers and actuated joints — and get its Lagrangian written for
 //! you. [`Mechanism`] is an
 //! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
@@ -40,6 +42,6 @@ pub mod newton_euler;
 
 pub use closure::LoopClosures;
 pub use error::{Error, Result};
-pub use joint::{Body, Joint, JointKind, Placement};
+pub use joint::{renewed_rotation_vector, rotation_vector_rate, Body, Joint, JointKind, Placement};
 pub use mechanism::{BodyId, Mechanism, Parent};
 pub use newton_euler::NewtonEuler;

@@ -29,7 +29,7 @@ use crate::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
 use noether_core::control::Actuated;
 use noether_core::error::{check_finite, check_len};
-use noether_core::{Lagrangian, Scalar};
+use noether_core::{Event, Lagrangian, Scalar, State, Velocities};
 
 /// A body of a [`Mechanism`], by the order in which it was attached.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -143,7 +143,8 @@ impl Mechanism {
     }
 
     /// Makes the coordinates of `body`'s joint inputs: a force (a slide) or torque (a turn) u on
-    /// each, in the order of the calls. Errors: an unknown body (`UnknownBody`), a joint already
+    /// each, in the order of the calls (on a spherical or free joint's rotation vector, the generalized
+    /// forces conjugate to θ, Q = Jᵀ τ for a torque τ in the joint frame). Errors: an unknown body (`UnknownBody`), a joint already
     /// actuated or without coordinates (`InvalidParameter`).
     pub fn actuate(&mut self, body: BodyId) -> Result<()> {
         let node = self.node(body)?;
@@ -188,6 +189,60 @@ impl Mechanism {
         self.nodes.get(body.0).ok_or(Error::UnknownBody {
             body: body.0,
             bodies: self.nodes.len(),
+        })
+    }
+
+    /// Where in q the rotation vectors of the spherical and free joints start.
+    fn rotation_vectors(&self) -> Vec<usize> {
+        self.nodes
+            .iter()
+            .filter_map(|n| n.joint.rotation_vector().map(|k| n.offset + k))
+            .collect()
+    }
+
+    /// Renews the chart of every spherical or free joint whose rotation vector has left the ball
+    /// |θ| ≤ π: θ becomes θ (1 − 2π/|θ|), the same rotation with |θ'| = 2π − |θ| < π, and θ̇ changes
+    /// with it so that every body's motion is the same
+    /// ([`renewed_rotation_vector`](crate::joint::renewed_rotation_vector)). Returns how many joints it
+    /// renewed. Exponential coordinates are regular for |θ| < 2π; call this (or run with
+    /// [`chart_event`](Self::chart_event)) before a joint turns that far. Errors: q, q̇ of the wrong
+    /// length or not finite.
+    pub fn rechart(&self, q: &mut [f64], v: &mut [f64]) -> Result<usize> {
+        noether_core::error::check_phase_point(self.dof, 0.0, q, v, "q̇")?;
+        let mut renewed = 0;
+        for k in self.rotation_vectors() {
+            let (theta, rate) = ([q[k], q[k + 1], q[k + 2]], [v[k], v[k + 1], v[k + 2]]);
+            if let Some((theta, rate)) = crate::joint::renewed_rotation_vector(theta, rate) {
+                q[k..k + 3].copy_from_slice(&theta);
+                v[k..k + 3].copy_from_slice(&rate);
+                renewed += 1;
+            }
+        }
+        Ok(renewed)
+    }
+
+    /// An event for the [`Driver`](noether_core::Driver) that keeps the spherical and free joints in
+    /// the regular part of their chart: g = max_j |θ_j| − 3π/2 rises through zero when a rotation
+    /// vector reaches 3π/2 (where the smallest singular value of its Jacobian,
+    /// sin(3π/4)/(3π/4) = 0.30, is still far from the singularity at 2π), and the reset
+    /// [`rechart`](Self::rechart)s, which brings it back to π/2. Named `"rechart"`; without such
+    /// joints g = −3π/2 and it never fires.
+    pub fn chart_event(&self) -> Event<'static, Velocities> {
+        let (starts, mechanism) = (self.rotation_vectors(), self.clone());
+        let limit = 1.5 * std::f64::consts::PI;
+        Event::new("rechart", move |s: &State| {
+            starts
+                .iter()
+                .map(|&k| (s.q[k].powi(2) + s.q[k + 1].powi(2) + s.q[k + 2].powi(2)).sqrt())
+                .fold(0.0, f64::max)
+                - limit
+        })
+        .rising()
+        .try_reset(move |s: &mut State| {
+            mechanism
+                .rechart(s.q.as_mut_slice(), s.v.as_mut_slice())
+                .map(|_| ())
+                .map_err(noether_core::Error::from)
         })
     }
 
@@ -266,7 +321,8 @@ impl Mechanism {
                 Parent::Body(BodyId(b)) => ((out[b].r, out[b].p), out[b].w, out[b].v),
             };
             let (placed, r, p) = self.place(node, &pose, q);
-            let (wj, vj) = node.joint.rates(&v[node.offset..node.offset + node.joint.dof()]);
+            let own = node.offset..node.offset + node.joint.dof();
+            let (wj, vj) = node.joint.rates(&q[own.clone()], &v[own]);
             out.push(Moving {
                 r,
                 w: frames::add(w_p, frames::apply(&placed, wj)),

@@ -504,3 +504,105 @@ impl ReactionWheelPendulum {
         )
     }
 }
+
+/// A spherical pendulum with a real bob: a uniform sphere of mass m and radius ρ at the end of a
+/// massless rod of length l, hung from a spherical joint at the origin, gravity g along −z. Its
+/// coordinates are the joint's rotation vector θ (θ = 0: hanging straight down), regular at both
+/// poles of the usual spherical coordinates. About the pivot it is a symmetric top with
+/// I₁ = m l² + (2/5) m ρ² (across the rod) and I₃ = (2/5) m ρ² (along it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BallPendulum {
+    /// Bob mass m.
+    pub mass: f64,
+    /// Bob radius ρ.
+    pub radius: f64,
+    /// Rod length l (pivot to the bob's centre).
+    pub length: f64,
+    /// Gravity g.
+    pub g: f64,
+}
+
+impl Default for BallPendulum {
+    fn default() -> Self {
+        BallPendulum {
+            mass: 1.0,
+            radius: 0.1,
+            length: 1.0,
+            g: 9.81,
+        }
+    }
+}
+
+impl BallPendulum {
+    /// The mechanism: one spherical joint at the origin, the bob's centre at −l e_z in the body frame.
+    pub fn mechanism(&self) -> Mechanism {
+        let i3 = 0.4 * self.mass * self.radius * self.radius;
+        let bob = Body::new(
+            self.mass,
+            [0.0, 0.0, -self.length],
+            [[i3, 0.0, 0.0], [0.0, i3, 0.0], [0.0, 0.0, i3]],
+        );
+        let mut m = Mechanism::new()
+            .gravity([0.0, 0.0, -self.g])
+            .expect("finite gravity");
+        m.attach(Parent::Ground, Placement::identity(), Joint::spherical(), bob)
+            .expect("a valid body");
+        m
+    }
+
+    /// The moments about the pivot (I₁, I₃) = (m l² + (2/5) m ρ², (2/5) m ρ²).
+    pub fn moments(&self) -> (f64, f64) {
+        let i3 = 0.4 * self.mass * self.radius * self.radius;
+        (self.mass * self.length * self.length + i3, i3)
+    }
+
+    /// ω₀² = m g l / I₁, the small swings' angular frequency squared.
+    fn omega2(&self) -> f64 {
+        self.mass * self.g * self.length / self.moments().0
+    }
+
+    /// The period of a swing in a vertical plane through the bottom with amplitude a < π: the
+    /// compound pendulum's T = 4 K(sin(a/2)) / ω₀ (the planar pendulum of moment I₁).
+    pub fn swing_period(&self, amplitude: f64) -> f64 {
+        4.0 * crate::closed_form::elliptic_k((0.5 * amplitude).sin()) / self.omega2().sqrt()
+    }
+
+    /// The time of one revolution of a pendulum going over the top in a vertical plane, with the
+    /// rate Ω₀ at the bottom: from θ̇² = Ω₀² − 4 ω₀² sin²(θ/2), T = ∫₀^{2π} dθ/θ̇ = (4/Ω₀) K(κ),
+    /// κ = 2 ω₀/Ω₀ < 1 (the energy above the top).
+    pub fn revolution_period(&self, bottom_rate: f64) -> f64 {
+        let kappa = 2.0 * self.omega2().sqrt() / bottom_rate;
+        4.0 / bottom_rate * crate::closed_form::elliptic_k(kappa)
+    }
+
+    /// The rate Ω at which the pendulum turned rigidly about the vertical (no spin relative to that
+    /// turn) goes round a cone of half-angle α from the downward vertical: the symmetric top's steady
+    /// precession I₁ Ω² cos ϑ − I₃ ω₃ Ω + m g l = 0 (ϑ = π − α from the upward vertical) with
+    /// ω₃ = Ω cos ϑ gives Ω² = m g l / ((I₁ − I₃) cos α) = g / (l cos α): the point-mass conical
+    /// pendulum's rate, whatever the bob's size.
+    pub fn conical_rate(&self, alpha: f64) -> f64 {
+        (self.g / (self.length * alpha.cos())).sqrt()
+    }
+
+    /// The constants of the motion at a state (θ, θ̇) from the body's pose and angular velocity:
+    /// the energy E = ½ ωᵀ I_O ω + m g z_c, the angular momentum about the vertical
+    /// L_z = e_z · I_O ω and about the rod L₃ = (R e_z) · I_O ω (I_O the inertia about the pivot in
+    /// world axes, z_c the bob's height). L_z is conserved because gravity's torque about the pivot
+    /// is horizontal, L₃ because the bob is symmetric about the rod (Euler's equation
+    /// I₃ ω̇₃ = (I₁ − I₁) ω₁ ω₂ = 0).
+    pub fn invariants(&self, theta: [f64; 3], rate: [f64; 3]) -> [f64; 3] {
+        use nalgebra::{Matrix3, Rotation3, Vector3};
+        let r = Rotation3::new(Vector3::from(theta)).into_inner();
+        let omega = Vector3::from(noether_multibody::frames::exponential_rate(theta, rate));
+        let (i1, i3) = self.moments();
+        let body = Matrix3::from_diagonal(&Vector3::new(i1, i1, i3));
+        let momentum = r * body * r.transpose() * omega;
+        let axis = r * Vector3::z();
+        let height = -self.length * axis.z;
+        [
+            0.5 * omega.dot(&momentum) + self.mass * self.g * height,
+            momentum.z,
+            axis.dot(&momentum),
+        ]
+    }
+}
