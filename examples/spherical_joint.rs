@@ -169,7 +169,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     for (k, name) in ["energy", "L_z", "L₃"].iter().enumerate() {
         report.checks.push(Check::abs(
             NAME,
-            &format!("tumbling: max relative drift of {name} over 20 s"),
+            format!("tumbling: max relative drift of {name} over 20 s"),
             drift[k],
             0.0,
             2e-10,

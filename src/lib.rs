@@ -217,6 +217,7 @@ examples! {
     four_bar: "four-bar linkage (multibody, loop closed by a constraint): Grashof crank-rocker, closure to rounding over 10⁵ RATTLE steps, the rocker's toggle angles",
     reaction_wheel_pendulum: "reaction-wheel pendulum from bodies and joints: (A, B) upright vs the closed form, balanced by LQR, the momentum balance",
     spherical_joint: "spherical pendulum through a ball joint (multibody, exponential coordinates): straight through both poles, swing and loop periods vs 4K, the conical rate g/(l cos α), E, L_z, L₃ through chart renewals",
+    rolling_coin: "a coin from a rolling joint (multibody, no-slip written for you): the hand-written coin, a steady turn and its wobble vs Routh's closed forms, upright above ω₃² = g/(3a)",
     planar_arm: "three-link planar arm from bodies and joints: mass matrix and tip vs the textbook, gravity, (A, B) upright, balanced by LQR",
 }
 

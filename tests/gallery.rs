@@ -246,6 +246,11 @@ fn closed_form_spherical_joint() {
 }
 
 #[test]
+fn closed_form_rolling_coin() {
+    assert_example_passes("rolling_coin");
+}
+
+#[test]
 fn closed_form_four_bar() {
     assert_example_passes("four_bar");
 }

@@ -46,6 +46,19 @@ pub enum JointKind {
     /// Any motion (a body flying free): translation (q₀, q₁, q₂) along the joint frame's axes, then
     /// the rotation vector (q₃, q₄, q₅) as for [`Spherical`](JointKind::Spherical).
     Free,
+    /// A disk of `radius` ρ standing on the joint frame's x-y plane (on its +z side), free to roll,
+    /// turn and tilt: coordinates (x, y, ψ, θ, φ), the centre's position along the plane, the heading
+    /// ψ of the rolling direction e_r = (cos ψ, sin ψ, 0), the tilt θ of the disk from the vertical
+    /// (about e_r) and the spin φ about the disk's axis. The child's frame has its origin at the disk's
+    /// centre and the disk's axis along its y axis: R = R_z(ψ) R_x(θ) R_y(φ), the centre at
+    /// (x, y, ρ cos θ), so that the lowest point of the rim touches the plane. Rolling without slipping
+    /// is two velocity constraints more ([`Mechanism::rolling_contacts`](crate::Mechanism::rolling_contacts)).
+    /// The chart is regular while |θ| < π/2 (the disk not lying flat, where ψ and φ turn about the
+    /// same axis).
+    Rolling {
+        /// The disk's radius.
+        radius: f64,
+    },
     /// No motion: the child is welded to the joint frame.
     Fixed,
 }
@@ -101,6 +114,12 @@ impl Joint {
         Self::of(JointKind::Free)
     }
 
+    /// A disk of `radius` rolling on the joint frame's x-y plane: coordinates (x, y, ψ, θ, φ) (see
+    /// [`JointKind::Rolling`]; the radius is checked finite and positive when attached).
+    pub fn rolling(radius: f64) -> Self {
+        Self::of(JointKind::Rolling { radius })
+    }
+
     /// A fixed joint (no coordinates).
     pub fn fixed() -> Self {
         Self::of(JointKind::Fixed)
@@ -132,6 +151,7 @@ impl Joint {
             JointKind::Revolute { .. } | JointKind::Prismatic { .. } => 1,
             JointKind::Cylindrical { .. } => 2,
             JointKind::Planar { .. } | JointKind::Spherical => 3,
+            JointKind::Rolling { .. } => 5,
             JointKind::Free => 6,
             JointKind::Fixed => 0,
         }
@@ -149,7 +169,7 @@ impl Joint {
             | JointKind::Prismatic { axis }
             | JointKind::Cylindrical { axis }
             | JointKind::Planar { normal: axis } => Some(axis),
-            JointKind::Spherical | JointKind::Free | JointKind::Fixed => None,
+            JointKind::Spherical | JointKind::Free | JointKind::Rolling { .. } | JointKind::Fixed => None,
         }
     }
 
@@ -179,6 +199,12 @@ impl Joint {
             }
             JointKind::Spherical => (frames::exponential([q[0], q[1], q[2]]), frames::zero()),
             JointKind::Free => (frames::exponential([q[3], q[4], q[5]]), [q[0], q[1], q[2]]),
+            JointKind::Rolling { radius } => {
+                let heading = frames::rotation(Z, q[2]);
+                let tilted = frames::compose(&heading, &frames::rotation(X, q[3]));
+                let r = frames::compose(&tilted, &frames::rotation(Y, q[4]));
+                (r, [q[0], q[1], q[3].cos() * radius])
+            }
             JointKind::Fixed => (frames::identity(), frames::zero()),
         }
     }
@@ -197,8 +223,29 @@ impl Joint {
             }
             JointKind::Spherical => (frames::exponential_rate(q3(q), q3(v)), frames::zero()),
             JointKind::Free => (frames::exponential_rate(q3(&q[3..]), q3(&v[3..])), q3(v)),
+            JointKind::Rolling { radius } => {
+                let (sp, cp, st, ct) = (q[2].sin(), q[2].cos(), q[3].sin(), q[3].cos());
+                // ω = ψ̇ e_z + θ̇ e_r + φ̇ u, u = cos θ e_a + sin θ e_z the disk's axis,
+                // e_r = (cos ψ, sin ψ, 0), e_a = (−sin ψ, cos ψ, 0).
+                let spin = v[4] * ct;
+                let w = [v[3] * cp - spin * sp, v[3] * sp + spin * cp, v[2] + v[4] * st];
+                (w, [v[0], v[1], -(st * v[3]) * radius])
+            }
             JointKind::Fixed => (frames::zero(), frames::zero()),
         }
+    }
+
+    /// For a rolling joint, the velocity of the material point of the rim touching the plane,
+    /// relative to the joint frame: v_c + ω × ρ w, with w = sin θ e_a − cos θ e_z pointing from the
+    /// centre to the contact (module docs of [`JointKind::Rolling`]); `None` for other joints.
+    pub(crate) fn contact_velocity<D: Scalar>(&self, q: &[D], v: &[D]) -> Option<V3<D>> {
+        let JointKind::Rolling { radius } = self.kind else {
+            return None;
+        };
+        let (w, centre) = self.rates(q, v);
+        let (sp, cp, st, ct) = (q[2].sin(), q[2].cos(), q[3].sin(), q[3].cos());
+        let arm = [-(st * sp) * radius, (st * cp) * radius, -ct * radius];
+        Some(frames::add(centre, frames::cross(w, arm)))
     }
 
     /// Where this joint's rotation vector starts among its coordinates (3 for a free joint, 0 for
@@ -211,6 +258,11 @@ impl Joint {
         }
     }
 }
+
+/// The coordinate axes.
+const X: [f64; 3] = [1.0, 0.0, 0.0];
+const Y: [f64; 3] = [0.0, 1.0, 0.0];
+const Z: [f64; 3] = [0.0, 0.0, 1.0];
 
 /// The first three entries of a slice as a 3-vector.
 fn q3<D: Copy>(x: &[D]) -> [D; 3] {

@@ -1,11 +1,12 @@
 //! # noether-multibody
 //!
 //! Multibody systems from bodies and joints: describe a mechanism — rigid bodies (mass, centre of
-//! mass, inertia) attached by revolute, prismatic, cylindrical, planar, spherical, free and fixed
-//! joints (spherical and free ones in exponential coordinates, renewed by
-//! [`Mechanism::chart_event`] before they turn to the chart's edge) to the ground
-//! or to each other, with springs, dampers and actuated joints — and get its Lagrangian written for
-//! you. [`Mechanism`] is an
+//! mass, inertia) attached to the ground or to each other by revolute, prismatic, cylindrical,
+//! planar, spherical, free, rolling and fixed joints, with springs, dampers and actuated joints — and
+//! get its Lagrangian written for you. Spherical and free joints turn by a rotation vector
+//! (exponential coordinates, renewed by [`Mechanism::chart_event`] before they reach the chart's
+//! edge); a rolling joint's disk rolls without slipping under the velocity constraints
+//! [`RollingContacts`]. [`Mechanism`] is an
 //! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
 //! so every integrator, the driver, linearisation and LQR, variational integrators, tangents and
 //! ensembles run it unchanged, with exact derivatives by dual numbers. Closed loops (a four-bar, a
@@ -39,9 +40,11 @@ pub mod frames;
 pub mod joint;
 pub mod mechanism;
 pub mod newton_euler;
+pub mod rolling;
 
 pub use closure::LoopClosures;
 pub use error::{Error, Result};
 pub use joint::{renewed_rotation_vector, rotation_vector_rate, Body, Joint, JointKind, Placement};
 pub use mechanism::{BodyId, Mechanism, Parent};
 pub use newton_euler::NewtonEuler;
+pub use rolling::RollingContacts;

@@ -24,7 +24,7 @@
 //! inputs u as forces or torques on their coordinates ([`Actuated`]).
 
 use crate::frames::{self, M3, V3};
-use crate::joint::{Body, Joint, Placement};
+use crate::joint::{Body, Joint, JointKind, Placement};
 use crate::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
 use noether_core::control::Actuated;
@@ -113,6 +113,16 @@ impl Mechanism {
         if let Some(axis) = joint.axis() {
             if !axis.iter().all(|a| a.is_finite()) || axis.iter().all(|a| *a == 0.0) {
                 return Err(Error::Axis { body: id, axis });
+            }
+        }
+        if let JointKind::Rolling { radius } = joint.kind {
+            if !(radius.is_finite() && radius > 0.0) {
+                return Err(noether_core::Error::InvalidParameter {
+                    name: "rolling radius",
+                    value: radius,
+                    reason: "finite and positive",
+                }
+                .into());
             }
         }
         for (name, value) in [

@@ -606,3 +606,23 @@ impl BallPendulum {
         ]
     }
 }
+
+/// The coin of [`Coin`](crate::coin::Coin) built from a rolling joint: a body of mass m with the
+/// moments diag(A, C, A) (the disk's axis along the body's y axis) on `Joint::rolling(a)` on the
+/// plane z = 0, gravity −g e_z. Its coordinates are the hand-written coin's (x, y, ψ, θ, φ), and
+/// `rolling_contacts()` its two no-slip constraints.
+pub fn rolling_coin(coin: &crate::coin::Coin) -> Mechanism {
+    let (a, c) = (coin.diametral, coin.axial);
+    let disk = Body::new(coin.mass, [0.0; 3], [[a, 0.0, 0.0], [0.0, c, 0.0], [0.0, 0.0, a]]);
+    let mut m = Mechanism::new()
+        .gravity([0.0, 0.0, -coin.g])
+        .expect("finite gravity");
+    m.attach(
+        Parent::Ground,
+        Placement::identity(),
+        Joint::rolling(coin.radius),
+        disk,
+    )
+    .expect("a valid disk");
+    m
+}
