@@ -12,7 +12,9 @@
 //! ensembles run it unchanged, with exact derivatives by dual numbers. Closed loops (a four-bar, a
 //! slider-crank) are cut at a joint and closed again by [`Mechanism::close_loop`]: holonomic
 //! constraints ([`LoopClosures`]) for noether-constraints' multipliers, RATTLE and reduction. A tree
-//! of one-coordinate joints also runs as [`NewtonEuler`], the recursive Newton-Euler algorithm on f64.
+//! of one-coordinate joints also runs as [`ArticulatedBody`], the articulated-body algorithm on f64
+//! ([`Mechanism::forward_dynamics`] chooses it), or [`NewtonEuler`], the recursive Newton-Euler
+//! algorithm.
 //!
 //! ```
 //! use noether_core::prelude::*;
@@ -34,6 +36,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod articulated;
 pub mod closure;
 pub mod error;
 pub mod frames;
@@ -42,6 +45,7 @@ pub mod mechanism;
 pub mod newton_euler;
 pub mod rolling;
 
+pub use articulated::{ArticulatedBody, ForwardDynamics};
 pub use closure::LoopClosures;
 pub use error::{Error, Result};
 pub use joint::{renewed_rotation_vector, rotation_vector_rate, Body, Joint, JointKind, Placement};

@@ -53,7 +53,7 @@ impl From<BodyId> for Parent {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Node {
     pub(crate) parent: Parent,
-    placement: Placement,
+    pub(crate) placement: Placement,
     pub(crate) joint: Joint,
     pub(crate) body: Body,
     /// The index of the joint's first coordinate in q.
