@@ -6,6 +6,9 @@
 //! by hand for this arm (`hand_aba` below: the same spatial algebra with the arm's structure — a
 //! chain, every joint a hinge about z, rods along x — written in, no allocation).
 //!
+//! A second group times the articulated-body algorithm, Newton-Euler and the dual-number path against
+//! the number of links (2 to 28).
+//!
 //! Run: `cargo bench -p noether-multibody --bench accelerations`
 
 // criterion_group! generates an undocumented public function.
@@ -177,5 +180,46 @@ impl HandArm {
     }
 }
 
-criterion_group!(benches, bench);
+/// q̈ against the number of links n of the chain: the articulated-body algorithm is O(n), Newton-Euler
+/// forming M by n passes O(n²) (then an O(n³) factorisation), Lagrange's equations by dual numbers
+/// O(n³) and more (every second derivative of L through the whole chain).
+fn scaling(c: &mut Criterion) {
+    let mut group = c.benchmark_group("chain_accelerations_by_links");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(200))
+        .measurement_time(Duration::from_secs(1));
+    for n in [2, 4, 7, 14, 28] {
+        let masses: Vec<f64> = (0..n).map(|i| 1.0 - 0.02 * i as f64).collect();
+        let lengths: Vec<f64> = (0..n).map(|i| 0.5 - 0.01 * i as f64).collect();
+        let arm = rod_chain(&masses, &lengths, 9.81);
+        let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.2 * i as f64).collect();
+        let v: Vec<f64> = (0..n).map(|i| 0.5 - 0.05 * i as f64).collect();
+        let (mut dq, mut dv) = (vec![0.0; n], vec![0.0; n]);
+        let aba = ArticulatedBody::new(arm.clone()).unwrap();
+        group.bench_function(format!("articulated_body/{n}"), |b| {
+            b.iter(|| {
+                aba.rates(0.0, black_box(&q), black_box(&v), &mut dq, &mut dv)
+                    .unwrap()
+            })
+        });
+        let ne = NewtonEuler::new(arm.clone()).unwrap();
+        group.bench_function(format!("newton_euler/{n}"), |b| {
+            b.iter(|| {
+                ne.rates(0.0, black_box(&q), black_box(&v), &mut dq, &mut dv)
+                    .unwrap()
+            })
+        });
+        let el = EulerLagrange::new(arm);
+        group.bench_function(format!("euler_lagrange_dual/{n}"), |b| {
+            b.iter(|| {
+                el.rates(0.0, black_box(&q), black_box(&v), &mut dq, &mut dv)
+                    .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, scaling);
 criterion_main!(benches);

@@ -120,6 +120,31 @@ impl Mechanism {
         Ok(())
     }
 
+    /// The reaction force at each cut joint, from the multipliers λ of the loop closures (in the order
+    /// of [`loop_closures`](Self::loop_closures), as noether-constraints' `Constrained::multipliers`
+    /// gives them: M q̈ = f + (∂φ/∂q)ᵀ λ). The constraint force Σ_k λ_k ∂φ_k/∂q with
+    /// φ_k = d_k · (r_a − r_b) is the virtual work of the force F = Σ_k λ_k d_k on the point of `a`
+    /// and −F on the point of `b`: one world vector F per closure, the force the joint that was cut
+    /// exerts on `a`. Errors: λ of the wrong length or not finite.
+    pub fn closure_forces(&self, lambda: &[f64]) -> Result<Vec<[f64; 3]>> {
+        noether_core::error::check_len("loop-closure multipliers", lambda, self.closure_count())?;
+        noether_core::error::check_finite("loop-closure multipliers", lambda)?;
+        let mut rest = lambda;
+        Ok(self
+            .closures
+            .iter()
+            .map(|c| {
+                let (own, after) = rest.split_at(c.directions.len());
+                rest = after;
+                let mut force = [0.0; 3];
+                for (l, d) in own.iter().zip(&c.directions) {
+                    (0..3).for_each(|i| force[i] += l * d[i]);
+                }
+                force
+            })
+            .collect())
+    }
+
     /// The loop closures as a holonomic constraint set on this mechanism's coordinates.
     pub fn loop_closures(&self) -> LoopClosures {
         LoopClosures(self.clone())
