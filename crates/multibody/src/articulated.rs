@@ -111,9 +111,16 @@ fn cross_force(m: &Vector6<f64>, f: &Vector6<f64>) -> Vector6<f64> {
 
 impl ArticulatedBody {
     /// The tree `mechanism`. Errors (`Unsupported`): loop closures (use noether-constraints'
-    /// `Constrained` or `Rattle`), or a joint of more than one coordinate (cylindrical, planar,
-    /// spherical, free, rolling: Lagrange's equations take them).
+    /// `Constrained` or `Rattle`), a joint of more than one coordinate (cylindrical, planar,
+    /// spherical, free, rolling), or springs or dampers between points (Lagrange's equations take
+    /// both).
     pub fn new(mechanism: Mechanism) -> Result<Self> {
+        if mechanism.has_connections() {
+            return Err(noether_core::Error::Unsupported(
+                "the articulated-body algorithm with springs or dampers between points (use EulerLagrange)",
+            )
+            .into());
+        }
         if mechanism.closure_count() > 0 {
             return Err(noether_core::Error::Unsupported(
                 "the articulated-body algorithm for a mechanism with loop closures (use Constrained or Rattle)",
@@ -308,7 +315,7 @@ impl Dynamics for ArticulatedBody {
 /// A mechanism's forward dynamics by the fastest path this crate has for its shape
 /// ([`Mechanism::forward_dynamics`]): the articulated-body algorithm for a tree of revolute,
 /// prismatic and fixed joints, Lagrange's equations of its L by dual numbers for anything else
-/// (joints of several coordinates). Both are a core [`Dynamics`] on (q, q̇) with the inputs at zero,
+/// (joints of several coordinates, springs and dampers between points). Both are a core [`Dynamics`] on (q, q̇) with the inputs at zero,
 /// and the same motion to rounding.
 #[allow(clippy::large_enum_variant)]
 pub enum ForwardDynamics {
@@ -330,12 +337,13 @@ impl Mechanism {
             )
             .into());
         }
-        let tree = self.nodes().iter().all(|n| {
-            matches!(
-                n.joint.kind(),
-                JointKind::Revolute { .. } | JointKind::Prismatic { .. } | JointKind::Fixed
-            )
-        });
+        let tree = !self.has_connections()
+            && self.nodes().iter().all(|n| {
+                matches!(
+                    n.joint.kind(),
+                    JointKind::Revolute { .. } | JointKind::Prismatic { .. } | JointKind::Fixed
+                )
+            });
         Ok(if tree {
             ForwardDynamics::Articulated(ArticulatedBody::new(self)?)
         } else {

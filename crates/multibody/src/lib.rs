@@ -2,11 +2,11 @@
 //!
 //! Multibody systems from bodies and joints: describe a mechanism — rigid bodies (mass, centre of
 //! mass, inertia) attached to the ground or to each other by revolute, prismatic, cylindrical,
-//! planar, spherical, free, rolling and fixed joints, with springs, dampers and actuated joints — and
-//! get its Lagrangian written for you. Spherical and free joints turn by a rotation vector
-//! (exponential coordinates, renewed by [`Mechanism::chart_event`] before they reach the chart's
-//! edge); a rolling joint's disk rolls without slipping under the velocity constraints
-//! [`RollingContacts`]. [`Mechanism`] is an
+//! planar, spherical, free, rolling and fixed joints, with springs and dampers on joints or between
+//! points, and actuated joints — and get its Lagrangian written for you. Spherical and free joints
+//! turn by a rotation vector (exponential coordinates, renewed by [`Mechanism::chart_event`] before
+//! they reach the chart's edge); a rolling joint's disk rolls without slipping under the velocity
+//! constraints [`RollingContacts`]. [`Mechanism`] is an
 //! ordinary [`Lagrangian`](noether_core::Lagrangian) (and [`Actuated`](noether_core::control::Actuated)),
 //! so every integrator, the driver, linearisation and LQR, variational integrators, tangents and
 //! ensembles run it unchanged, with exact derivatives by dual numbers. Closed loops (a four-bar, a
@@ -38,6 +38,7 @@
 
 pub mod articulated;
 pub mod closure;
+pub mod connections;
 pub mod error;
 pub mod frames;
 pub mod joint;

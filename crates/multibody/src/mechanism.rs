@@ -70,6 +70,8 @@ pub struct Mechanism {
     actuated: Vec<usize>,
     /// The joints that close loops ([`close_loop`](Self::close_loop)).
     pub(crate) closures: Vec<crate::closure::Closure>,
+    /// Springs and dampers between points ([`spring`](Self::spring), [`damper`](Self::damper)).
+    pub(crate) connections: Vec<crate::connections::Connection>,
 }
 
 /// A body's pose and velocity in the world frame.
@@ -410,18 +412,22 @@ impl Lagrangian for Mechanism {
                 l -= stretch * stretch * (0.5 * node.joint.stiffness);
             }
         }
-        l
+        l - self.connection_energy(&frames)
     }
 
     fn has_generalized_force(&self) -> bool {
-        self.nodes.iter().any(|n| n.joint.damping != 0.0)
+        self.nodes.iter().any(|n| n.joint.damping != 0.0) || self.has_point_dampers()
     }
 
-    /// The joints' dampers: Q = −c q̇ on each damped coordinate.
-    fn generalized_force<D: Scalar>(&self, _t: D, _q: &[D], v: &[D], out: &mut [D]) {
+    /// The joints' dampers, Q = −c q̇ on each damped coordinate, and the dampers between points
+    /// ([`connections`](crate::connections)).
+    fn generalized_force<D: Scalar>(&self, _t: D, q: &[D], v: &[D], out: &mut [D]) {
         out.fill(D::zero());
         for n in self.nodes.iter().filter(|n| n.joint.damping != 0.0) {
             out[n.offset] = -v[n.offset] * n.joint.damping;
+        }
+        if self.has_point_dampers() {
+            self.add_damper_forces(q, &self.forward(q, v), out);
         }
     }
 }

@@ -42,9 +42,16 @@ pub struct NewtonEuler {
 
 impl NewtonEuler {
     /// The tree `mechanism`. Errors (`Unsupported`): a mechanism with loop closures (a closed loop
-    /// needs its constraints, noether-constraints' `Constrained` or `Rattle`), or with a joint of more
-    /// than one coordinate (cylindrical, planar: not yet here; Lagrange's equations take them).
+    /// needs its constraints, noether-constraints' `Constrained` or `Rattle`), with a joint of more
+    /// than one coordinate (cylindrical, planar: not yet here; Lagrange's equations take them), or
+    /// with springs or dampers between points (Lagrange's equations take them).
     pub fn new(mechanism: Mechanism) -> Result<Self> {
+        if mechanism.has_connections() {
+            return Err(noether_core::Error::Unsupported(
+                "the Newton-Euler algorithm with springs or dampers between points (use EulerLagrange)",
+            )
+            .into());
+        }
         if mechanism.nodes().iter().any(|n| n.joint.dof() > 1) {
             return Err(noether_core::Error::Unsupported(
                 "the Newton-Euler algorithm for joints of more than one coordinate (use EulerLagrange)",
