@@ -32,8 +32,9 @@ pub(crate) struct Closure {
 impl Mechanism {
     /// Closes a loop: the point `at_a` (in the frame of `a`, or of the world for the ground) stays on
     /// the point `at_b` of `b` along each of the world `directions` (unit vectors after
-    /// normalisation; one constraint each). Errors: an unknown body, a zero or non-finite direction,
-    /// no direction, a non-finite point.
+    /// normalisation; one constraint each). Errors: an unknown body, both sides on the same body or
+    /// both on the ground ([`Error::NotALoop`]), a zero or non-finite direction, no direction, a
+    /// non-finite point.
     pub fn close_loop(
         &mut self,
         (a, at_a): (Parent, [f64; 3]),
@@ -42,6 +43,11 @@ impl Mechanism {
     ) -> Result<()> {
         for p in [a, b] {
             self.check_parent(p, self.bodies())?;
+        }
+        if a == b {
+            return Err(Error::NotALoop {
+                closure: self.closures.len(),
+            });
         }
         noether_core::error::check_finite("loop closure point", &at_a)?;
         noether_core::error::check_finite("loop closure point", &at_b)?;

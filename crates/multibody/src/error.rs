@@ -59,6 +59,13 @@ pub enum Error {
         /// The rank of the closures' Jacobian up to and including it.
         rank: usize,
     },
+    /// A loop closure between a body and itself, or between the ground and the ground: the two
+    /// points move together whatever q is, so it closes no loop (it holds always, or never).
+    #[error("loop closure {closure}: both sides are on the same body (or both on the ground), which closes no loop")]
+    NotALoop {
+        /// The closure (in the order of `close_loop`).
+        closure: usize,
+    },
     /// A body named that the mechanism does not have (in `actuate`, `coordinates`, `pose`).
     #[error("no body {body}: the mechanism has {bodies}")]
     UnknownBody {

@@ -36,6 +36,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod appell;
 pub mod articulated;
 pub mod closure;
 pub mod connections;
@@ -46,6 +47,7 @@ pub mod mechanism;
 pub mod newton_euler;
 pub mod rolling;
 
+pub use appell::RollingAppell;
 pub use articulated::{ArticulatedBody, ForwardDynamics};
 pub use closure::LoopClosures;
 pub use error::{Error, Result};

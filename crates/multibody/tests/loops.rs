@@ -104,6 +104,17 @@ fn redundant_and_violated_closures_are_typed_errors() {
     );
     let off = fb.mechanism().check_loops(&[q[0] + 0.1, q[1], q[2]]);
     assert!(matches!(off, Err(Error::Core(_))), "{off:?}");
+    // A body closed to itself, or the ground to the ground, closes no loop.
+    let x = [[1.0, 0.0, 0.0]];
+    let itself = m.close_loop((crank.into(), [0.0; 3]), (crank.into(), [0.1, 0.0, 0.0]), &x);
+    assert!(
+        matches!(itself, Err(Error::NotALoop { closure: 1 })),
+        "{itself:?}"
+    );
+    assert!(matches!(
+        m.close_loop((Parent::Ground, [0.0; 3]), (Parent::Ground, [1.0, 0.0, 0.0]), &x),
+        Err(Error::NotALoop { .. })
+    ));
     assert!(m
         .close_loop((crank.into(), [0.0; 3]), (Parent::Ground, [0.0; 3]), &[])
         .is_err());
