@@ -20,7 +20,7 @@
 //!
 //! Run: `cargo run --release --features examples --example rolling_coin`.
 
-use noether::constraints::{Constrained, GibbsAppellEquations, Nonholonomic};
+use noether::constraints::{Constrained, GibbsAppellEquations};
 use noether::prelude::*;
 use noether_gallery::{BoxError, Check, Options, Report};
 use noether_testkit::agreement::{relative, uniform};
@@ -37,12 +37,7 @@ const NUDGE: f64 = 1e-4;
 /// The state with the angles (ψ, θ, φ) and their rates given and the centre's velocity (ẋ, ẏ) that
 /// rolling asks for.
 fn rolling(coin: &Coin, q: [f64; 5], angle_rates: [f64; 3]) -> State {
-    let mut v = [0.0, 0.0, angle_rates[0], angle_rates[1], angle_rates[2]];
-    let mut g = [0.0; 2];
-    coin.rolling().constraints(0.0, &q, &v, &mut g);
-    v[0] = -g[0];
-    v[1] = -g[1];
-    State::new(0.0, q, v)
+    State::new(0.0, q, coin.rolling_rates(&q, angle_rates))
 }
 
 /// Runs the example.

@@ -115,17 +115,8 @@ impl ArticulatedBody {
     /// spherical, free, rolling), or springs or dampers between points (Lagrange's equations take
     /// both).
     pub fn new(mechanism: Mechanism) -> Result<Self> {
-        if mechanism.has_connections() {
-            return Err(noether_core::Error::Unsupported(
-                "the articulated-body algorithm with springs or dampers between points (use EulerLagrange)",
-            )
-            .into());
-        }
-        if mechanism.closure_count() > 0 {
-            return Err(noether_core::Error::Unsupported(
-                "the articulated-body algorithm for a mechanism with loop closures (use Constrained or Rattle)",
-            )
-            .into());
+        if let Some(refusal) = mechanism.recursive_refusal() {
+            return Err(refusal.into());
         }
         let mut links = Vec::with_capacity(mechanism.bodies());
         for node in mechanism.nodes() {
@@ -134,7 +125,11 @@ impl ArticulatedBody {
                 JointKind::Revolute { .. } => Freedom::Turn(axis_of(node), k),
                 JointKind::Prismatic { .. } => Freedom::Slide(axis_of(node), k),
                 JointKind::Fixed => Freedom::Weld,
-                _ => {
+                JointKind::Cylindrical { .. }
+                | JointKind::Planar { .. }
+                | JointKind::Spherical
+                | JointKind::Free
+                | JointKind::Rolling { .. } => {
                     return Err(noether_core::Error::Unsupported(
                         "the articulated-body algorithm for joints of more than one coordinate (use EulerLagrange)",
                     )
@@ -337,13 +332,7 @@ impl Mechanism {
             )
             .into());
         }
-        let tree = !self.has_connections()
-            && self.nodes().iter().all(|n| {
-                matches!(
-                    n.joint.kind(),
-                    JointKind::Revolute { .. } | JointKind::Prismatic { .. } | JointKind::Fixed
-                )
-            });
+        let tree = self.recursive_refusal().is_none();
         Ok(if tree {
             ForwardDynamics::Articulated(ArticulatedBody::new(self)?)
         } else {

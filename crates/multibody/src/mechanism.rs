@@ -292,6 +292,28 @@ impl Mechanism {
         (placed, frames::compose(&placed, &rj), p)
     }
 
+    /// Why the recursive algorithms on f64 ([`NewtonEuler`](crate::NewtonEuler),
+    /// [`ArticulatedBody`](crate::ArticulatedBody)) cannot run this mechanism, if they cannot: a loop
+    /// closure (it needs its constraints), a joint of several coordinates or springs and dampers
+    /// between points (Lagrange's equations take both). `None` for a tree of revolute, prismatic and
+    /// fixed joints.
+    pub(crate) fn recursive_refusal(&self) -> Option<noether_core::Error> {
+        let reason = if self.closure_count() > 0 {
+            "the recursive algorithms (Newton-Euler, articulated body) for a mechanism with loop closures (use Constrained or Rattle)"
+        } else if self
+            .nodes
+            .iter()
+            .any(|n| n.joint.dof() > 1 || n.joint.rotation_vector().is_some())
+        {
+            "the recursive algorithms (Newton-Euler, articulated body) for joints of more than one coordinate (use EulerLagrange)"
+        } else if self.has_connections() {
+            "the recursive algorithms (Newton-Euler, articulated body) with springs or dampers between points (use EulerLagrange)"
+        } else {
+            return None;
+        };
+        Some(noether_core::Error::Unsupported(reason))
+    }
+
     /// The bodies in the order of attachment.
     pub(crate) fn nodes(&self) -> &[Node] {
         &self.nodes

@@ -46,23 +46,8 @@ impl NewtonEuler {
     /// than one coordinate (cylindrical, planar: not yet here; Lagrange's equations take them), or
     /// with springs or dampers between points (Lagrange's equations take them).
     pub fn new(mechanism: Mechanism) -> Result<Self> {
-        if mechanism.has_connections() {
-            return Err(noether_core::Error::Unsupported(
-                "the Newton-Euler algorithm with springs or dampers between points (use EulerLagrange)",
-            )
-            .into());
-        }
-        if mechanism.nodes().iter().any(|n| n.joint.dof() > 1) {
-            return Err(noether_core::Error::Unsupported(
-                "the Newton-Euler algorithm for joints of more than one coordinate (use EulerLagrange)",
-            )
-            .into());
-        }
-        if mechanism.closure_count() > 0 {
-            return Err(noether_core::Error::Unsupported(
-                "the Newton-Euler algorithm for a mechanism with loop closures (use Constrained or Rattle)",
-            )
-            .into());
+        if let Some(refusal) = mechanism.recursive_refusal() {
+            return Err(refusal.into());
         }
         Ok(NewtonEuler { mechanism })
     }

@@ -18,12 +18,7 @@ fn rolling_state(coin: &Coin, draw: &mut impl FnMut(f64, f64) -> f64) -> ([f64; 
         draw(-1.2, 1.2),
         draw(-3.0, 3.0),
     ];
-    let mut v = [0.0, 0.0, draw(-3.0, 3.0), draw(-3.0, 3.0), draw(-3.0, 3.0)];
-    let mut g = [0.0; 2];
-    coin.rolling().constraints(0.0, &q, &v, &mut g);
-    // g = (ẋ, ẏ) − (what rolling asks) at ẋ = ẏ = 0: ẋ = −g₀, ẏ = −g₁ satisfies it.
-    v[0] = -g[0];
-    v[1] = -g[1];
+    let v = coin.rolling_rates(&q, [draw(-3.0, 3.0), draw(-3.0, 3.0), draw(-3.0, 3.0)]);
     (q, v)
 }
 

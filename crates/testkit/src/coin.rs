@@ -105,6 +105,17 @@ impl Coin {
         -(f_theta + f_omega * p + f_spin * r) / (a + ma2)
     }
 
+    /// The rates q̇ at q with the angles' rates (ψ̇, θ̇, φ̇) given and the centre's (ẋ, ẏ) that rolling
+    /// asks for (the constraints at ẋ = ẏ = 0 are −(ẋ, ẏ)).
+    pub fn rolling_rates(&self, q: &[f64; 5], angles: [f64; 3]) -> [f64; 5] {
+        let mut v = [0.0, 0.0, angles[0], angles[1], angles[2]];
+        let mut g = [0.0; 2];
+        self.rolling().constraints(0.0, q, &v, &mut g);
+        v[0] = -g[0];
+        v[1] = -g[1];
+        v
+    }
+
     /// The state (q, q̇) of the steady motion (θ, Ω, ω₃) heading along x from the origin:
     /// q = (0, 0, 0, θ, 0), q̇ = (a ω₃, 0, Ω, 0, ω₃ − Ω sin θ).
     pub fn steady_state(&self, theta: f64, omega: f64, spin: f64) -> ([f64; 5], [f64; 5]) {
