@@ -5,8 +5,9 @@
 //! to the child's body frame, which coincides with the joint frame when the joint's coordinates are
 //! zero. A revolute joint turns the child about an axis of the joint frame by its angle q, a prismatic
 //! one slides it along an axis by q, a spherical one turns it by a rotation vector (exponential
-//! coordinates, [`frames::exponential`]), a free one slides and turns it, a fixed one welds it. Springs (V = ½ k (q − q₀)²) and dampers
-//! (Q = −c q̇) act on the joint's coordinate.
+//! coordinates, [`frames::exponential`]), a free one slides and turns it, a rolling one stands a disk
+//! on the joint frame's plane, a fixed one welds it. Springs (V = ½ k (q − q₀)²) and dampers
+//! (Q = −c q̇) act on a joint's coordinate when it has one.
 
 use crate::frames::{self, M3, V3};
 use noether_core::Scalar;
