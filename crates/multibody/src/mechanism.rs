@@ -155,9 +155,10 @@ impl Mechanism {
     }
 
     /// Makes the coordinates of `body`'s joint inputs: a force (a slide) or torque (a turn) u on
-    /// each, in the order of the calls (on a spherical or free joint's rotation vector, the generalized
-    /// forces conjugate to θ, Q = Jᵀ τ for a torque τ in the joint frame). Errors: an unknown body (`UnknownBody`), a joint already
-    /// actuated or without coordinates (`InvalidParameter`).
+    /// each, in the order of the calls (on a spherical or free joint's rotation vector, the
+    /// generalized forces conjugate to θ, Q = Jᵀ τ for a torque τ in the joint frame). Errors: an
+    /// unknown body (`UnknownBody`), a joint already actuated or without coordinates
+    /// (`InvalidParameter`).
     pub fn actuate(&mut self, body: BodyId) -> Result<()> {
         let node = self.node(body)?;
         let range = node.offset..node.offset + node.joint.dof();
@@ -238,7 +239,8 @@ impl Mechanism {
     /// vector reaches 3π/2 (where the smallest singular value of its Jacobian,
     /// sin(3π/4)/(3π/4) = 0.30, is still far from the singularity at 2π), and the reset
     /// [`rechart`](Self::rechart)s, which brings it back to π/2. Named `"rechart"`; without such
-    /// joints g = −3π/2 and it never fires.
+    /// joints g = −3π/2 and it never fires. It fires on crossings: start the run inside (every
+    /// |θ| ≤ π, which [`rechart`](Self::rechart) of the initial state ensures).
     pub fn chart_event(&self) -> Event<'static, Velocities> {
         let (starts, mechanism) = (self.rotation_vectors(), self.clone());
         let limit = 1.5 * std::f64::consts::PI;
