@@ -65,15 +65,8 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     let mut draw = uniform(29);
     let mut worst = 0.0_f64;
     for _ in 0..50 {
-        let q = [
-            draw(-1.0, 1.0),
-            draw(-1.0, 1.0),
-            draw(-3.0, 3.0),
-            draw(-1.2, 1.2),
-            draw(-3.0, 3.0),
-        ];
-        let s = rolling(&coin, q, [draw(-3.0, 3.0), draw(-3.0, 3.0), draw(-3.0, 3.0)]);
-        let (q, v) = (s.q.as_slice(), s.v.as_slice());
+        let (q, v) = coin.random_rolling_state(&mut draw);
+        let (q, v) = (&q[..], &v[..]);
         let (mut ab, mut ah, mut lambda) = ([0.0; 5], [0.0; 5], [0.0; 2]);
         built.solve(0.0, q, v, &mut ab, &mut lambda)?;
         hand.solve(0.0, q, v, &mut ah, &mut lambda)?;

@@ -8,20 +8,6 @@ use noether_testkit::agreement::{relative, uniform};
 use noether_testkit::coin::Coin;
 use noether_testkit::multibody::rolling_coin;
 
-/// A random state of the coin that rolls: tilt |θ| < 1.2, rates of the angles in [−3, 3], and the
-/// centre's velocity from the hand-written constraints.
-fn rolling_state(coin: &Coin, draw: &mut impl FnMut(f64, f64) -> f64) -> ([f64; 5], [f64; 5]) {
-    let q = [
-        draw(-1.0, 1.0),
-        draw(-1.0, 1.0),
-        draw(-3.0, 3.0),
-        draw(-1.2, 1.2),
-        draw(-3.0, 3.0),
-    ];
-    let v = coin.rolling_rates(&q, [draw(-3.0, 3.0), draw(-3.0, 3.0), draw(-3.0, 3.0)]);
-    (q, v)
-}
-
 /// The rolling joint's L and no-slip constraints are the hand-written coin's (`Coin`, whose L and
 /// constraints are written out in its module docs), and so are the motions with multipliers: at 50
 /// random rolling states (tilt up to 1.2 rad) L, M, the constraint rows and the accelerations of
@@ -39,7 +25,7 @@ fn coin_from_a_rolling_joint_is_the_hand_written_coin() {
     let mut draw = uniform(17);
     let mut worst = [0.0_f64; 4];
     for _ in 0..50 {
-        let (q, v) = rolling_state(&coin, &mut draw);
+        let (q, v) = coin.random_rolling_state(&mut draw);
         let l = relative(&[built.lagrangian(0.0, &q, &v)], &[coin.lagrangian(0.0, &q, &v)]);
         let m = relative(
             el_built.mass_matrix(0.0, &q, &v).unwrap().as_slice(),
@@ -106,7 +92,7 @@ fn gibbs_appell_form_of_the_rolling_coin_is_lagrange_dalembert() {
     let mut draw = uniform(23);
     let mut worst = 0.0_f64;
     for _ in 0..50 {
-        let (q, v) = rolling_state(&coin, &mut draw);
+        let (q, v) = coin.random_rolling_state(&mut draw);
         let u = appell.quasi_velocities(&v).unwrap();
         let mut qdot = [0.0; 5];
         equations.coordinate_rates(0.0, &q, &u, &mut qdot).unwrap();

@@ -116,6 +116,21 @@ impl Coin {
         v
     }
 
+    /// A random rolling state from `draw` (uniform in [lo, hi), e.g. `agreement::uniform`): the centre
+    /// in [−1, 1]², the heading and spin angles and the three angle rates in [−3, 3], the tilt within
+    /// 1.2 rad of upright, and the centre's velocity that rolling asks for.
+    pub fn random_rolling_state(&self, draw: &mut impl FnMut(f64, f64) -> f64) -> ([f64; 5], [f64; 5]) {
+        let q = [
+            draw(-1.0, 1.0),
+            draw(-1.0, 1.0),
+            draw(-3.0, 3.0),
+            draw(-1.2, 1.2),
+            draw(-3.0, 3.0),
+        ];
+        let v = self.rolling_rates(&q, [draw(-3.0, 3.0), draw(-3.0, 3.0), draw(-3.0, 3.0)]);
+        (q, v)
+    }
+
     /// The state (q, q̇) of the steady motion (θ, Ω, ω₃) heading along x from the origin:
     /// q = (0, 0, 0, θ, 0), q̇ = (a ω₃, 0, Ω, 0, ω₃ − Ω sin θ).
     pub fn steady_state(&self, theta: f64, omega: f64, spin: f64) -> ([f64; 5], [f64; 5]) {
