@@ -37,25 +37,9 @@ impl Hamiltonian for KeplerRadial {
     }
 }
 
-/// (K(k), E(k)) by the arithmetic-geometric mean: K = π/(2 M(1, k′)),
-/// E = K (1 − Σₙ 2ⁿ⁻¹ cₙ²) with c₀ = k, cₙ₊₁ = (aₙ − bₙ)/2 (Abramowitz-Stegun 17.6).
+/// (K(k), E(k)) (the testkit's AGM, by the complementary modulus).
 fn elliptic_ke(k: f64) -> (f64, f64) {
-    let (mut a, mut b, mut c) = (1.0f64, (1.0 - k * k).sqrt(), k);
-    let mut sum = 0.5 * c * c;
-    let mut pow = 0.5;
-    for _ in 0..40 {
-        if c.abs() < 1e-17 {
-            break;
-        }
-        let an = 0.5 * (a + b);
-        c = 0.5 * (a - b);
-        b = (a * b).sqrt();
-        a = an;
-        pow *= 2.0;
-        sum += pow * c * c;
-    }
-    let kk = PI / (2.0 * a);
-    (kk, kk * (1.0 - sum))
+    noether_testkit::closed_form::elliptic_ke_complementary(((1.0 - k) * (1.0 + k)).sqrt())
 }
 
 /// E(k) − k′² K(k) without the cancellation of the difference at small k: with the AGM's

@@ -105,16 +105,10 @@ pub fn jacobi_sn_cn_dn(u: f64, m: f64) -> (f64, f64, f64) {
     (sn, cn, dn)
 }
 
-/// Complete elliptic integral K(m) = π / (2 AGM(1, √(1 − m))).
+/// Complete elliptic integral K(m) of the parameter m = k² (the testkit's, by the complementary
+/// modulus √(1 − m)).
 pub fn elliptic_k(m: f64) -> f64 {
-    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
-    for _ in 0..60 {
-        if (a - b).abs() <= 4.0 * f64::EPSILON * a {
-            break;
-        }
-        (a, b) = ((a + b) / 2.0, (a * b).sqrt());
-    }
-    std::f64::consts::PI / (2.0 * a)
+    noether_testkit::closed_form::elliptic_k_complementary((1.0 - m).sqrt())
 }
 
 /// Pendulum released from rest at θ₀ (|θ₀| < π): sin(θ/2) = k sn(K − t | k²), θ̇ = −2k cn(K − t | k²),

@@ -16,22 +16,9 @@ impl Lagrangian for Pendulum {
     }
 }
 
-/// Complete elliptic integral of the first kind K(k) = π / (2 AGM(1, √(1 − k²))).
-pub fn elliptic_k(k: f64) -> f64 {
-    let (mut a, mut b) = (1.0_f64, (1.0 - k * k).sqrt());
-    // Quadratic convergence: 8 iterations reach rounding for k < 0.99 (a fixed count, since a and b
-    // may end up oscillating in the last bit).
-    for _ in 0..8 {
-        let an = 0.5 * (a + b);
-        b = (a * b).sqrt();
-        a = an;
-    }
-    std::f64::consts::PI / (2.0 * a)
-}
-
 /// Period of the pendulum released from rest at θ₀: T = 4 K(sin(θ₀/2)) (with √(l/g) = 1).
 pub fn pendulum_period(theta0: f64) -> f64 {
-    4.0 * elliptic_k((0.5 * theta0).sin())
+    4.0 * noether_testkit::closed_form::elliptic_k((0.5 * theta0).sin())
 }
 
 /// Kepler problem with μ = 1 in the plane: L = ½|q̇|² + 1/|q|.
