@@ -80,31 +80,6 @@ impl Hamiltonian for KeplerH {
     }
 }
 
-/// Jacobi elliptic functions (sn, cn, dn)(u | m = k²) by the descending Landen / AGM scheme
-/// (Abramowitz & Stegun 16.4), accurate to a few ulps for 0 ≤ m < 1.
-pub fn jacobi_sn_cn_dn(u: f64, m: f64) -> (f64, f64, f64) {
-    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
-    let mut cs = vec![m.sqrt()];
-    let mut as_ = vec![1.0];
-    while cs.last().unwrap().abs() > 1e-17 && cs.len() < 40 {
-        let (an, bn, cn) = ((a + b) / 2.0, (a * b).sqrt(), (a - b) / 2.0);
-        a = an;
-        b = bn;
-        cs.push(cn);
-        as_.push(an);
-    }
-    let n = cs.len() - 1;
-    let mut phi = 2f64.powi(n as i32) * as_[n] * u;
-    let mut phi_prev = phi;
-    for i in (1..=n).rev() {
-        phi_prev = phi;
-        phi = 0.5 * (phi + (cs[i] / as_[i] * phi.sin()).asin());
-    }
-    let (sn, cn) = phi.sin_cos();
-    let dn = if n == 0 { 1.0 } else { cn / (phi_prev - phi).cos() };
-    (sn, cn, dn)
-}
-
 /// Complete elliptic integral K(m) of the parameter m = k² (the testkit's, by the complementary
 /// modulus √(1 − m)).
 pub fn elliptic_k(m: f64) -> f64 {
@@ -116,7 +91,7 @@ pub fn elliptic_k(m: f64) -> f64 {
 pub fn pendulum_exact(theta0: f64, t: f64) -> (f64, f64) {
     let k = (theta0 / 2.0).sin();
     let m = k * k;
-    let (sn, cn, _) = jacobi_sn_cn_dn(elliptic_k(m) - t, m);
+    let (sn, cn, _) = noether_testkit::closed_form::jacobi_sn_cn_dn(elliptic_k(m) - t, m, 1.0 - m);
     (2.0 * (k * sn).asin(), -2.0 * k * cn)
 }
 
