@@ -64,9 +64,7 @@ pub fn run(_opts: &Options) -> Result<Report, BoxError> {
     ));
 
     // 2. Over the top: from the bottom at Ω₀ = 2.4 ω₀; the bottom again once a revolution.
-    let (i1, _) = pendulum.moments();
-    let omega0 = (pendulum.mass * pendulum.g * pendulum.length / i1).sqrt();
-    let rate = 2.4 * omega0;
+    let rate = 2.4 * pendulum.small_swing_rate();
     let revolution = pendulum.revolution_period(rate);
     let turns = 10;
     let sol = Driver::new(stepper()?, State::new(0.0, [0.0; 3], [rate, 0.0, 0.0]))?

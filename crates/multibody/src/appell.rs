@@ -19,7 +19,6 @@
 //! the constraints (they hold by construction).
 
 use crate::frames;
-use crate::joint::JointKind;
 use crate::mechanism::Mechanism;
 use crate::Result;
 use nalgebra::Matrix3;
@@ -33,7 +32,7 @@ pub struct RollingAppell {
     mechanism: Mechanism,
     /// The coordinates whose rates are the quasi-velocities, in order.
     free: Vec<usize>,
-    /// For each rolling joint, where its coordinates start.
+    /// The bodies on rolling joints.
     rolling: Vec<usize>,
     /// The bodies of positive mass (the rigid parts), by index.
     parts: Vec<usize>,
@@ -43,12 +42,7 @@ impl Mechanism {
     /// The Gibbs-Appell form of this mechanism (module docs). Errors (`InvalidParameter`): no rolling
     /// joint (a holonomic mechanism has its Lagrangian), or no body with mass.
     pub fn gibbs_appell(&self) -> Result<RollingAppell> {
-        let rolling: Vec<usize> = self
-            .nodes()
-            .iter()
-            .filter(|n| matches!(n.joint.kind(), JointKind::Rolling { .. }))
-            .map(|n| n.offset)
-            .collect();
+        let rolling = self.rolling_bodies();
         let parts: Vec<usize> = (0..self.bodies())
             .filter(|&b| self.nodes()[b].body.mass > 0.0)
             .collect();
@@ -61,7 +55,12 @@ impl Mechanism {
             .into());
         }
         let free = (0..self.dof())
-            .filter(|i| !rolling.iter().any(|&k| *i == k || *i == k + 1))
+            .filter(|i| {
+                !rolling.iter().any(|&b| {
+                    let k = self.nodes()[b].offset;
+                    *i == k || *i == k + 1
+                })
+            })
             .collect();
         Ok(RollingAppell {
             mechanism: self.clone(),
@@ -101,15 +100,10 @@ impl GibbsAppell for RollingAppell {
         for (&i, &ui) in self.free.iter().zip(u) {
             qdot[i] = ui;
         }
-        let nodes = self.mechanism.nodes();
-        for &k in &self.rolling {
-            let node = nodes.iter().find(|n| n.offset == k).expect("a rolling joint");
-            let own = k..k + 5;
+        for &b in &self.rolling {
             // With ẋ = ẏ = 0 the contact slips by −(ẋ, ẏ) of the rolling motion.
-            let slip = node
-                .joint
-                .contact_velocity(&q[own.clone()], &qdot[own])
-                .unwrap_or([D::zero(); 3]);
+            let slip = self.mechanism.slip(b, q, qdot);
+            let k = self.mechanism.nodes()[b].offset;
             qdot[k] = -slip[0];
             qdot[k + 1] = -slip[1];
         }

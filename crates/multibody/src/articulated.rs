@@ -122,8 +122,9 @@ impl ArticulatedBody {
         for node in mechanism.nodes() {
             let k = node.offset;
             let freedom = match node.joint.kind() {
-                JointKind::Revolute { .. } => Freedom::Turn(axis_of(node), k),
-                JointKind::Prismatic { .. } => Freedom::Slide(axis_of(node), k),
+                // The axis was normalised when the body was attached.
+                JointKind::Revolute { axis } => Freedom::Turn(Vector3::from(axis), k),
+                JointKind::Prismatic { axis } => Freedom::Slide(Vector3::from(axis), k),
                 JointKind::Fixed => Freedom::Weld,
                 JointKind::Cylindrical { .. }
                 | JointKind::Planar { .. }
@@ -191,11 +192,6 @@ impl ArticulatedBody {
             r: l.origin + l.rotation * slide,
         }
     }
-}
-
-/// The joint's axis, unit (attach normalised it).
-fn axis_of(node: &crate::mechanism::Node) -> Vector3<f64> {
-    Vector3::from(node.joint.axis().unwrap_or([0.0, 0.0, 1.0]))
 }
 
 /// S for a link (zero for a weld) and its coordinate.
@@ -310,8 +306,8 @@ impl Dynamics for ArticulatedBody {
 /// A mechanism's forward dynamics by the fastest path this crate has for its shape
 /// ([`Mechanism::forward_dynamics`]): the articulated-body algorithm for a tree of revolute,
 /// prismatic and fixed joints, Lagrange's equations of its L by dual numbers for anything else
-/// (joints of several coordinates, springs and dampers between points). Both are a core [`Dynamics`] on (q, q̇) with the inputs at zero,
-/// and the same motion to rounding.
+/// (joints of several coordinates, springs and dampers between points). Both are a core
+/// [`Dynamics`] on (q, q̇) with the inputs at zero, and the same motion to rounding.
 #[allow(clippy::large_enum_variant)]
 pub enum ForwardDynamics {
     /// The articulated-body algorithm (O(n) on f64; on the 7-link arm of the benchmarks 1.3× a

@@ -51,7 +51,7 @@ impl Mechanism {
         self.connect(
             a,
             b,
-            [("spring stiffness", stiffness), ("spring rest length", rest)],
+            &[("spring stiffness", stiffness), ("spring rest length", rest)],
         )?;
         self.connections.push(Connection {
             a: a.0,
@@ -69,7 +69,7 @@ impl Mechanism {
     /// c ḋ along the line between them (module docs). Errors: an unknown body, a non-finite point, c
     /// negative or not finite.
     pub fn damper(&mut self, a: (Parent, [f64; 3]), b: (Parent, [f64; 3]), damping: f64) -> Result<()> {
-        self.connect(a, b, [("damper constant", damping), ("damper constant", damping)])?;
+        self.connect(a, b, &[("damper constant", damping)])?;
         self.connections.push(Connection {
             a: a.0,
             at_a: a.1,
@@ -87,14 +87,14 @@ impl Mechanism {
         &self,
         (a, at_a): (Parent, [f64; 3]),
         (b, at_b): (Parent, [f64; 3]),
-        constants: [(&'static str, f64); 2],
+        constants: &[(&'static str, f64)],
     ) -> Result<()> {
         for p in [a, b] {
             self.check_parent(p, self.bodies())?;
         }
         check_finite("connection point", &at_a)?;
         check_finite("connection point", &at_b)?;
-        for (name, value) in constants {
+        for &(name, value) in constants {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(noether_core::Error::InvalidParameter {
                     name,

@@ -222,16 +222,7 @@ impl Mechanism {
     /// length or not finite.
     pub fn rechart(&self, q: &mut [f64], v: &mut [f64]) -> Result<usize> {
         noether_core::error::check_phase_point(self.dof, 0.0, q, v, "q̇")?;
-        let mut renewed = 0;
-        for k in self.rotation_vectors() {
-            let (theta, rate) = ([q[k], q[k + 1], q[k + 2]], [v[k], v[k + 1], v[k + 2]]);
-            if let Some((theta, rate)) = crate::joint::renewed_rotation_vector(theta, rate) {
-                q[k..k + 3].copy_from_slice(&theta);
-                v[k..k + 3].copy_from_slice(&rate);
-                renewed += 1;
-            }
-        }
-        Ok(renewed)
+        Ok(renew(&self.rotation_vectors(), q, v))
     }
 
     /// An event for the [`Driver`](noether_core::Driver) that keeps the spherical and free joints in
@@ -242,21 +233,19 @@ impl Mechanism {
     /// joints g = −3π/2 and it never fires. It fires on crossings: start the run inside (every
     /// |θ| ≤ π, which [`rechart`](Self::rechart) of the initial state ensures).
     pub fn chart_event(&self) -> Event<'static, Velocities> {
-        let (starts, mechanism) = (self.rotation_vectors(), self.clone());
+        let starts = self.rotation_vectors();
+        let watched = starts.clone();
         let limit = 1.5 * std::f64::consts::PI;
         Event::new("rechart", move |s: &State| {
-            starts
+            watched
                 .iter()
                 .map(|&k| (s.q[k].powi(2) + s.q[k + 1].powi(2) + s.q[k + 2].powi(2)).sqrt())
                 .fold(0.0, f64::max)
                 - limit
         })
         .rising()
-        .try_reset(move |s: &mut State| {
-            mechanism
-                .rechart(s.q.as_mut_slice(), s.v.as_mut_slice())
-                .map(|_| ())
-                .map_err(noether_core::Error::from)
+        .reset(move |s: &mut State| {
+            renew(&starts, s.q.as_mut_slice(), s.v.as_mut_slice());
         })
     }
 
@@ -371,6 +360,21 @@ impl Mechanism {
         }
         out
     }
+}
+
+/// Renews every rotation vector starting at one of `starts` in q whose length is above π
+/// ([`renewed_rotation_vector`](crate::joint::renewed_rotation_vector)); returns how many.
+fn renew(starts: &[usize], q: &mut [f64], v: &mut [f64]) -> usize {
+    let mut renewed = 0;
+    for &k in starts {
+        let (theta, rate) = ([q[k], q[k + 1], q[k + 2]], [v[k], v[k + 1], v[k + 2]]);
+        if let Some((theta, rate)) = crate::joint::renewed_rotation_vector(theta, rate) {
+            q[k..k + 3].copy_from_slice(&theta);
+            v[k..k + 3].copy_from_slice(&rate);
+            renewed += 1;
+        }
+    }
+    renewed
 }
 
 /// A body's data checked (the variant of [`Error`] says what is wrong).

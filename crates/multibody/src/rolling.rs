@@ -18,6 +18,7 @@
 //! [`RollingContacts`] is a [`Nonholonomic`] set, generic like the Lagrangian, for noether-constraints'
 //! multipliers (the Lagrange-d'Alembert principle), projections and constrained linearisation.
 
+use crate::frames::V3;
 use crate::mechanism::Mechanism;
 use crate::Result;
 use noether_constraints::Nonholonomic;
@@ -27,13 +28,7 @@ impl Mechanism {
     /// The rolling joints' no-slip conditions as a velocity constraint set (module docs). Errors
     /// (`InvalidParameter`): a mechanism without rolling joints.
     pub fn rolling_contacts(&self) -> Result<RollingContacts> {
-        let contacts: Vec<usize> = self
-            .nodes()
-            .iter()
-            .enumerate()
-            .filter(|(_, n)| matches!(n.joint.kind(), crate::JointKind::Rolling { .. }))
-            .map(|(i, _)| i)
-            .collect();
+        let contacts = self.rolling_bodies();
         if contacts.is_empty() {
             return Err(noether_core::Error::InvalidParameter {
                 name: "rolling joints",
@@ -46,6 +41,26 @@ impl Mechanism {
             mechanism: self.clone(),
             contacts,
         })
+    }
+
+    /// The bodies on rolling joints, in the order of attachment.
+    pub(crate) fn rolling_bodies(&self) -> Vec<usize> {
+        self.nodes()
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| matches!(n.joint.kind(), crate::JointKind::Rolling { .. }))
+            .map(|(i, _)| i)
+            .collect()
+    }
+
+    /// The velocity of the contact point of `body`'s rolling disk relative to its plane at (q, q̇)
+    /// (module docs), from the joint's own coordinates; `body` must be on a rolling joint.
+    pub(crate) fn slip<D: Scalar>(&self, body: usize, q: &[D], v: &[D]) -> V3<D> {
+        let node = &self.nodes()[body];
+        let own = node.offset..node.offset + node.joint.dof();
+        node.joint
+            .contact_velocity(&q[own.clone()], &v[own])
+            .unwrap_or([D::zero(); 3])
     }
 }
 
@@ -67,14 +82,8 @@ impl Nonholonomic for RollingContacts {
         2 * self.contacts.len()
     }
     fn constraints<D: Scalar>(&self, _t: D, q: &[D], v: &[D], out: &mut [D]) {
-        let nodes = self.mechanism.nodes();
         for (k, &body) in self.contacts.iter().enumerate() {
-            let node = &nodes[body];
-            let own = node.offset..node.offset + node.joint.dof();
-            let slip = node
-                .joint
-                .contact_velocity(&q[own.clone()], &v[own])
-                .unwrap_or([D::zero(); 3]);
+            let slip = self.mechanism.slip(body, q, v);
             out[2 * k] = slip[0];
             out[2 * k + 1] = slip[1];
         }

@@ -556,22 +556,22 @@ impl BallPendulum {
         (self.mass * self.length * self.length + i3, i3)
     }
 
-    /// ω₀² = m g l / I₁, the small swings' angular frequency squared.
-    fn omega2(&self) -> f64 {
-        self.mass * self.g * self.length / self.moments().0
+    /// ω₀ = sqrt(m g l / I₁), the small swings' angular frequency.
+    pub fn small_swing_rate(&self) -> f64 {
+        (self.mass * self.g * self.length / self.moments().0).sqrt()
     }
 
     /// The period of a swing in a vertical plane through the bottom with amplitude a < π: the
     /// compound pendulum's T = 4 K(sin(a/2)) / ω₀ (the planar pendulum of moment I₁).
     pub fn swing_period(&self, amplitude: f64) -> f64 {
-        4.0 * crate::closed_form::elliptic_k((0.5 * amplitude).sin()) / self.omega2().sqrt()
+        4.0 * crate::closed_form::elliptic_k((0.5 * amplitude).sin()) / self.small_swing_rate()
     }
 
     /// The time of one revolution of a pendulum going over the top in a vertical plane, with the
     /// rate Ω₀ at the bottom: from θ̇² = Ω₀² − 4 ω₀² sin²(θ/2), T = ∫₀^{2π} dθ/θ̇ = (4/Ω₀) K(κ),
     /// κ = 2 ω₀/Ω₀ < 1 (the energy above the top).
     pub fn revolution_period(&self, bottom_rate: f64) -> f64 {
-        let kappa = 2.0 * self.omega2().sqrt() / bottom_rate;
+        let kappa = 2.0 * self.small_swing_rate() / bottom_rate;
         4.0 / bottom_rate * crate::closed_form::elliptic_k(kappa)
     }
 
